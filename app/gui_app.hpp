@@ -1,0 +1,20 @@
+#pragma once
+#include <string>
+
+#include "settings.hpp"
+
+namespace iblab::app {
+
+struct GuiOptions {
+    FrameSettings settings;
+    int width = 1280;
+    int height = 720;
+    int quitAfterFrames = 0; // > 0: close after that many frames (scripted start-up timing)
+};
+
+// True when a window system is reachable (glfwInit succeeds).
+bool displayAvailable();
+// Runs the window until closed. Throws std::runtime_error when no window can be made.
+int runGui(const GuiOptions& options);
+
+} // namespace iblab::app

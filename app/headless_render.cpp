@@ -1,0 +1,103 @@
+#include "headless_render.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <nlohmann/json.hpp>
+
+#include "asset_paths.hpp"
+#include "gl/context_error.hpp"
+#include "gl/debug_output.hpp"
+#include "gl/headless_context.hpp"
+#include "gl/shader_library.hpp"
+#include "lab_session.hpp"
+
+namespace iblab::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+int fail(const std::string& reason)
+{
+    std::fprintf(stderr, "iblab render: %s\n", reason.c_str());
+    return 1;
+}
+
+} // namespace
+
+int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
+{
+#ifdef NDEBUG
+    const bool debugContext = job.glDebug;
+#else
+    const bool debugContext = true;
+#endif
+    try {
+        gl::HeadlessContext context({.debug = debugContext});
+        gl::DebugOutput debug;
+        if (debugContext && gl::currentContextHasDebugOutput()) {
+            debug.onMessage = [](const gl::DebugMessage& m) { std::fprintf(stderr, "iblab: %s\n", m.text.c_str()); };
+            debug.install();
+        }
+        const double contextMs = millisecondsSince(processStart);
+
+        Renderer renderer(shaderDirectory());
+        LabSession session(renderer);
+        FrameSettings settings = job.settings;
+        const auto loadStart = Clock::now();
+        const ui::StatusLine loaded = session.loadEnvironment(settings.environment.source, settings);
+        if (loaded.isError) return fail(loaded.text);
+        const double loadMs = millisecondsSince(loadStart);
+
+        renderer.renderFrame(settings, job.width, job.height);
+        glFinish();
+        const double firstFrameMs = millisecondsSince(processStart);
+
+        // Warm frames: the same passes again, timed one by one with glFinish, because
+        // llvmpipe's timer queries are wrong at this size.
+        std::vector<double> frameMs;
+        for (int i = 0; i < job.timingRepeats; ++i) {
+            const auto t = Clock::now();
+            renderer.renderFrame(settings, job.width, job.height);
+            glFinish();
+            frameMs.push_back(millisecondsSince(t));
+        }
+        std::sort(frameMs.begin(), frameMs.end());
+
+        const ui::StatusLine written = session.capture(job.output, settings);
+        if (written.isError) return fail(written.text);
+        if (debug.errorCount() > 0) return fail(std::to_string(debug.errorCount()) + " GL error(s) while rendering; see above");
+
+        if (job.json) {
+            nlohmann::ordered_json report;
+            report["output"] = job.output;
+            report["width"] = job.width;
+            report["height"] = job.height;
+            report["renderer"] = context.description();
+            report["environment"] = loaded.text;
+            report["timings_ms"]["start_to_context"] = contextMs;
+            report["timings_ms"]["environment_load"] = loadMs;
+            report["timings_ms"]["start_to_first_frame"] = firstFrameMs;
+            if (!frameMs.empty()) {
+                report["timings_ms"]["frame_median"] = frameMs[frameMs.size() / 2];
+                report["timings_ms"]["frame_min"] = frameMs.front();
+                report["timings_ms"]["frame_repeats"] = frameMs.size();
+                report["timing_method"] = "steady_clock around glFinish";
+            }
+            std::printf("%s\n", report.dump(2).c_str());
+        } else {
+            std::printf("%s\n", job.output.c_str());
+        }
+        return 0;
+    } catch (const gl::ContextError& e) {
+        return fail(e.what());
+    } catch (const gl::ShaderError& e) {
+        return fail(e.what());
+    }
+}
+
+} // namespace iblab::app

@@ -1,0 +1,97 @@
+#pragma once
+// Loading and validating equirectangular HDR environments.
+//
+// loadEnvironment() turns a spec (a file path, or "builtin:NAME?k=v" — see
+// builtin_environments.hpp) into linear-light RGB float texels that every later stage may
+// trust: 2:1, at most the size cap, all components finite and >= 0. Whatever had to be
+// changed on the way is reported (TexelRepairReport, warnings), never silently hidden.
+// Failures throw iblab::Error with a one-line message naming the file; nothing else
+// changes, so a caller keeps the environment it had.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ibl/image.hpp"
+
+namespace iblab {
+
+// What repairTexels() found and fixed. Counts are of components (R, G, B separately).
+//
+// Energy: each texel has the solid angle of its equirect cell,
+//   Omega(y) = (2 pi / W) (cos(theta_top) - cos(theta_bottom)),  theta = pi * row / H,
+// and a component value c contributes  Omega * k_c * c  with Rec. 709 luminance weights
+// k = (0.2126, 0.7152, 0.0722). Over all FINITE components:
+//   positiveEnergy = sum Omega k_c max(c, 0)
+//   negativeEnergy = sum Omega k_c max(-c, 0)
+// Clamping negatives to 0 changes the map's total luminance integral by negativeEnergy;
+// negativeEnergyShare() = negativeEnergy / positiveEnergy is that change relative to the
+// positive light in the map (the pmndrs "sky" map: about 10%). NaN and Inf components are
+// excluded from both sums (an Inf has no meaningful energy) and counted on their own.
+struct TexelRepairReport {
+    std::uint64_t nanComponents = 0;
+    std::uint64_t positiveInfComponents = 0;
+    std::uint64_t negativeInfComponents = 0;
+    std::uint64_t negativeComponents = 0;  // finite and < 0
+    std::uint64_t repairedTexels = 0;      // texels with at least one component replaced
+    double mostNegative = 0.0;             // the smallest finite component seen (<= 0)
+    double negativeEnergy = 0.0;           // luminance-weighted sr, see above
+    double positiveEnergy = 0.0;
+
+    std::uint64_t repairedComponents() const
+    {
+        return nanComponents + positiveInfComponents + negativeInfComponents + negativeComponents;
+    }
+    bool clean() const { return repairedComponents() == 0; }
+    double negativeEnergyShare() const { return positiveEnergy > 0.0 ? negativeEnergy / positiveEnergy : 0.0; }
+    // One line, e.g. "repaired 33 texel components (33 negative down to -3394, 10.2% of
+    // the positive energy; 0 NaN; 0 Inf) in 30 texels" or "no invalid texels".
+    std::string summary() const;
+};
+
+// Replaces NaN, +Inf, -Inf and negative components by +0 in place and reports them
+// (-0.0 also becomes +0.0, uncounted, so equal-looking maps hash equally).
+// +Inf becomes 0 rather than a large finite value: any finite stand-in would still
+// dominate every filter, SH projection and importance-sampling CDF it reaches, and the
+// file gives no hint of the intended magnitude.
+TexelRepairReport repairTexels(ImageRGB32F& image);
+
+struct EnvironmentLoadOptions {
+    // Size cap: inputs wider than this (or taller than maxWidth / 2) are downsampled to
+    // maxWidth x maxWidth/2 with an energy-preserving box filter, and a warning. Must be
+    // even and >= 2. Builtins wider than the cap are an error instead.
+    int maxWidth = 8192;
+};
+
+struct Environment {
+    std::string source;          // the file path as given, or the canonical "builtin:..." spec
+    ImageRGB32F image;           // linear RGB, row 0 = zenith, finite and >= 0
+    TexelRepairReport repair;    // measured on the input at its original resolution
+    std::vector<std::string> warnings; // one line each: LDR input, downsampling, repairs
+    std::uint64_t contentHash = 0;     // contentHash(image), keys the on-disk bake cache
+};
+
+// Texel pixel-count limit checked against the file header before anything is allocated.
+inline constexpr std::uint64_t kMaxEnvironmentTexels = std::uint64_t(1) << 28;
+
+// Loads a file (any format OpenImageIO reads: .exr including DWAB, .hdr, .png, .jpg, ...)
+// or a builtin. Files must be 2:1 (+-1 texel of rounding). Grey inputs are replicated to
+// RGB, alpha and extra channels are dropped. 8-bit inputs or inputs whose values never
+// exceed 1 load with a warning (limited dynamic range); sRGB-encoded ones (as OpenImageIO
+// reports through "oiio:ColorSpace", or any 8/16-bit integer file that names no colour
+// space) are linearised, gamma-encoded ones ("Gamma2.2") are raised to the gamma.
+Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOptions& options = {});
+
+// 64-bit FNV-1a (offset basis 14695981039346656037, prime 1099511628211) over the bytes
+// of: width and height as little-endian uint32, then every texel component's IEEE-754
+// bit pattern as little-endian uint32, in memory order. Stable across runs and machines;
+// -0.0 and +0.0 hash differently (loaded maps never hold -0.0: repairTexels clears it).
+std::uint64_t contentHash(const ImageRGB32F& image);
+
+// Solid angle of one texel in row `row` of a width x height equirect (see above).
+
+// The bundled gallery lives in <assetDir>/environments/*.exr; courtyard.exr is the default.
+std::string defaultEnvironmentPath(const std::string& assetDir);
+// Sorted paths of <assetDir>/environments/*.exr (hidden files skipped); empty if none.
+std::vector<std::string> galleryEnvironments(const std::string& assetDir);
+
+} // namespace iblab

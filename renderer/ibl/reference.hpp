@@ -1,0 +1,43 @@
+#pragma once
+// Exact references over a discretised environment: the integrals the GPU bakes and the
+// split-sum approximate, evaluated by summing over EVERY texel of an equirect image with the
+// texel's exact solid angle (equirect.hpp) and double accumulation. They are exact for the
+// environment "one constant radiance per texel, seen in the texel-centre direction", so the
+// only error against the continuous integral is the midpoint rule inside each texel; that
+// error is small when the integrand's lobe spans many texels (roughness well above the
+// texel's angular size) and is the caller's to budget for.
+//
+// Cost is O(texels) per query direction. Large images are summed by several threads over
+// bands of rows (partial sums combined in a fixed order, so results do not depend on
+// scheduling); for many queries on a big environment, downsample it first.
+#include <glm/vec3.hpp>
+
+#include "ibl/brdf.hpp"
+#include "ibl/image.hpp"
+
+namespace iblab {
+
+// Diffuse irradiance E(n) = integral L(w) max(0, n.w) dOmega. n must be unit length.
+glm::dvec3 referenceIrradiance(const ImageRGB32F& env, glm::dvec3 n);
+
+// What LearnOpenGL's GGX prefilter converges to with N = V = R, as the sample count -> inf:
+//   sum_w L(w) D(h) max(0, n.w) dOmega / sum_w D(h) max(0, n.w) dOmega,  h = normalize(n + w),
+// alpha = roughness^2. At roughness 0 the lobe is a delta: returns the bilinear lookup at n.
+// (Derivation in reference.cpp.)
+glm::dvec3 referencePrefilteredRadiance(const ImageRGB32F& env, glm::dvec3 n, double roughness);
+
+// The full specular integral without the split-sum factorisation:
+//   integral L(w) D(h) Vis(n.v, n.w) F(v.h) max(0, n.w) dOmega,  h = normalize(v + w),
+// with Fresnel-Schlick of F0 (per channel) and the chosen geometry term. Returns outgoing
+// radiance towards v (unit, pointing away from the surface). 0 if n.v <= 0.
+glm::dvec3 referenceSpecular(const ImageRGB32F& env, glm::dvec3 n, glm::dvec3 v, double roughness,
+                             glm::dvec3 F0, GeometryTerm term);
+
+// Halves both dimensions (which must be even; throws std::invalid_argument otherwise). Each
+// output texel is the solid-angle-weighted mean of its 2 x 2 parents: the two parent rows
+// cover different solid angles, and weighting by them makes the output texel's radiance times
+// its solid angle (which is exactly the sum of its parents') equal to the parents' total
+// power. So integrals of L against slowly varying weights are preserved.
+ImageRGB32F downsampleEquirect2x(const ImageRGB32F& env);
+
+} // namespace iblab

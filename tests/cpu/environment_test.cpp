@@ -1,0 +1,502 @@
+// Loading and validating environments: real maps (bundled and shared candidates), and
+// bad files generated on the fly. Expected values come from independent sources: the
+// shared assets' README, a raw OpenImageIO read done here, or closed-form formulas.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "environment/environment.hpp"
+#include "environment/error.hpp"
+
+namespace fs = std::filesystem;
+using namespace iblab;
+
+namespace {
+
+const fs::path kSourceDir = IBLAB_SOURCE_DIR;
+const fs::path kSharedAssets = kSourceDir / ".." / "shared" / "assets";
+constexpr double kPiD = 3.14159265358979323846;
+
+// A fresh directory per test, removed afterwards.
+struct TempDir {
+    fs::path path;
+    TempDir()
+    {
+        static std::atomic<int> counter{0};
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        path = fs::temp_directory_path() /
+               ("iblab-envtest-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + info->name());
+        fs::create_directories(path);
+    }
+    ~TempDir()
+    {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+    std::string file(const std::string& name) const { return (path / name).string(); }
+};
+
+void writeImage(const std::string& path, int w, int h, int channels, const std::vector<float>& data,
+                OIIO::TypeDesc format = OIIO::TypeDesc::FLOAT, int tile = 0)
+{
+    OIIO::ImageSpec spec(w, h, channels, format);
+    if (tile > 0) {
+        spec.tile_width = tile;
+        spec.tile_height = tile;
+    }
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out) << OIIO::geterror();
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, data.data())) << out->geterror();
+    ASSERT_TRUE(out->close());
+}
+
+std::vector<float> readRaw(const std::string& path, int& w, int& h)
+{
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << OIIO::geterror();
+    w = in->spec().width;
+    h = in->spec().height;
+    std::vector<float> px(std::size_t(w) * std::size_t(h) * 3);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data()));
+    return px;
+}
+
+// Independent solid angle of a texel row (same formula as documented, derived here).
+double rowOmega(int y, int w, int h) { return 2.0 * kPiD / w * (std::cos(kPiD * y / h) - std::cos(kPiD * (y + 1) / h)); }
+
+double meanLuminance(const ImageRGB32F& img)
+{
+    double sum = 0.0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const glm::vec3 c = img.at(x, y);
+            sum += rowOmega(y, img.width, img.height) * (0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b);
+        }
+    return sum / (4.0 * kPiD);
+}
+
+void expectFiniteNonNegative(const ImageRGB32F& img)
+{
+    std::size_t bad = 0;
+    for (float v : img.texels)
+        bad += (std::isfinite(v) && v >= 0.0f) ? 0 : 1;
+    EXPECT_EQ(bad, 0u);
+}
+
+// Runs f, expects an iblab::Error, returns its message (one line, naming `mustName`).
+template <class F>
+std::string errorOf(F&& f, const std::string& mustName)
+{
+    try {
+        f();
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        EXPECT_NE(what.find(mustName), std::string::npos) << what;
+        return what;
+    }
+    ADD_FAILURE() << "no iblab::Error thrown";
+    return {};
+}
+
+bool hasWarningContaining(const Environment& env, const std::string& word)
+{
+    for (const std::string& w : env.warnings)
+        if (w.find(word) != std::string::npos)
+            return true;
+    return false;
+}
+
+} // namespace
+
+TEST(Environment, BundledCourtyardLoadsCleanly)
+{
+    const std::string path = defaultEnvironmentPath((kSourceDir / "assets").string());
+    const Environment env = loadEnvironment(path);
+    EXPECT_EQ(env.image.width, 1024);
+    EXPECT_EQ(env.image.height, 512);
+    EXPECT_EQ(env.source, path);
+    expectFiniteNonNegative(env.image);
+    // DWAB leaves a few tiny negatives (about -0.003 per the assets README), nothing else.
+    EXPECT_EQ(env.repair.nanComponents, 0u);
+    EXPECT_EQ(env.repair.positiveInfComponents + env.repair.negativeInfComponents, 0u);
+    EXPECT_GT(env.repair.mostNegative, -0.01);
+    EXPECT_LT(env.repair.negativeEnergyShare(), 1e-5);
+    EXPECT_FALSE(hasWarningContaining(env, "dynamic range"));
+    // The assets README measured mean luminance 0.77 (two digits, so +-0.005): a wrong
+    // decode, a scale error or a channel mix-up would miss it by far more than 2%.
+    EXPECT_NEAR(meanLuminance(env.image), 0.77, 0.77 * 0.02);
+}
+
+TEST(Environment, SharedCourtyardIsTheBundledOne)
+{
+    const fs::path shared = kSharedAssets / "hdri" / "blender-world" / "courtyard.exr";
+    if (!fs::exists(shared))
+        GTEST_SKIP() << "shared assets not present at " << kSharedAssets;
+    const Environment a = loadEnvironment(shared.string());
+    const Environment b = loadEnvironment(defaultEnvironmentPath((kSourceDir / "assets").string()));
+    EXPECT_EQ(a.image.width, 1024);
+    EXPECT_EQ(a.contentHash, b.contentHash); // same texels -> same cache key, whatever the path
+}
+
+TEST(Environment, PmndrsSkyNegativesAreReportedAndRemoved)
+{
+    const fs::path path = kSharedAssets / "hdri" / "pmndrs" / "sky.exr";
+    if (!fs::exists(path))
+        GTEST_SKIP() << "shared assets not present at " << kSharedAssets;
+    const Environment env = loadEnvironment(path.string());
+    EXPECT_EQ(env.image.width, 512);
+    EXPECT_EQ(env.image.height, 256);
+    expectFiniteNonNegative(env.image);
+    EXPECT_GT(env.repair.negativeComponents, 0u);
+    EXPECT_LT(env.repair.mostNegative, -1000.0); // README: down to -3361 (luminance), a -3394 component
+    EXPECT_GT(env.repair.negativeEnergyShare(), 0.01);
+    EXPECT_LT(env.repair.negativeEnergyShare(), 0.30);
+    EXPECT_TRUE(hasWarningContaining(env, "negative"));
+    EXPECT_NE(env.repair.summary().find("negative"), std::string::npos);
+    EXPECT_EQ(env.repair.summary().find('\n'), std::string::npos);
+
+    // Recompute the report from a raw read, independently of the loader.
+    int w = 0, h = 0;
+    const std::vector<float> raw = readRaw(path.string(), w, h);
+    const double k[3] = {0.2126, 0.7152, 0.0722};
+    double pos = 0.0, neg = 0.0;
+    std::uint64_t negatives = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float v = raw[(std::size_t(y) * w + x) * 3 + c];
+                (v < 0 ? neg : pos) += rowOmega(y, w, h) * k[c] * std::abs(double(v));
+                negatives += v < 0 ? 1 : 0;
+                // Every texel that was valid comes through unchanged, negatives become 0.
+                ASSERT_EQ(env.image.texels[(std::size_t(y) * w + x) * 3 + c], v < 0 ? 0.0f : v);
+            }
+    EXPECT_EQ(env.repair.negativeComponents, negatives);
+    EXPECT_NEAR(env.repair.negativeEnergyShare(), neg / pos, 1e-9 + 1e-6 * neg / pos);
+}
+
+TEST(Environment, EveryPmndrsMapLoadsFiniteAndNonNegative)
+{
+    const fs::path dir = kSharedAssets / "hdri" / "pmndrs";
+    if (!fs::exists(dir))
+        GTEST_SKIP() << "shared assets not present at " << kSharedAssets;
+    int maps = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        if (entry.path().extension() != ".exr")
+            continue;
+        const Environment env = loadEnvironment(entry.path().string());
+        expectFiniteNonNegative(env.image);
+        EXPECT_GT(env.repair.negativeComponents, 0u) << entry.path(); // all six have some
+        ++maps;
+    }
+    EXPECT_EQ(maps, 6);
+}
+
+TEST(Environment, WrongAspectRatioNamesSizeAndFile)
+{
+    TempDir dir;
+    const std::string path = dir.file("wide.exr");
+    writeImage(path, 96, 32, 3, std::vector<float>(96 * 32 * 3, 1.0f));
+    const std::string msg = errorOf([&] { loadEnvironment(path); }, "wide.exr");
+    EXPECT_NE(msg.find("3:1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("96x32"), std::string::npos) << msg;
+}
+
+TEST(Environment, OneTexelOfAspectRoundingIsAccepted)
+{
+    TempDir dir;
+    const std::string path = dir.file("odd.exr");
+    writeImage(path, 65, 32, 3, std::vector<float>(65 * 32 * 3, 0.5f));
+    const Environment env = loadEnvironment(path);
+    EXPECT_EQ(env.image.width, 65);
+    EXPECT_EQ(env.image.height, 32);
+    const std::string tall = dir.file("tall.exr");
+    writeImage(tall, 66, 32, 3, std::vector<float>(66 * 32 * 3, 0.5f));
+    errorOf([&] { loadEnvironment(tall); }, "tall.exr");
+}
+
+TEST(Environment, TruncatedExrIsAnErrorNotZeros)
+{
+    TempDir dir;
+    const std::string good = dir.file("good.exr");
+    std::vector<float> px(256 * 128 * 3);
+    for (std::size_t i = 0; i < px.size(); ++i)
+        px[i] = 1.0f + float(i % 97) * 0.25f;
+    writeImage(good, 256, 128, 3, px);
+    ASSERT_NO_THROW(loadEnvironment(good));
+
+    std::ifstream in(good, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string cut = dir.file("cut.exr");
+    std::ofstream(cut, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() / 2));
+    errorOf([&] { loadEnvironment(cut); }, "cut.exr");
+}
+
+TEST(Environment, GarbageEmptyMissingAndDirectoryAreErrors)
+{
+    TempDir dir;
+    const std::string garbage = dir.file("garbage.exr");
+    std::string junk(4096, '\0');
+    for (std::size_t i = 0; i < junk.size(); ++i)
+        junk[i] = char((i * 2654435761u) >> 13);
+    std::ofstream(garbage, std::ios::binary) << junk;
+    errorOf([&] { loadEnvironment(garbage); }, "garbage.exr");
+
+    const std::string empty = dir.file("empty.exr");
+    std::ofstream(empty, std::ios::binary).flush();
+    EXPECT_NE(errorOf([&] { loadEnvironment(empty); }, "empty.exr").find("0 bytes"), std::string::npos);
+
+    const std::string missing = dir.file("missing.hdr");
+    EXPECT_NE(errorOf([&] { loadEnvironment(missing); }, "missing.hdr").find("no such file"), std::string::npos);
+
+    errorOf([&] { loadEnvironment(dir.path.string()); }, dir.path.string());
+    errorOf([&] { loadEnvironment(""); }, "empty");
+}
+
+TEST(Environment, AbsurdHeaderSizeIsRejectedBeforeReading)
+{
+    // A Radiance header promising 40000x20000 texels (8e8 > 2^28) with no pixel data: the
+    // loader must refuse it from the header alone (allocating would need 9.6 GB).
+    TempDir dir;
+    const std::string path = dir.file("huge.hdr");
+    std::ofstream(path, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 20000 +X 40000\n";
+    const std::string msg = errorOf([&] { loadEnvironment(path); }, "huge.hdr");
+    EXPECT_NE(msg.find("40000x20000"), std::string::npos) << msg;
+}
+
+TEST(Environment, NanInfAndNegativeTexelsAreCountedAndZeroed)
+{
+    TempDir dir;
+    const std::string path = dir.file("bad_values.exr");
+    const int w = 16, h = 8;
+    std::vector<float> px(std::size_t(w) * h * 3, 2.0f);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    px[0] = nan;        // texel 0
+    px[1] = nan;        // texel 0 again
+    px[3 * 5 + 2] = inf;   // texel 5
+    px[3 * 9 + 1] = -inf;  // texel 9
+    px[3 * 20 + 0] = -4.0f; // texel 20
+    writeImage(path, w, h, 3, px);
+    const Environment env = loadEnvironment(path);
+    EXPECT_EQ(env.repair.nanComponents, 2u);
+    EXPECT_EQ(env.repair.positiveInfComponents, 1u);
+    EXPECT_EQ(env.repair.negativeInfComponents, 1u);
+    EXPECT_EQ(env.repair.negativeComponents, 1u);
+    EXPECT_EQ(env.repair.repairedTexels, 4u);
+    EXPECT_EQ(env.repair.mostNegative, -4.0);
+    expectFiniteNonNegative(env.image);
+    for (std::size_t i = 0; i < px.size(); ++i)
+        EXPECT_EQ(env.image.texels[i], std::isfinite(px[i]) && px[i] >= 0 ? px[i] : 0.0f) << i;
+    // Share: -4 in the red of texel 20 (row 1) against 2.0 luminance everywhere else.
+    double pos = 0.0;
+    for (int y = 0; y < h; ++y)
+        pos += rowOmega(y, w, h) * w * 2.0;
+    pos -= rowOmega(0, w, h) * 2.0 * (0.2126 + 0.7152) + rowOmega(0, w, h) * 2.0 * (0.0722 + 0.7152) +
+           rowOmega(1, w, h) * 2.0 * 0.2126;
+    EXPECT_NEAR(env.repair.negativeEnergyShare(), rowOmega(1, w, h) * 0.2126 * 4.0 / pos, 1e-12);
+    EXPECT_NE(env.repair.summary().find("NaN"), std::string::npos);
+}
+
+TEST(Environment, EightBitPngLoadsLinearisedWithLdrWarning)
+{
+    TempDir dir;
+    const std::string path = dir.file("ldr.png");
+    std::vector<float> px(32 * 16 * 3, 128.0f / 255.0f);
+    writeImage(path, 32, 16, 3, px, OIIO::TypeDesc::UINT8);
+    const Environment env = loadEnvironment(path);
+    EXPECT_TRUE(hasWarningContaining(env, "dynamic range"));
+    // sRGB EOTF of 128/255, by the IEC 61966-2-1 formula.
+    const double expected = std::pow((128.0 / 255.0 + 0.055) / 1.055, 2.4);
+    EXPECT_NEAR(env.image.texels[0], expected, 1e-5);
+    EXPECT_NEAR(env.image.texels.back(), expected, 1e-5);
+}
+
+TEST(Environment, FloatMapWithoutValuesAboveOneWarns)
+{
+    TempDir dir;
+    const std::string path = dir.file("dim.exr");
+    writeImage(path, 32, 16, 3, std::vector<float>(32 * 16 * 3, 0.25f));
+    const Environment env = loadEnvironment(path);
+    EXPECT_TRUE(hasWarningContaining(env, "dynamic range"));
+    EXPECT_EQ(env.image.texels[7], 0.25f); // linear EXR: no decode
+}
+
+TEST(Environment, RadianceHdrLoadsLinear)
+{
+    TempDir dir;
+    const std::string path = dir.file("map.hdr");
+    std::vector<float> px(64 * 32 * 3);
+    for (std::size_t i = 0; i < px.size(); ++i)
+        px[i] = 0.01f + float(i % 50); // up to 49: HDR
+    writeImage(path, 64, 32, 3, px);
+    const Environment env = loadEnvironment(path);
+    EXPECT_FALSE(hasWarningContaining(env, "dynamic range"));
+    // RGBE keeps 8 mantissa bits for the largest channel of a texel: smaller channels of
+    // the same texel lose more, so compare each channel to the texel's maximum.
+    for (std::size_t t = 0; t < 64 * 32; ++t) {
+        const float m = std::max({px[t * 3], px[t * 3 + 1], px[t * 3 + 2]});
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(env.image.texels[t * 3 + c], px[t * 3 + c], m / 128.0f) << t;
+    }
+}
+
+TEST(Environment, GreyIsReplicatedAndAlphaDropped)
+{
+    TempDir dir;
+    const std::string grey = dir.file("grey.exr");
+    std::vector<float> g(32 * 16);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        g[i] = float(i) * 0.5f;
+    writeImage(grey, 32, 16, 1, g);
+    const Environment eg = loadEnvironment(grey);
+    for (std::size_t i = 0; i < g.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(eg.image.texels[i * 3 + c], g[i]);
+
+    const std::string rgba = dir.file("rgba.exr");
+    std::vector<float> p(32 * 16 * 4);
+    for (std::size_t i = 0; i < p.size(); ++i)
+        p[i] = i % 4 == 3 ? 0.0f : float(i);
+    writeImage(rgba, 32, 16, 4, p);
+    const Environment ea = loadEnvironment(rgba);
+    for (std::size_t i = 0; i < 32 * 16; ++i)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(ea.image.texels[i * 3 + c], p[i * 4 + c]);
+}
+
+TEST(Environment, TiledExrReadsLikeScanlines)
+{
+    TempDir dir;
+    const int w = 160, h = 80; // not a multiple of the 64-texel tiles
+    std::vector<float> px(std::size_t(w) * h * 3);
+    for (std::size_t i = 0; i < px.size(); ++i)
+        px[i] = float(i % 1013) * 0.125f;
+    const std::string tiled = dir.file("tiled.exr");
+    writeImage(tiled, w, h, 3, px, OIIO::TypeDesc::FLOAT, 64);
+    const Environment env = loadEnvironment(tiled);
+    ASSERT_EQ(env.image.texels.size(), px.size());
+    EXPECT_EQ(env.image.texels, px);
+}
+
+TEST(Environment, SizeCapDownsamplesPreservingEnergy)
+{
+    const std::string path = defaultEnvironmentPath((kSourceDir / "assets").string());
+    const Environment full = loadEnvironment(path);
+    EnvironmentLoadOptions options;
+    options.maxWidth = 200; // 1024/200 is not an integer: fractional box weights
+    const Environment small = loadEnvironment(path, options);
+    EXPECT_EQ(small.image.width, 200);
+    EXPECT_EQ(small.image.height, 100);
+    EXPECT_TRUE(hasWarningContaining(small, "downsampled"));
+    expectFiniteNonNegative(small.image);
+    // The filter is solid-angle weighted, so the integral of luminance is preserved up to
+    // float accumulation error (~1e-6 relative; 1e-4 leaves room). The pole test below is
+    // the one that tells a solid-angle filter from a plain uv-area box.
+    EXPECT_NEAR(meanLuminance(small.image), meanLuminance(full.image), 1e-4 * meanLuminance(full.image));
+    EXPECT_NE(small.contentHash, full.contentHash);
+}
+
+TEST(Environment, SizeCapPreservesEnergyNearThePole)
+{
+    // Light only in the top 3 of 256 rows, downsampled to 48 rows (5.33 source rows per
+    // output row). Solid angle grows like theta^2 near the pole, so a uv-area box filter
+    // would give these rows 3/5.33 of the first output row's much larger solid angle and
+    // overstate the energy by ~80%; the solid-angle filter keeps it to float rounding.
+    TempDir dir;
+    const std::string path = dir.file("cap.exr");
+    const int w = 512, h = 256;
+    std::vector<float> px(std::size_t(w) * h * 3, 0.0f);
+    std::fill(px.begin(), px.begin() + std::ptrdiff_t(3) * w * 3, 100.0f);
+    writeImage(path, w, h, 3, px);
+    double expected = 0.0;
+    for (int y = 0; y < 3; ++y)
+        expected += rowOmega(y, w, h) * w * 100.0;
+    EnvironmentLoadOptions options;
+    options.maxWidth = 96;
+    const Environment env = loadEnvironment(path, options);
+    ASSERT_EQ(env.image.height, 48);
+    EXPECT_NEAR(meanLuminance(env.image) * 4.0 * kPiD, expected, 1e-5 * expected);
+    EXPECT_EQ(env.image.at(5, 1), glm::vec3(0.0f)); // nothing leaks beyond the first output row
+}
+
+TEST(Environment, SizeCapOnConstantMapKeepsTheConstant)
+{
+    TempDir dir;
+    const std::string path = dir.file("const.exr");
+    writeImage(path, 512, 256, 3, std::vector<float>(512 * 256 * 3, 3.0f));
+    EnvironmentLoadOptions options;
+    options.maxWidth = 96;
+    const Environment env = loadEnvironment(path, options);
+    ASSERT_EQ(env.image.width, 96);
+    for (float v : env.image.texels)
+        ASSERT_NEAR(v, 3.0f, 3.0f * 1e-5f); // weights of each output texel sum to 1
+}
+
+TEST(Environment, BuiltinSpecsLoadThroughTheSameEntryPoint)
+{
+    const Environment env = loadEnvironment("builtin:sky?top=2");
+    EXPECT_EQ(env.source, "builtin:sky?top=2");
+    EXPECT_EQ(env.image.width, 512);
+    EXPECT_TRUE(env.repair.clean());
+    EXPECT_TRUE(env.warnings.empty());
+    EnvironmentLoadOptions options;
+    options.maxWidth = 256;
+    errorOf([&] { loadEnvironment("builtin:white?width=1024", options); }, "builtin:white");
+}
+
+TEST(Environment, ContentHashIsFnv1aOverSizeAndTexelBits)
+{
+    // Independent byte-wise FNV-1a of the documented byte stream.
+    const auto fnv = [](const std::vector<std::uint8_t>& bytes) {
+        std::uint64_t h = 0xcbf29ce484222325ull;
+        for (std::uint8_t b : bytes) {
+            h ^= b;
+            h *= 0x100000001b3ull;
+        }
+        return h;
+    };
+    ImageRGB32F img(2, 1);
+    img.texels = {1.0f, 0.0f, 0.5f, -2.0f, 3.0f, 0.25f};
+    std::vector<std::uint8_t> bytes = {2, 0, 0, 0, 1, 0, 0, 0};
+    for (float v : img.texels) {
+        std::uint32_t u = 0;
+        std::memcpy(&u, &v, 4);
+        for (int i = 0; i < 4; ++i)
+            bytes.push_back(std::uint8_t(u >> (8 * i)));
+    }
+    EXPECT_EQ(contentHash(img), fnv(bytes));
+    ImageRGB32F other = img;
+    other.texels[5] = std::nextafter(0.25f, 1.0f);
+    EXPECT_NE(contentHash(other), contentHash(img));
+    ImageRGB32F transposed(1, 2);
+    transposed.texels = img.texels;
+    EXPECT_NE(contentHash(transposed), contentHash(img));
+}
+
+TEST(Environment, GalleryListsBundledExrFiles)
+{
+    const std::string assets = (kSourceDir / "assets").string();
+    const std::vector<std::string> gallery = galleryEnvironments(assets);
+    ASSERT_FALSE(gallery.empty());
+    EXPECT_TRUE(std::is_sorted(gallery.begin(), gallery.end()));
+    EXPECT_NE(std::find(gallery.begin(), gallery.end(), defaultEnvironmentPath(assets)), gallery.end());
+    for (const std::string& p : gallery) {
+        EXPECT_EQ(fs::path(p).extension(), ".exr");
+        EXPECT_TRUE(fs::is_regular_file(p));
+    }
+    EXPECT_TRUE(galleryEnvironments("/nonexistent-iblab-assets").empty());
+}

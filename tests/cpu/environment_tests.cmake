@@ -1,0 +1,11 @@
+# iblab_environment: loading/validating environments, builtins, image writing.
+iblab_add_cpu_test(environment_test ${CMAKE_CURRENT_SOURCE_DIR}/environment_test.cpp)
+iblab_add_cpu_test(builtin_environments_test ${CMAKE_CURRENT_SOURCE_DIR}/builtin_environments_test.cpp)
+iblab_add_cpu_test(image_writer_test ${CMAKE_CURRENT_SOURCE_DIR}/image_writer_test.cpp)
+foreach(test environment_test builtin_environments_test image_writer_test)
+  # Tests read assets/ and the shared candidate assets at ${IBLAB_SOURCE_DIR}/../shared/assets
+  # (skipped when absent), and check written files with OpenImageIO and nlohmann_json
+  # directly, independently of the code under test.
+  target_compile_definitions(${test} PRIVATE IBLAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  target_link_libraries(${test} PRIVATE OpenImageIO::OpenImageIO nlohmann_json::nlohmann_json)
+endforeach()

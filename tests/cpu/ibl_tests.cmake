@@ -1,0 +1,8 @@
+# iblab_core suites: the IBL math, no GL context and no image files needed.
+iblab_add_cpu_test(conventions_test ${CMAKE_CURRENT_SOURCE_DIR}/conventions_test.cpp)
+iblab_add_cpu_test(sampling_test ${CMAKE_CURRENT_SOURCE_DIR}/sampling_test.cpp)
+iblab_add_cpu_test(brdf_test ${CMAKE_CURRENT_SOURCE_DIR}/brdf_test.cpp)
+iblab_add_cpu_test(sh_test ${CMAKE_CURRENT_SOURCE_DIR}/sh_test.cpp)
+iblab_add_cpu_test(reference_test ${CMAKE_CURRENT_SOURCE_DIR}/reference_test.cpp)
+iblab_add_cpu_test(brdf_lut_test ${CMAKE_CURRENT_SOURCE_DIR}/brdf_lut_test.cpp)
+iblab_add_cpu_test(tonemap_test ${CMAKE_CURRENT_SOURCE_DIR}/tonemap_test.cpp)

@@ -1,0 +1,156 @@
+// Tone-mapping curves at fixed points, each expected value computed here from the published
+// formula, and the typed C++ wrapper.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "ibl/tonemap.hpp"
+
+namespace {
+
+using iblab::ToneMapOperator;
+
+// The shared file runs in float: ~1e-6 absolute on values in [0, 1].
+constexpr float kTol = 2e-6f;
+
+glm::vec3 grey(float v)
+{
+    return glm::vec3(v);
+}
+
+TEST(ToneMap, IdsNamesAndParse)
+{
+    EXPECT_EQ(int(ToneMapOperator::None), 0);
+    EXPECT_EQ(int(ToneMapOperator::PbrNeutral), 5);
+    for (int id = 0; id < iblab::kToneMapOperatorCount; ++id) {
+        const auto op = ToneMapOperator(id);
+        EXPECT_EQ(iblab::parseToneMapOperator(iblab::toneMapOperatorName(op)), op);
+    }
+    EXPECT_EQ(iblab::toneMapOperatorName(ToneMapOperator::AcesHill), "aces-hill");
+    EXPECT_EQ(iblab::parseToneMapOperator("hable"), ToneMapOperator::Hable);
+    EXPECT_FALSE(iblab::parseToneMapOperator("ACES").has_value());
+    EXPECT_FALSE(iblab::parseToneMapOperator("").has_value());
+}
+
+TEST(ToneMap, NoneClamps)
+{
+    const glm::vec3 r = iblab::toneMap(glm::vec3(-0.5f, 0.25f, 3.0f), ToneMapOperator::None);
+    EXPECT_EQ(r, glm::vec3(0.0f, 0.25f, 1.0f));
+}
+
+TEST(ToneMap, Reinhard)
+{
+    EXPECT_NEAR(iblab::toneMap(grey(1.0f), ToneMapOperator::Reinhard).x, 0.5f, kTol);
+    EXPECT_NEAR(iblab::toneMap(grey(3.0f), ToneMapOperator::Reinhard).x, 0.75f, kTol);
+    // Negative input is clamped to 0 before any operator.
+    EXPECT_EQ(iblab::toneMap(grey(-1.0f), ToneMapOperator::Reinhard).x, 0.0f);
+}
+
+TEST(ToneMap, AcesNarkowicz)
+{
+    // x = 1: (2.51 + 0.03) / (2.43 + 0.59 + 0.14) = 2.54 / 3.16 = 0.80380.
+    EXPECT_NEAR(iblab::toneMap(grey(1.0f), ToneMapOperator::AcesNarkowicz).x, 2.54f / 3.16f, kTol);
+    // x = 0.18 (mid grey): 0.18 (2.51 0.18 + 0.03) / (0.18 (2.43 0.18 + 0.59) + 0.14).
+    const double x = 0.18, expected = x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14);
+    EXPECT_NEAR(iblab::toneMap(grey(0.18f), ToneMapOperator::AcesNarkowicz).x, float(expected), kTol);
+    // Saturates to exactly 1 (2.51 / 2.43 > 1, clamped).
+    EXPECT_EQ(iblab::toneMap(grey(1000.0f), ToneMapOperator::AcesNarkowicz).x, 1.0f);
+}
+
+TEST(ToneMap, AcesHillMatrixOrderAndCurve)
+{
+    // Hill's matrices by ROWS (BakingLab ACES.hlsl), applied here as row . vector by hand: a
+    // transposed matrix in the shared file (the column-major trap) would fail this.
+    const double in[3][3] = {{0.59719, 0.35458, 0.04823}, {0.07600, 0.90834, 0.01566}, {0.02840, 0.13383, 0.83777}};
+    const double out[3][3] = {
+        {1.60475, -0.53108, -0.07367}, {-0.10208, 1.10813, -0.00605}, {-0.00327, -0.07276, 1.07602}};
+    auto fit = [](double v) { return (v * (v + 0.0245786) - 0.000090537) / (v * (0.983729 * v + 0.4329510) + 0.238081); };
+    const double c[3] = {0.8, 0.3, 0.05}; // saturated, so that off-diagonal terms matter
+    double a[3], b[3];
+    for (int i = 0; i < 3; ++i)
+        a[i] = fit(in[i][0] * c[0] + in[i][1] * c[1] + in[i][2] * c[2]);
+    for (int i = 0; i < 3; ++i)
+        b[i] = std::clamp(out[i][0] * a[0] + out[i][1] * a[1] + out[i][2] * a[2], 0.0, 1.0);
+    const glm::vec3 r = iblab::toneMap(glm::vec3(0.8f, 0.3f, 0.05f), ToneMapOperator::AcesHill);
+    EXPECT_NEAR(r.x, b[0], 1e-5);
+    EXPECT_NEAR(r.y, b[1], 1e-5);
+    EXPECT_NEAR(r.z, b[2], 1e-5);
+    // A grey stays (nearly) grey: the rows of each matrix sum to ~1.
+    const glm::vec3 g = iblab::toneMap(grey(0.5f), ToneMapOperator::AcesHill);
+    EXPECT_NEAR(g.x, g.z, 2e-3);
+}
+
+TEST(ToneMap, HableWhitePoint)
+{
+    auto curve = [](double x) {
+        const double A = 0.15, B = 0.50, C = 0.10, D = 0.20, E = 0.02, F = 0.30;
+        return ((x * (A * x + C * B) + D * E) / (x * (A * x + B) + D * F)) - E / F;
+    };
+    // The exposure bias 2 is applied before the curve, W = 11.2 is the linear white: an input of
+    // W / 2 reaches exactly 1.
+    EXPECT_NEAR(iblab::toneMap(grey(11.2f / 2.0f), ToneMapOperator::Hable).x, 1.0f, 1e-5f);
+    EXPECT_NEAR(iblab::toneMap(grey(0.18f), ToneMapOperator::Hable).x, float(curve(0.36) / curve(11.2)), 1e-6f);
+    EXPECT_NEAR(iblab::toneMap(grey(0.0f), ToneMapOperator::Hable).x, 0.0f, 1e-6f); // curve(0) = DE/DF - E/F = 0
+    EXPECT_EQ(iblab::toneMap(grey(100.0f), ToneMapOperator::Hable).x, 1.0f);
+}
+
+TEST(ToneMap, PbrNeutral)
+{
+    // Below startCompression = 0.8 - 0.04 = 0.76 (after the toe offset) only the offset
+    // applies: for min channel >= 0.08 that is a flat -0.04, so grey 0.5 -> 0.46 and a colour
+    // keeps its channel differences exactly.
+    EXPECT_NEAR(iblab::toneMap(grey(0.5f), ToneMapOperator::PbrNeutral).x, 0.46f, kTol);
+    const glm::vec3 c = iblab::toneMap(glm::vec3(0.7f, 0.4f, 0.1f), ToneMapOperator::PbrNeutral);
+    EXPECT_NEAR(c.x, 0.66f, kTol);
+    EXPECT_NEAR(c.y, 0.36f, kTol);
+    EXPECT_NEAR(c.z, 0.06f, kTol);
+    // Toe: min channel x < 0.08 subtracts x - 6.25 x^2 (grey 0.04 -> 6.25 * 0.0016 = 0.01).
+    EXPECT_NEAR(iblab::toneMap(grey(0.04f), ToneMapOperator::PbrNeutral).x, 0.01f, kTol);
+    // The toe meets the flat offset continuously at 0.08: 0.08 - 6.25 * 0.0064 = 0.04.
+    // Above: grey 2.0 -> p = 1.96, d = 0.24, p_n = 1 - d^2 / (p + d - 0.76) = 1 - 0.0576 / 1.44
+    // = 0.96; the desaturation mix of a grey with its own peak leaves p_n.
+    EXPECT_NEAR(iblab::toneMap(grey(2.0f), ToneMapOperator::PbrNeutral).x, 0.96f, 1e-5f);
+    // Colour above the knee: the spec's c_out = (c - f) p_n / p g + p_n (1 - g), g = 1/(K_d (p - p_n) + 1).
+    {
+        const double in[3] = {3.0, 1.0, 0.5};
+        const double f = 0.04, p = 3.0 - f, pn = 1.0 - 0.24 * 0.24 / (p + 1.0 - 2.0 * 0.76);
+        const double g = 1.0 / (0.15 * (p - pn) + 1.0);
+        const glm::vec3 r = iblab::toneMap(glm::vec3(3.0f, 1.0f, 0.5f), ToneMapOperator::PbrNeutral);
+        for (int i = 0; i < 3; ++i)
+            EXPECT_NEAR(r[i], (in[i] - f) * pn / p * g + pn * (1.0 - g), 1e-5) << i;
+    }
+}
+
+TEST(ToneMap, SrgbOetf)
+{
+    EXPECT_EQ(iblab::srgbOetf(0.0f), 0.0f);
+    EXPECT_NEAR(iblab::srgbOetf(1.0f), 1.0f, 1e-6f);
+    // The two pieces meet at 0.0031308 -> 0.04045 (12.92 * 0.0031308 = 0.0404499).
+    const float below = iblab::srgbOetf(0.0031308f);
+    const float above = iblab::srgbOetf(std::nextafter(0.0031308f, 1.0f));
+    EXPECT_NEAR(below, 0.04045f, 1e-6f);
+    EXPECT_NEAR(above, below, 1e-6f);
+    // Mid grey 0.18 -> 1.055 * 0.18^(1/2.4) - 0.055 = 0.46135.
+    EXPECT_NEAR(iblab::srgbOetf(0.18f), float(1.055 * std::pow(0.18, 1.0 / 2.4) - 0.055), 1e-6f);
+}
+
+TEST(ToneMap, ExposureAndDisplayEncode)
+{
+    EXPECT_NEAR(iblab::applyExposure(grey(0.3f), 1.0f).x, 0.6f, 1e-7f);
+    EXPECT_NEAR(iblab::applyExposure(grey(0.3f), -2.0f).x, 0.075f, 1e-7f);
+    // displayEncode = sRGB(toneMap(hdr * 2^EV)): Reinhard of 0.5 * 2 = 1 is 0.5, sRGB(0.5).
+    const float expected = float(1.055 * std::pow(0.5, 1.0 / 2.4) - 0.055);
+    EXPECT_NEAR(iblab::displayEncode(grey(0.5f), 1.0f, ToneMapOperator::Reinhard).x, expected, 1e-6f);
+    EXPECT_NEAR(iblab::shared::displayEncode(grey(0.5f), 1.0f, iblab::shared::IBL_TONEMAP_REINHARD).x, expected, 1e-6f);
+    // Every operator maps into [0, 1] over a wide range.
+    for (int id = 0; id < iblab::kToneMapOperatorCount; ++id)
+        for (float v : {0.0f, 1e-4f, 0.18f, 1.0f, 16.0f, 1e4f}) {
+            const glm::vec3 r = iblab::toneMap(glm::vec3(v, 0.5f * v, 0.1f * v), ToneMapOperator(id));
+            for (int ch = 0; ch < 3; ++ch) {
+                EXPECT_GE(r[ch], 0.0f) << id << " " << v;
+                EXPECT_LE(r[ch], 1.0f + 1e-6f) << id << " " << v;
+            }
+        }
+}
+
+} // namespace
