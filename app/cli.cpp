@@ -1,5 +1,7 @@
 #include "cli.hpp"
 
+#include "commands.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,14 +14,13 @@
 #include "lab_session.hpp"
 
 namespace iblab::app {
-namespace {
 
-// The view options shared by the GUI and `render`: what a frame looks like.
 void addFrameOptions(CLI::App& command, FrameSettings& settings)
 {
     command.add_option("--env", settings.environment.source, "Environment: an .exr/.hdr file or builtin:NAME (white, sky, sun, lights, studio, black)")
         ->default_str("the bundled courtyard.exr");
-    command.add_option("--env-yaw", settings.environment.yawDegrees, "Environment rotation about +Y, degrees")->capture_default_str();
+    command.add_option("--env-yaw", settings.environment.yawDegrees, "Environment rotation about +Y, degrees (+90 brings +X to the front)")
+        ->capture_default_str();
     command.add_option("--env-intensity", settings.environment.intensityEv, "Environment intensity, EV stops")->capture_default_str();
     command.add_option("--exposure", settings.toneMap.exposureEv, "Exposure before tone mapping, EV stops")->capture_default_str();
     std::string operators;
@@ -34,12 +35,10 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
             },
             "Tone map operator: " + operators)
         ->default_str(std::string(toneMapOperatorName(settings.toneMap.op)));
-    command.add_option("--yaw", settings.camera.yawDegrees, "Camera yaw, degrees (0 looks down -Z)")->capture_default_str();
+    command.add_option("--yaw", settings.camera.yawDegrees, "Camera yaw, degrees (0 looks down -Z, +90 down +X)")->capture_default_str();
     command.add_option("--pitch", settings.camera.pitchDegrees, "Camera pitch, degrees")->capture_default_str()->check(CLI::Range(-89.0f, 89.0f));
     command.add_option("--fov", settings.camera.fovDegrees, "Vertical field of view, degrees")->capture_default_str()->check(CLI::Range(1.0f, 170.0f));
 }
-
-} // namespace
 
 int runCommandLine(int argc, char** argv)
 {
@@ -54,20 +53,8 @@ int runCommandLine(int argc, char** argv)
     app.add_flag("--headless", forceHeadless, "Render the default view to a PNG even when a display exists");
     app.add_option("--quit-after-frames", gui.quitAfterFrames, "Close the window after N frames (scripted start-up timing)");
 
-    RenderJob render;
-    CLI::App* renderCommand = app.add_subcommand("render", "Render one frame headless (EGL, no display) to a PNG or EXR");
-    addFrameOptions(*renderCommand, render.settings);
-    renderCommand->add_option("--width", render.width, "Image width")->capture_default_str()->check(CLI::Range(1, 16384));
-    renderCommand->add_option("--height", render.height, "Image height")->capture_default_str()->check(CLI::Range(1, 16384));
-    renderCommand->add_option("-o,--output", render.output, "Output: FILE.png (tone-mapped 8-bit sRGB) or FILE.exr (linear HDR)")
-        ->required()
-        ->check([](const std::string& path) {
-            const std::string ext = std::filesystem::path(path).extension().string();
-            return ext == ".png" || ext == ".exr" ? std::string() : "the output must end in .png or .exr, got \"" + path + "\"";
-        });
-    renderCommand->add_option("--time", render.timingRepeats, "Re-render N times and report the median frame time (with --json)");
-    renderCommand->add_flag("--json", render.json, "Print a JSON report (output, timings) instead of the output path");
-    renderCommand->add_flag("--gl-debug", render.glDebug, "Use a KHR_debug context; any GL error fails the render");
+    std::vector<Command> commands;
+    commands.push_back(addRenderCommand(app, processStart));
 
     try {
         app.parse(argc, argv);
@@ -83,10 +70,8 @@ int runCommandLine(int argc, char** argv)
         return 2;
     }
 
-    if (*renderCommand) {
-        if (render.settings.environment.source.empty()) render.settings.environment.source = defaultEnvironmentSpec();
-        return runHeadlessRender(render, processStart);
-    }
+    for (const Command& command : commands)
+        if (*command.subcommand) return command.run();
 
     if (gui.settings.environment.source.empty()) gui.settings.environment.source = defaultEnvironmentSpec();
     if (!forceHeadless && displayAvailable()) {

@@ -1,6 +1,7 @@
 #include "headless_render.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <cstdio>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.hpp"
+#include "commands.hpp"
 #include "gl/context_error.hpp"
 #include "gl/debug_output.hpp"
 #include "gl/headless_context.hpp"
@@ -98,6 +100,28 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
     } catch (const gl::ShaderError& e) {
         return fail(e.what());
     }
+}
+
+Command addRenderCommand(CLI::App& app, ProcessClock::time_point processStart)
+{
+    auto job = std::make_shared<RenderJob>();
+    CLI::App* command = app.add_subcommand("render", "Render one frame headless (EGL, no display) to a PNG or EXR");
+    addFrameOptions(*command, job->settings);
+    command->add_option("--width", job->width, "Image width")->capture_default_str()->check(CLI::Range(1, 16384));
+    command->add_option("--height", job->height, "Image height")->capture_default_str()->check(CLI::Range(1, 16384));
+    command->add_option("-o,--output", job->output, "Output: FILE.png (tone-mapped 8-bit sRGB) or FILE.exr (linear HDR)")
+        ->required()
+        ->check([](const std::string& path) {
+            const std::string ext = std::filesystem::path(path).extension().string();
+            return ext == ".png" || ext == ".exr" ? std::string() : "the output must end in .png or .exr, got \"" + path + "\"";
+        });
+    command->add_option("--time", job->timingRepeats, "Re-render N times and report the median frame time (with --json)");
+    command->add_flag("--json", job->json, "Print a JSON report (output, timings) instead of the output path");
+    command->add_flag("--gl-debug", job->glDebug, "Use a KHR_debug context; any GL error fails the render");
+    return {command, [job, processStart] {
+                if (job->settings.environment.source.empty()) job->settings.environment.source = defaultEnvironmentSpec();
+                return runHeadlessRender(*job, processStart);
+            }};
 }
 
 } // namespace iblab::app

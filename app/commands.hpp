@@ -1,0 +1,25 @@
+#pragma once
+// Each sub-command registers itself on the CLI11 app and returns how to run it, so that
+// commands live in their own files and cli.cpp only dispatches.
+#include <chrono>
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+#include "settings.hpp"
+
+namespace iblab::app {
+
+using ProcessClock = std::chrono::steady_clock;
+
+struct Command {
+    CLI::App* subcommand = nullptr;
+    std::function<int()> run; // called after a successful parse when the sub-command was given
+};
+
+// The view options shared by the GUI and `render`: what a frame looks like.
+void addFrameOptions(CLI::App& command, FrameSettings& settings);
+
+Command addRenderCommand(CLI::App& app, ProcessClock::time_point processStart);
+
+} // namespace iblab::app
