@@ -21,6 +21,44 @@ void drawStatus(const StatusLine& status)
     ImGui::PopStyleColor();
 }
 
+// The live curve: displayed value (after sRGB encoding, what lands on screen) against
+// scene luminance in stops around mid grey, evaluated by the very function the shader
+// runs. Drawn by hand for the axes, the mid-grey marker and the hover readout.
+void drawToneCurve(const ToneMapSettings& settings)
+{
+    constexpr float kMinStops = -8.0f, kMaxStops = 8.0f, kMidGrey = 0.18f;
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, 120.0f);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("##tonecurve", size);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const ImVec2 end(origin.x + size.x, origin.y + size.y);
+    draw->AddRectFilled(origin, end, ImGui::GetColorU32(ImGuiCol_FrameBg));
+    auto toScreen = [&](float stops, float value) {
+        return ImVec2(origin.x + (stops - kMinStops) / (kMaxStops - kMinStops) * size.x, end.y - value * size.y);
+    };
+    const ImU32 gridColour = ImGui::GetColorU32(ImGuiCol_Border);
+    for (float stops = kMinStops; stops <= kMaxStops; stops += 2.0f) draw->AddLine(toScreen(stops, 0.0f), toScreen(stops, 1.0f), gridColour);
+    for (float value : {0.25f, 0.5f, 0.75f}) draw->AddLine(toScreen(kMinStops, value), toScreen(kMaxStops, value), gridColour);
+    draw->AddLine(toScreen(0.0f, 0.0f), toScreen(0.0f, 1.0f), ImGui::GetColorU32(ImGuiCol_TextDisabled), 2.0f);
+
+    auto displayed = [&](float stops) { return displayEncode(glm::vec3(kMidGrey * std::exp2(stops)), settings.exposureEv, settings.op).g; };
+    constexpr int kPoints = 160;
+    ImVec2 points[kPoints];
+    for (int i = 0; i < kPoints; ++i) {
+        const float stops = kMinStops + (kMaxStops - kMinStops) * float(i) / float(kPoints - 1);
+        points[i] = toScreen(stops, displayed(stops));
+    }
+    draw->AddPolyline(points, kPoints, ImGui::GetColorU32(ImGuiCol_PlotLines), ImDrawFlags_None, 2.0f);
+    draw->AddText(ImVec2(origin.x + 4, origin.y + 2), ImGui::GetColorU32(ImGuiCol_TextDisabled), "display value");
+    if (ImGui::IsItemHovered()) {
+        const float stops = kMinStops + (ImGui::GetIO().MousePos.x - origin.x) / size.x * (kMaxStops - kMinStops);
+        draw->AddCircleFilled(toScreen(stops, displayed(stops)), 4.0f, ImGui::GetColorU32(ImGuiCol_PlotLinesHovered));
+        ImGui::SetTooltip("scene %.4g (%+.1f stops from mid grey) -> display %.3f (8-bit %d)", kMidGrey * std::exp2(stops), stops,
+                          displayed(stops), int(displayed(stops) * 255.0f + 0.5f));
+    }
+    ImGui::TextDisabled("x: scene luminance, mid grey x 2^[%.0f..%+.0f]; line at mid grey", kMinStops, kMaxStops);
+}
+
 std::string displayName(const std::string& source)
 {
     if (source.rfind("builtin:", 0) == 0) return source;
@@ -62,18 +100,7 @@ void drawToneMapPanel(ToneMapSettings& settings)
     ImGui::SameLine();
     if (ImGui::SmallButton("0")) settings.exposureEv = 0.0f;
 
-    // The live curve: displayed value (after sRGB encoding) against scene luminance in
-    // stops around 0.18 (mid grey), through the very function the shader runs.
-    constexpr int kPoints = 128;
-    constexpr float kMinStops = -8.0f, kMaxStops = 8.0f;
-    float curve[kPoints];
-    for (int i = 0; i < kPoints; ++i) {
-        const float stops = kMinStops + (kMaxStops - kMinStops) * float(i) / float(kPoints - 1);
-        const float scene = 0.18f * std::exp2(stops);
-        curve[i] = displayEncode(glm::vec3(scene), settings.exposureEv, settings.op).g;
-    }
-    ImGui::PlotLines("##curve", curve, kPoints, 0, nullptr, 0.0f, 1.0f, ImVec2(-1.0f, 110.0f));
-    ImGui::TextDisabled("x: scene luminance, 0.18 x 2^[%.0f..%+.0f] stops; y: display value", kMinStops, kMaxStops);
+    drawToneCurve(settings);
 }
 
 void drawCameraPanel(CameraSettings& settings)

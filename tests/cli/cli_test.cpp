@@ -1,0 +1,156 @@
+// The command line as users and scripts drive it: exit codes, one-line errors naming the
+// file, the headless fallback of the bare `iblab`, and what lands on disk.
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        dir = fs::temp_directory_path() / ("iblab-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+
+    // Runs iblab in the test's directory with DISPLAY unset, so that the run is headless
+    // whatever the machine has.
+    Result run(const std::string& arguments) const
+    {
+        const fs::path errFile = dir / "stderr.txt";
+        const std::string command = "cd '" + dir.string() + "' && env -u DISPLAY -u WAYLAND_DISPLAY '" IBLAB_EXECUTABLE "' " + arguments +
+                                    " 2> '" + errFile.string() + "'";
+        Result result;
+        FILE* pipe = popen(command.c_str(), "r");
+        std::array<char, 4096> buffer{};
+        while (std::fgets(buffer.data(), int(buffer.size()), pipe)) result.out += buffer.data();
+        const int status = pclose(pipe);
+        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        std::ifstream err(errFile);
+        result.err.assign(std::istreambuf_iterator<char>(err), {});
+        return result;
+    }
+
+    fs::path dir;
+};
+
+int lineCount(const std::string& text)
+{
+    int lines = 0;
+    for (char c : text) lines += c == '\n';
+    return lines;
+}
+
+TEST_F(Cli, BareCommandRendersHeadlessWithoutADisplay)
+{
+    const Result r = run("--env builtin:sky");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("no display"), std::string::npos) << r.err;
+    const fs::path expected = dir / "iblab-default.png";
+    EXPECT_NE(r.out.find(expected.string()), std::string::npos) << "prints the path it wrote: " << r.out;
+    EXPECT_TRUE(fs::exists(expected));
+}
+
+TEST_F(Cli, RenderWritesPngWithSettingsAndSidecar)
+{
+    const Result r = run("render --env builtin:white --tonemap none --width 32 --height 16 --env-yaw 12.5 -o white.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto input = OIIO::ImageInput::open((dir / "white.png").string());
+    ASSERT_TRUE(input);
+    const OIIO::ImageSpec& spec = input->spec();
+    EXPECT_EQ(spec.width, 32);
+    EXPECT_EQ(spec.height, 16);
+    std::vector<unsigned char> pixels(std::size_t(spec.width * spec.height * spec.nchannels));
+    ASSERT_TRUE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data()));
+    for (unsigned char v : pixels) ASSERT_EQ(v, 255); // uniform radiance 1, clamp, sRGB(1) = 1
+    const auto embedded = nlohmann::json::parse(spec.get_string_attribute("iblab:settings"));
+    EXPECT_EQ(embedded["environment"]["source"], "builtin:white");
+    EXPECT_FLOAT_EQ(embedded["environment"]["yaw_degrees"].get<float>(), 12.5f);
+    std::ifstream sidecar(dir / "white.png.json");
+    EXPECT_EQ(nlohmann::json::parse(sidecar), embedded);
+}
+
+TEST_F(Cli, RenderWritesLinearExrBeforeToneMapping)
+{
+    const Result r = run("render --env builtin:white --env-intensity 2 --exposure -5 --width 8 --height 8 -o frame.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto input = OIIO::ImageInput::open((dir / "frame.exr").string());
+    ASSERT_TRUE(input);
+    std::vector<float> pixels(std::size_t(8 * 8 * input->spec().nchannels));
+    ASSERT_TRUE(input->read_image(0, 0, 0, input->spec().nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+    // Intensity +2 EV scales the radiance to 4; exposure applies only to the display image.
+    EXPECT_FLOAT_EQ(pixels[0], 4.0f);
+}
+
+TEST_F(Cli, MissingEnvironmentFailsWithOneLineNamingTheFile)
+{
+    const Result r = run("render --env no-such-map.exr -o out.png");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("no-such-map.exr"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+TEST_F(Cli, WrongAspectFailsWithOneLine)
+{
+    // A 3:1 image written with OpenImageIO: valid file, wrong shape for an equirect map.
+    const fs::path path = dir / "wide.exr";
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(48, 16, 3, OIIO::TypeDesc::FLOAT);
+    ASSERT_TRUE(out->open(path.string(), spec));
+    std::vector<float> pixels(48 * 16 * 3, 0.5f);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+    const Result r = run("render --env wide.exr -o out.png");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("wide.exr"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("3:1"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, BadOptionsExitWithUsageError)
+{
+    for (const char* arguments : {"render --tonemap filmic -o a.png", "render -o a.jpg", "render", "render --width 0 -o a.png"}) {
+        const Result r = run(arguments);
+        EXPECT_EQ(r.exitCode, 2) << arguments;
+        EXPECT_EQ(lineCount(r.err), 1) << arguments << ": " << r.err;
+    }
+}
+
+TEST_F(Cli, UnwritableOutputFailsWithOneLine)
+{
+    const Result r = run("render --env builtin:white --width 8 --height 8 -o no/such/dir/a.png");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("no/such/dir/a.png"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, HelpListsEveryRenderOption)
+{
+    const Result r = run("render --help");
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* option : {"--env", "--env-yaw", "--env-intensity", "--exposure", "--tonemap", "--yaw", "--pitch", "--fov", "--width",
+                               "--height", "--output", "--json"})
+        EXPECT_NE(r.out.find(option), std::string::npos) << option;
+}
+
+} // namespace
