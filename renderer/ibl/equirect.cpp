@@ -44,4 +44,12 @@ glm::vec3 sampleEquirectBilinear(const ImageRGB32F& image, glm::dvec3 dir)
     return glm::vec3(top * (1.0 - ty) + bottom * ty);
 }
 
+ImageRGB32F paintEquirect(int width, int height, const std::function<glm::vec3(glm::dvec3)>& radiance)
+{
+    ImageRGB32F image(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) image.set(x, y, radiance(equirectTexelDirection(x, y, width, height)));
+    return image;
+}
+
 } // namespace iblab

@@ -7,6 +7,8 @@
 // Texel (x, y) of a W x H image covers u in [x/W, (x+1)/W] and v in [y/H, (y+1)/H]; its
 // centre is uv = ((x + 0.5)/W, (y + 0.5)/H) and equirectUvToDirection (conventions.glsl)
 // turns that into a direction. Row 0 is the zenith +Y.
+#include <functional>
+
 #include <glm/vec3.hpp>
 
 #include "ibl/conventions.hpp"
@@ -42,5 +44,9 @@ void forEachEquirectTexel(int width, int height, Fn&& fn)
 // continuous), v clamps at the poles (no filtering across the pole). Matches a GL sampler
 // with GL_REPEAT in s and GL_CLAMP_TO_EDGE in t at mip 0.
 glm::vec3 sampleEquirectBilinear(const ImageRGB32F& image, glm::dvec3 dir);
+
+// An equirect image whose every texel holds radiance(direction of its centre): analytic
+// test environments and the procedural builtins are made this way.
+ImageRGB32F paintEquirect(int width, int height, const std::function<glm::vec3(glm::dvec3)>& radiance);
 
 } // namespace iblab

@@ -6,30 +6,19 @@
 
 #include "ibl/brdf.hpp"
 #include "ibl/conventions.hpp"
+#include "quadrature.hpp"
 
 namespace {
 
 using iblab::GeometryTerm;
 using iblab::kPi;
 
-// integral over the hemisphere of f(theta) dOmega for azimuthally symmetric f (midpoint rule;
-// 100k steps resolve even the alpha = 0.05 lobe, see sampling_test).
-template <typename Fn>
-double hemisphere(Fn&& f, int steps = 100000)
-{
-    const double h = 0.5 * kPi / steps;
-    double s = 0.0;
-    for (int k = 0; k < steps; ++k) {
-        const double t = (k + 0.5) * h;
-        s += f(t) * std::sin(t);
-    }
-    return 2.0 * kPi * s * h;
-}
+using iblab::testing::integrateSymmetricHemisphere;
 
 TEST(Brdf, GgxDIsNormalised)
 {
     for (double alpha : {0.05, 0.1, 0.25, 0.5, 0.8, 1.0}) {
-        const double integral = hemisphere([&](double t) { return iblab::ggxD(std::cos(t), alpha) * std::cos(t); });
+        const double integral = integrateSymmetricHemisphere([&](double t) { return iblab::ggxD(std::cos(t), alpha) * std::cos(t); });
         EXPECT_NEAR(integral, 1.0, 1e-5) << alpha;
     }
 }
@@ -83,7 +72,7 @@ TEST(Brdf, HeightCorrelatedSmithKnownPoints)
 // with v = n, l lies at 2 theta_h, n.l = cos(2 theta_h), v.h = n.h = cos(theta_h).
 double headOnAlbedo(GeometryTerm term, double alpha)
 {
-    return hemisphere([&](double th) {
+    return integrateSymmetricHemisphere([&](double th) {
         const double nl = std::cos(2.0 * th);
         if (nl <= 0.0)
             return 0.0;

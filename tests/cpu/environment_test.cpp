@@ -19,6 +19,7 @@
 
 #include "environment/environment.hpp"
 #include "environment/error.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace iblab;
@@ -29,24 +30,7 @@ const fs::path kSourceDir = IBLAB_SOURCE_DIR;
 const fs::path kSharedAssets = kSourceDir / ".." / "shared" / "assets";
 constexpr double kPiD = 3.14159265358979323846;
 
-// A fresh directory per test, removed afterwards.
-struct TempDir {
-    fs::path path;
-    TempDir()
-    {
-        static std::atomic<int> counter{0};
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path = fs::temp_directory_path() /
-               ("iblab-envtest-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + info->name());
-        fs::create_directories(path);
-    }
-    ~TempDir()
-    {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-};
+using iblab::testing::TempDir;
 
 void writeImage(const std::string& path, int w, int h, int channels, const std::vector<float>& data,
                 OIIO::TypeDesc format = OIIO::TypeDesc::FLOAT, int tile = 0)

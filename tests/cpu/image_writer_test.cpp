@@ -17,38 +17,14 @@
 #include "environment/atomic_file.hpp"
 #include "environment/error.hpp"
 #include "environment/image_writer.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace iblab;
 
 namespace {
 
-struct TempDir {
-    fs::path path;
-    TempDir()
-    {
-        static std::atomic<int> counter{0};
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        path = fs::temp_directory_path() /
-               ("iblab-writertest-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + info->name());
-        fs::create_directories(path);
-    }
-    ~TempDir()
-    {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-    // Everything in the directory: used to prove that no temporary file was left behind.
-    std::vector<std::string> entries() const
-    {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(path))
-            names.push_back(e.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-};
+using iblab::testing::TempDir;
 
 struct ReadBack {
     OIIO::ImageSpec spec;

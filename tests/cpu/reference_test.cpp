@@ -17,15 +17,6 @@ namespace {
 using iblab::GeometryTerm;
 using iblab::kPi;
 
-iblab::ImageRGB32F paint(int w, int h, const std::function<glm::vec3(glm::dvec3)>& radiance)
-{
-    iblab::ImageRGB32F img(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            img.set(x, y, radiance(iblab::equirectTexelDirection(x, y, w, h)));
-    return img;
-}
-
 const glm::dvec3 kNormals[] = {
     {0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 0, -1}, {0.48, 0.6, -0.64}, {-0.36, -0.48, 0.8}, {0.6, 0.0, 0.8},
 };
@@ -36,7 +27,7 @@ TEST(Reference, UniformIrradianceIsPiL)
     // from the cos curvature (~dtheta^2 / 24 relative, 4e-4 at 64x32) and from texels the
     // horizon cuts through (the clamp's kink): measured 1.2e-3 relative; tolerance 3e-3.
     const glm::vec3 L(0.5f, 1.0f, 2.0f);
-    const auto env = paint(64, 32, [&](glm::dvec3) { return L; });
+    const auto env = iblab::paintEquirect(64, 32, [&](glm::dvec3) { return L; });
     for (glm::dvec3 n : kNormals) {
         const glm::dvec3 E = iblab::referenceIrradiance(env, glm::normalize(n));
         for (int c = 0; c < 3; ++c)
@@ -49,7 +40,7 @@ TEST(Reference, SkyOverGroundIrradiance)
     // Sky L = 1 for y > 0: E(n) = pi (1 + n.y) / 2 exactly. Same midpoint error budget as
     // above (128x64 halves dtheta; the step on the equator falls on a row boundary): measured
     // 3e-4 pi, tolerance 2e-3 pi.
-    const auto env = paint(128, 64, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); });
+    const auto env = iblab::paintEquirect(128, 64, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); });
     for (glm::dvec3 n : kNormals) {
         n = glm::normalize(n);
         EXPECT_NEAR(iblab::referenceIrradiance(env, n).x, kPi * (1.0 + n.y) / 2.0, 2e-3 * kPi);
@@ -61,7 +52,7 @@ TEST(Reference, PrefilteredUniformIsTheConstant)
     // A normalised weighted mean of a constant is that constant, at every roughness
     // (roughness 0 takes the bilinear-lookup path).
     const glm::vec3 L(0.3f, 0.6f, 1.2f);
-    const auto env = paint(64, 32, [&](glm::dvec3) { return L; });
+    const auto env = iblab::paintEquirect(64, 32, [&](glm::dvec3) { return L; });
     for (double r : {0.0, 0.1, 0.3, 0.6, 1.0})
         for (glm::dvec3 n : kNormals) {
             const glm::dvec3 p = iblab::referencePrefilteredRadiance(env, glm::normalize(n), r);
@@ -75,7 +66,7 @@ TEST(Reference, PrefilteredSkyOverGroundHorizontalIsHalf)
     // For a horizontal n the weight D(normalize(n + w)) max(0, n.w) is mirror-symmetric about
     // the horizontal plane, so exactly half of it sees the sky: 0.5 at any roughness. The texel
     // rows are mirror-symmetric too, so only float rounding of the directions remains.
-    const auto env = paint(128, 64, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); });
+    const auto env = iblab::paintEquirect(128, 64, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); });
     for (double r : {0.3, 0.7, 1.0})
         EXPECT_NEAR(iblab::referencePrefilteredRadiance(env, {1, 0, 0}, r).x, 0.5, 1e-5);
     // Facing up, every direction with n.w > 0 is sky: exactly 1.
@@ -90,7 +81,7 @@ TEST(Reference, PrefilteredMatchesLearnOpenGlEstimator)
     // integrals if the derivation in reference.cpp is right. Smooth environment so that the
     // bilinear vs texel-centre readings agree to ~1e-4; 16k QMC samples of a smooth integrand
     // converge to ~1e-4 as well: tolerance 2e-3 relative.
-    const auto env = paint(128, 64, [](glm::dvec3 d) {
+    const auto env = iblab::paintEquirect(128, 64, [](glm::dvec3 d) {
         return glm::vec3(float(1.0 + 0.5 * d.x + 0.3 * d.y * d.y), float(0.5 + 0.4 * d.z * d.x + 0.2 * d.y), 1.0f);
     });
     for (double r : {0.3, 0.6, 0.9})
@@ -124,7 +115,7 @@ TEST(Reference, FullSpecularOfUniformEnvEqualsSplitSumAlbedo)
     // texel sum at 256x128 (1.4 degree texels) resolves lobes with roughness >= 0.4, and 16k
     // Hammersley samples of these smooth integrands are good to ~1e-4: measured 1.5e-4 at
     // worst, tolerance 1e-3.
-    const auto env = paint(256, 128, [](glm::dvec3) { return glm::vec3(1.0f); });
+    const auto env = iblab::paintEquirect(256, 128, [](glm::dvec3) { return glm::vec3(1.0f); });
     const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, 0.9, -0.3));
     const iblab::Frame frame = iblab::tangentFrame(n);
     for (GeometryTerm term : {GeometryTerm::HeightCorrelatedSmith, GeometryTerm::SchlickGGX})
@@ -143,14 +134,14 @@ TEST(Reference, FullSpecularOfUniformEnvEqualsSplitSumAlbedo)
 
 TEST(Reference, SpecularBelowHorizonIsZero)
 {
-    const auto env = paint(32, 16, [](glm::dvec3) { return glm::vec3(1.0f); });
+    const auto env = iblab::paintEquirect(32, 16, [](glm::dvec3) { return glm::vec3(1.0f); });
     EXPECT_EQ(iblab::referenceSpecular(env, {0, 1, 0}, {0, -1, 0}, 0.5, glm::dvec3(1.0), GeometryTerm::SchlickGGX),
               glm::dvec3(0.0));
 }
 
 TEST(Reference, DownsamplePreservesPowerAndIrradiance)
 {
-    const auto env = paint(128, 64, [](glm::dvec3 d) {
+    const auto env = iblab::paintEquirect(128, 64, [](glm::dvec3 d) {
         return glm::vec3(float(std::exp(4.0 * (d.x - 1.0))), float(d.y > 0 ? 1.0 : 0.1), float(0.5 + 0.5 * d.z));
     });
     const auto half = iblab::downsampleEquirect2x(env);
@@ -182,7 +173,7 @@ TEST(Reference, LargeEnvironmentUsesThreadsAndStaysExact)
     // 512x256 = 131k texels crosses the threading threshold (on a machine with >= 2 cores); the
     // row split must not lose or double rows: the error stays at the 256-row midpoint level
     // (measured 1e-5 pi).
-    const auto env = paint(512, 256, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); });
+    const auto env = iblab::paintEquirect(512, 256, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); });
     const glm::dvec3 n = glm::normalize(glm::dvec3(0.3, 0.5, 0.2));
     EXPECT_NEAR(iblab::referenceIrradiance(env, n).x, kPi * (1.0 + n.y) / 2.0, 1e-4 * kPi);
 }

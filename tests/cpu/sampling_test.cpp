@@ -9,6 +9,7 @@
 #include "ibl/brdf.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/sampling.hpp"
+#include "quadrature.hpp"
 
 namespace {
 
@@ -24,20 +25,7 @@ void forGrid(int n, Fn&& fn)
             fn(glm::dvec2((i + 0.5) / n, (j + 0.5) / n));
 }
 
-// Integral over the hemisphere of an azimuthally symmetric pdf(theta): 2 pi times the
-// midpoint rule in theta with the sin(theta) Jacobian. The GGX lobe at alpha = 0.05 is ~3
-// degrees wide; 200k steps over [0, pi/2] are 8e-6 rad each, so the rule's O(h^2 f'') error is
-// far below the tolerances used.
-double integrateHemisphere(const std::function<double(double)>& pdfOfTheta, int steps = 200000)
-{
-    const double h = 0.5 * kPi / steps;
-    double sum = 0.0;
-    for (int k = 0; k < steps; ++k) {
-        const double theta = (k + 0.5) * h;
-        sum += pdfOfTheta(theta) * std::sin(theta);
-    }
-    return 2.0 * kPi * sum * h;
-}
+using iblab::testing::integrateSymmetricHemisphere;
 
 TEST(Sampling, RadicalInverseKnownValues)
 {
@@ -72,7 +60,7 @@ TEST(Sampling, GgxPdfIntegratesToOne)
     // integral D(h) cos(theta_h) dOmega_h = 1: the microfacet projected-area normalisation.
     // Midpoint-rule error with 8e-6 rad steps is < 1e-6 even for the alpha = 0.05 spike.
     for (double alpha : {0.05, 0.1, 0.3, 0.6, 1.0}) {
-        const double integral = integrateHemisphere([&](double theta) {
+        const double integral = integrateSymmetricHemisphere([&](double theta) {
             return iblab::pdfGgxHalfVector({std::sin(theta), 0.0, std::cos(theta)}, alpha);
         });
         EXPECT_NEAR(integral, 1.0, 1e-5) << "alpha " << alpha;
@@ -86,7 +74,7 @@ TEST(Sampling, GgxPdfMatchesSampleDensity)
     // u.y(t) = invert's u.y at that angle. Compare the numerical integral with the inverse CDF.
     const double alpha = 0.3;
     for (double t : {0.1, 0.3, 0.6, 1.0, 1.4}) {
-        const double cdf = integrateHemisphere(
+        const double cdf = integrateSymmetricHemisphere(
             [&](double theta) {
                 return theta < t ? iblab::pdfGgxHalfVector({std::sin(theta), 0.0, std::cos(theta)}, alpha) : 0.0;
             });
@@ -126,7 +114,7 @@ TEST(Sampling, CosineHemisphere)
         EXPECT_NEAR(back.y, u.y, 1e-9);
         EXPECT_NEAR(iblab::pdfCosineHemisphere(w), w.z / kPi, 1e-15);
     });
-    const double integral = integrateHemisphere(
+    const double integral = integrateSymmetricHemisphere(
         [](double theta) { return iblab::pdfCosineHemisphere({std::sin(theta), 0.0, std::cos(theta)}); }, 20000);
     EXPECT_NEAR(integral, 1.0, 1e-8);
     // Half the samples (u.y < 0.5) lie within 45 degrees: sin^2(45) = 0.5.

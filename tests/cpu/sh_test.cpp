@@ -32,15 +32,6 @@ double sloanBasis(int i, glm::dvec3 d)
     }
 }
 
-iblab::ImageRGB32F paint(int w, int h, const std::function<glm::vec3(glm::dvec3)>& radiance)
-{
-    iblab::ImageRGB32F img(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            img.set(x, y, radiance(iblab::equirectTexelDirection(x, y, w, h)));
-    return img;
-}
-
 const glm::dvec3 kProbeDirs[] = {
     {0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 0, -1}, {0.48, 0.6, -0.64}, {-0.36, -0.48, 0.8}, {0.6, 0.0, 0.8},
 };
@@ -61,7 +52,7 @@ TEST(Sh, ConstantProjectsOntoBandZeroOnly)
     // solid angles sum to exactly 4 pi.
     const glm::vec3 L(1.0f, 2.0f, 0.5f);
     const int H = 32;
-    const iblab::SH9Color sh = iblab::projectEquirect(paint(2 * H, H, [&](glm::dvec3) { return L; }));
+    const iblab::SH9Color sh = iblab::projectEquirect(iblab::paintEquirect(2 * H, H, [&](glm::dvec3) { return L; }));
     const double s = std::sqrt(4.0 * kPi);
     for (int ch = 0; ch < 3; ++ch)
         EXPECT_NEAR(sh.c[0][ch], L[ch] * s, 1e-9);
@@ -89,7 +80,7 @@ TEST(Sh, ProjectingYGivesOnlyIndexOne)
 {
     // L(w) = w.y = sqrt(4 pi / 3) Y_1,-1(w), so the coefficient of index 1 is sqrt(4 pi / 3)
     // = 2.0466 and the rest vanish. Negative radiance below the horizon is fine for the math.
-    const iblab::SH9Color sh = iblab::projectEquirect(paint(128, 64, [](glm::dvec3 d) { return glm::vec3(float(d.y)); }));
+    const iblab::SH9Color sh = iblab::projectEquirect(iblab::paintEquirect(128, 64, [](glm::dvec3 d) { return glm::vec3(float(d.y)); }));
     // Midpoint rule on cos^2(theta) over 64 rows: relative error ~ dtheta^2 / 12 ~ 2e-4.
     EXPECT_NEAR(sh.c[1].x, std::sqrt(4.0 * kPi / 3.0), 1e-3);
     for (int i = 0; i < 9; ++i) {
@@ -107,7 +98,7 @@ TEST(Sh, BasisFunctionsAreOrthonormal)
     // error ~ dtheta^2 / 24 * |f''| with dtheta = pi / 128, i.e. ~1e-4: 1e-3 leaves margin.
     for (int j = 0; j < 9; ++j) {
         const iblab::SH9Color sh =
-            iblab::projectEquirect(paint(256, 128, [&](glm::dvec3 d) { return glm::vec3(float(sloanBasis(j, d))); }));
+            iblab::projectEquirect(iblab::paintEquirect(256, 128, [&](glm::dvec3 d) { return glm::vec3(float(sloanBasis(j, d))); }));
         for (int i = 0; i < 9; ++i)
             EXPECT_NEAR(sh.c[i].x, i == j ? 1.0 : 0.0, 1e-3) << "basis " << j << " coefficient " << i;
     }
@@ -117,7 +108,7 @@ TEST(Sh, EvaluateReconstructsABandLimitedSignal)
 {
     // A signal inside the SH9 space comes back exactly (up to the projection's ~1e-4).
     auto f = [](glm::dvec3 d) { return 0.7 + 0.3 * d.x - 0.2 * d.y * d.z + 0.5 * d.z * d.z; };
-    const iblab::SH9Color sh = iblab::projectEquirect(paint(256, 128, [&](glm::dvec3 d) { return glm::vec3(float(f(d))); }));
+    const iblab::SH9Color sh = iblab::projectEquirect(iblab::paintEquirect(256, 128, [&](glm::dvec3 d) { return glm::vec3(float(f(d))); }));
     for (glm::dvec3 d : kProbeDirs)
         EXPECT_NEAR(iblab::evaluate(sh, d).x, f(glm::normalize(d)), 1e-3);
 }
@@ -128,7 +119,7 @@ TEST(Sh, UniformEnvironmentIrradianceIsPiL)
     // (A-hat_0 = pi); the band-2 discretisation residual (~1e-4 of L, see above) times
     // A-hat_2 Y_20 <= 0.5 bounds the error.
     const glm::vec3 L(0.25f, 1.0f, 4.0f);
-    const iblab::SH9Color E = iblab::convolveWithCosineLobe(iblab::projectEquirect(paint(128, 64, [&](glm::dvec3) { return L; })));
+    const iblab::SH9Color E = iblab::convolveWithCosineLobe(iblab::projectEquirect(iblab::paintEquirect(128, 64, [&](glm::dvec3) { return L; })));
     for (glm::dvec3 n : kProbeDirs) {
         const glm::dvec3 e = iblab::evaluate(E, n);
         for (int ch = 0; ch < 3; ++ch)
@@ -145,7 +136,7 @@ TEST(Sh, SkyOverBlackGroundIrradianceIsExactInSh9)
     // bands 0 and 1 and SH9 truncation costs nothing (the bound is 0). What remains is the
     // projection's midpoint error (~1e-4 relative at 128x64, horizon on a row boundary):
     // tolerance 2e-3 pi.
-    const iblab::SH9Color L = iblab::projectEquirect(paint(128, 64, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); }));
+    const iblab::SH9Color L = iblab::projectEquirect(iblab::paintEquirect(128, 64, [](glm::dvec3 d) { return glm::vec3(d.y > 0.0 ? 1.0f : 0.0f); }));
     const iblab::SH9Color E = iblab::convolveWithCosineLobe(L);
     for (glm::dvec3 n : kProbeDirs) {
         n = glm::normalize(n);
