@@ -1,6 +1,10 @@
 #include "gui_app.hpp"
 
 #include <chrono>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 #include <cstdio>
 #include <stdexcept>
 
@@ -65,6 +69,14 @@ struct ImGuiLayer {
     }
 };
 
+// Files dropped onto the window, collected by GLFW's callback and handled once per frame.
+std::vector<std::string> g_droppedFiles;
+
+void onDrop(GLFWwindow*, int count, const char** paths)
+{
+    for (int i = 0; i < count; ++i) g_droppedFiles.emplace_back(paths[i]);
+}
+
 #ifdef NDEBUG
 constexpr bool kDebugContext = false;
 #else
@@ -95,6 +107,7 @@ int runGui(const GuiOptions& options)
         debug.install();
     }
     ImGuiLayer imgui(window.handle);
+    glfwSetDropCallback(window.handle, onDrop);
 
     FrameSettings settings = options.settings;
     Renderer renderer(shaderDirectory());
@@ -132,6 +145,13 @@ int runGui(const GuiOptions& options)
         if (ImGui::IsKeyPressed(GLFW_KEY_F12)) requests.captureTo = std::string(panels.capture.path);
         ImGui::Render();
 
+        for (const std::string& dropped : std::exchange(g_droppedFiles, {})) {
+            const std::string extension = std::filesystem::path(dropped).extension().string();
+            if (extension == ".exr" || extension == ".hdr" || extension == ".EXR" || extension == ".HDR")
+                requests.loadEnvironment = dropped;
+            else
+                panels.environmentStatus = {dropped + ": not an environment (drop an .exr or .hdr file)", true};
+        }
         if (requests.loadEnvironment) panels.environmentStatus = session.loadEnvironment(*requests.loadEnvironment, settings);
 
         const auto renderStart = Clock::now();
