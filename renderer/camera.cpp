@@ -14,10 +14,11 @@ glm::vec3 cameraForward(const CameraSettings& camera)
     return {std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch)};
 }
 
-glm::mat4 cameraView(const CameraSettings& camera, glm::vec3 target)
+glm::vec3 cameraPosition(const CameraSettings& camera) { return camera.target - cameraForward(camera) * camera.distance; }
+
+glm::mat4 cameraView(const CameraSettings& camera)
 {
-    const glm::vec3 forward = cameraForward(camera);
-    return glm::lookAt(target - forward * camera.distance, target, glm::vec3(0.0f, 1.0f, 0.0f));
+    return glm::lookAt(cameraPosition(camera), camera.target, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
 glm::mat4 cameraProjection(const CameraSettings& camera, float aspect)

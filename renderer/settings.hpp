@@ -1,8 +1,13 @@
 #pragma once
 // The plain parameter structs that the UI edits, the CLI fills and the renderer reads.
-// Everything a screenshot needs to be reproduced is in here and serialises to JSON.
+// Everything a screenshot needs to be reproduced is in here and serialises to JSON, which
+// is also the lab's preset format.
 #include <string>
+#include <string_view>
 
+#include <glm/vec3.hpp>
+
+#include "ibl/brdf.hpp"
 #include "ibl/tonemap.hpp"
 
 namespace iblab {
@@ -20,21 +25,86 @@ struct ToneMapSettings {
 
 // An orbit camera around a target; at yaw = pitch = 0 it looks down -Z.
 struct CameraSettings {
-    float yawDegrees = 0.0f;    // positive turns right: +90 looks down +X
-    float pitchDegrees = 0.0f;  // positive looks up
-    float fovDegrees = 60.0f;   // vertical field of view
-    float distance = 3.0f;
+    float yawDegrees = 0.0f;   // positive turns right: +90 looks down +X
+    float pitchDegrees = 0.0f; // positive looks up
+    float fovDegrees = 45.0f;  // vertical field of view
+    float distance = 3.5f;     // from the target, in scene units (a sphere has radius 1)
+    glm::vec3 target{0.0f};
+};
+
+// The material the sliders edit. With overrideModel off, a glTF keeps its own factors.
+struct MaterialSettings {
+    bool overrideModel = true;
+    glm::vec3 baseColor{0.95f, 0.64f, 0.54f}; // linear; copper-ish, so metals show colour
+    float metallic = 1.0f;
+    float roughness = 0.3f; // perceptual; alpha = roughness^2
+    float ambientOcclusion = 1.0f;
+    // Dielectric reflectance as Filament defines it: F0 = 0.16 * specular^2, so 0.5 gives
+    // the common 4%.
+    float specular = 0.5f;
+};
+
+enum class ShadingMethod { SplitSum, Sampled };
+enum class DiffuseSource { Sh9, IrradianceCube };
+
+struct SamplingSettings {
+    ShadingMethod method = ShadingMethod::SplitSum;
+    int samples = 16;      // N for the sampled method, 1..1024
+    int forcedMip = -1;    // -1: the lod follows roughness (split-sum) or the sample pdf (sampled)
+    bool pdfMipFiltering = true;
+    float mipBias = 1.0f;  // added to 0.5 log2(Omega_s / Omega_p); 0 = LearnOpenGL, 1 = Filament
+    GeometryTerm geometry = GeometryTerm::HeightCorrelatedSmith;
+    DiffuseSource diffuse = DiffuseSource::Sh9;
+    bool cosineSampledDiffuse = false; // sampled method: diffuse from N cosine samples instead of SH9
+    bool multiscatter = false;         // Fdez-Aguera energy compensation from the LUT's third channel
+};
+
+enum class SceneKind { Sphere, Grid, Counting, Model };
+
+struct SceneSettings {
+    SceneKind kind = SceneKind::Sphere;
+    std::string modelPath;  // .gltf / .glb when kind == Model
+    int countingSpheres = 8; // the N = 1..k strip
+};
+
+enum class ViewMode { Final, PrefilterMips, Lut, Furnace, Irradiance };
+enum class BackgroundMode { Environment, Irradiance, PrefilterMip, SolidColour };
+
+struct ViewSettings {
+    ViewMode mode = ViewMode::Final;
+    BackgroundMode background = BackgroundMode::Environment;
+    int backgroundMip = 2;
+    glm::vec3 solidColour{0.18f};
 };
 
 struct FrameSettings {
     EnvironmentSettings environment;
     ToneMapSettings toneMap;
     CameraSettings camera;
+    MaterialSettings material;
+    SamplingSettings sampling;
+    SceneSettings scene;
+    ViewSettings view;
 };
 
-// JSON text of the settings (for screenshots' metadata and sidecars, and presets).
+// Names used by the CLI, the JSON presets and the UI. parse* return false for an unknown
+// name and leave the target untouched.
+std::string_view shadingMethodName(ShadingMethod method);
+bool parseShadingMethod(std::string_view name, ShadingMethod& method);
+std::string_view sceneKindName(SceneKind kind);
+bool parseSceneKind(std::string_view name, SceneKind& kind);
+std::string_view viewModeName(ViewMode mode);
+bool parseViewMode(std::string_view name, ViewMode& mode);
+std::string_view backgroundModeName(BackgroundMode mode);
+bool parseBackgroundMode(std::string_view name, BackgroundMode& mode);
+std::string_view diffuseSourceName(DiffuseSource source);
+bool parseDiffuseSource(std::string_view name, DiffuseSource& source);
+std::string_view geometryTermShortName(GeometryTerm term); // "schlick" | "correlated"
+bool parseGeometryTerm(std::string_view name, GeometryTerm& term);
+
+// JSON text of the settings (screenshot metadata and sidecars, lab presets).
 std::string toJsonText(const FrameSettings& settings, int indent = 2);
-// Throws std::runtime_error naming the offending key.
+// Missing keys keep their defaults. Throws std::runtime_error naming the offending key.
 FrameSettings frameSettingsFromJsonText(const std::string& text);
 
 } // namespace iblab

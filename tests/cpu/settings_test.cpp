@@ -1,0 +1,63 @@
+// Lab settings are the preset format and the screenshot metadata: every field must survive
+// a round trip, and a bad preset must say which key is wrong.
+#include <gtest/gtest.h>
+
+#include "settings.hpp"
+
+namespace iblab {
+namespace {
+
+TEST(Settings, EveryFieldSurvivesJson)
+{
+    FrameSettings s;
+    s.environment = {"builtin:sun?elevation=10", 33.0f, -1.5f};
+    s.toneMap = {ToneMapOperator::PbrNeutral, 1.25f};
+    s.camera = {12.0f, -7.0f, 70.0f, 5.5f, glm::vec3(0.1f, 0.2f, 0.3f)};
+    s.material = {false, glm::vec3(0.2f, 0.4f, 0.6f), 0.25f, 0.75f, 0.5f, 0.35f};
+    s.sampling.method = ShadingMethod::Sampled;
+    s.sampling.samples = 64;
+    s.sampling.forcedMip = 2;
+    s.sampling.pdfMipFiltering = false;
+    s.sampling.mipBias = 0.0f;
+    s.sampling.geometry = GeometryTerm::SchlickGGX;
+    s.sampling.diffuse = DiffuseSource::IrradianceCube;
+    s.sampling.cosineSampledDiffuse = true;
+    s.sampling.multiscatter = true;
+    s.scene = {SceneKind::Model, "a/b.glb", 5};
+    s.view = {ViewMode::Lut, BackgroundMode::PrefilterMip, 3, glm::vec3(0.5f)};
+
+    const FrameSettings r = frameSettingsFromJsonText(toJsonText(s));
+    EXPECT_EQ(toJsonText(r), toJsonText(s));
+    EXPECT_EQ(r.sampling.method, ShadingMethod::Sampled);
+    EXPECT_EQ(r.scene.modelPath, "a/b.glb");
+    EXPECT_EQ(r.camera.target, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(r.material.baseColor, glm::vec3(0.2f, 0.4f, 0.6f));
+}
+
+TEST(Settings, MissingKeysKeepDefaults)
+{
+    const FrameSettings r = frameSettingsFromJsonText(R"({"material": {"roughness": 0.9}})");
+    EXPECT_FLOAT_EQ(r.material.roughness, 0.9f);
+    EXPECT_EQ(toJsonText(frameSettingsFromJsonText("{}")), toJsonText(FrameSettings{}));
+}
+
+TEST(Settings, BadValuesNameTheKey)
+{
+    auto messageOf = [](const char* text) {
+        try {
+            frameSettingsFromJsonText(text);
+        } catch (const std::runtime_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(messageOf(R"({"sampling": {"method": "magic"}})").find("settings.sampling.method"), std::string::npos);
+    EXPECT_NE(messageOf(R"({"material": {"roughness": "high"}})").find("settings.material.roughness"), std::string::npos);
+    EXPECT_NE(messageOf(R"({"material": {"base_color": [1, 2]}})").find("settings.material.base_color"), std::string::npos);
+    EXPECT_NE(messageOf(R"({"tone_map": {"operator": "filmic"}})").find("settings.tone_map.operator"), std::string::npos);
+    EXPECT_NE(messageOf("{not json").find("not JSON"), std::string::npos);
+    EXPECT_NE(messageOf("[1, 2]").find("object"), std::string::npos);
+}
+
+} // namespace
+} // namespace iblab
