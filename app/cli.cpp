@@ -4,9 +4,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
+#include <optional>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
 #include "gui_app.hpp"
 #include "headless_render.hpp"
@@ -14,6 +18,45 @@
 #include "lab_session.hpp"
 
 namespace iblab::app {
+namespace {
+
+// An option whose value is one of an enum's names (settings.hpp spells them once).
+template <typename Enum>
+void addNamedOption(CLI::App& command, const std::string& name, const std::string& help, Enum& target, bool (*parse)(std::string_view, Enum&),
+                    std::string_view (*nameOf)(Enum))
+{
+    command
+        .add_option_function<std::string>(
+            name,
+            [&target, parse, name](const std::string& value) {
+                if (!parse(value, target)) throw CLI::ValidationError(name, "unknown value \"" + value + "\"");
+            },
+            help)
+        ->default_str(std::string(nameOf(target)));
+}
+
+// "0.9,0.6,0.5" (linear) or "#e6a08c" (sRGB-encoded, as colour pickers give it).
+std::optional<glm::vec3> parseColour(const std::string& text)
+{
+    if (text.size() == 7 && text[0] == '#') {
+        glm::vec3 colour;
+        for (int c = 0; c < 3; ++c) {
+            const std::string hex = text.substr(1 + std::size_t(c) * 2, 2);
+            if (hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) return std::nullopt;
+            const float encoded = float(std::stoi(hex, nullptr, 16)) / 255.0f;
+            colour[c] = encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+        }
+        return colour;
+    }
+    glm::vec3 colour;
+    char comma1 = 0, comma2 = 0;
+    std::istringstream in(text);
+    if (!(in >> colour.r >> comma1 >> colour.g >> comma2 >> colour.b) || comma1 != ',' || comma2 != ',' || !in.eof()) return std::nullopt;
+    if (glm::any(glm::lessThan(colour, glm::vec3(0.0f))) || glm::any(glm::greaterThan(colour, glm::vec3(1.0f)))) return std::nullopt;
+    return colour;
+}
+
+} // namespace
 
 void addFrameOptions(CLI::App& command, FrameSettings& settings)
 {
@@ -38,6 +81,66 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
     command.add_option("--yaw", settings.camera.yawDegrees, "Camera yaw, degrees (0 looks down -Z, +90 down +X)")->capture_default_str();
     command.add_option("--pitch", settings.camera.pitchDegrees, "Camera pitch, degrees")->capture_default_str()->check(CLI::Range(-89.0f, 89.0f));
     command.add_option("--fov", settings.camera.fovDegrees, "Vertical field of view, degrees")->capture_default_str()->check(CLI::Range(1.0f, 170.0f));
+    // Scene, material and method: every view of the UI can be rendered headless.
+    command
+        .add_option_function<std::string>(
+            "--scene",
+            [&settings](const std::string& value) {
+                if (parseSceneKind(value, settings.scene.kind) && settings.scene.kind != SceneKind::Model) return;
+                const std::string ext = std::filesystem::path(value).extension().string();
+                if (ext != ".gltf" && ext != ".glb") throw CLI::ValidationError("--scene", "expected sphere, grid, counting, sweep, none or a .gltf/.glb file, got \"" + value + "\"");
+                settings.scene.kind = SceneKind::Model;
+                settings.scene.modelPath = value;
+            },
+            "Scene: sphere|grid|counting|sweep|none|FILE.gltf|FILE.glb")
+        ->default_str("sphere");
+    command.add_option("--counting-spheres", settings.scene.countingSpheres, "Spheres in the N = 1..k counting strip")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 64));
+    addNamedOption(command, "--method", "Shading: splitsum|sampled", settings.sampling.method, parseShadingMethod, shadingMethodName);
+    command.add_option("--samples", settings.sampling.samples, "N, samples per pixel for --method sampled")->capture_default_str()->check(CLI::Range(1, 1024));
+    command
+        .add_option_function<std::string>(
+            "--mip",
+            [&settings](const std::string& value) {
+                if (value == "auto") {
+                    settings.sampling.forcedMip = -1;
+                    return;
+                }
+                try {
+                    settings.sampling.forcedMip = std::stoi(value);
+                } catch (const std::exception&) {
+                    throw CLI::ValidationError("--mip", "expected a mip level or auto, got \"" + value + "\"");
+                }
+                if (settings.sampling.forcedMip < 0) throw CLI::ValidationError("--mip", "a mip level is >= 0");
+            },
+            "Mip level to read (prefiltered mip for split-sum, source mip for sampled), or auto")
+        ->default_str("auto");
+    command.add_flag("!--no-pdf-filtering", settings.sampling.pdfMipFiltering, "Sampled method: read every sample from mip 0 instead of the PDF-chosen mip");
+    command.add_option("--mip-bias", settings.sampling.mipBias, "Bias added to the PDF-chosen mip (0 LearnOpenGL, 1 Filament)")->capture_default_str();
+    addNamedOption(command, "--geometry", "Geometry term: schlick|correlated", settings.sampling.geometry, parseGeometryTerm, geometryTermShortName);
+    addNamedOption(command, "--diffuse", "Diffuse source: sh9|irradiance-cube", settings.sampling.diffuse, parseDiffuseSource, diffuseSourceName);
+    command.add_flag("--cosine-diffuse", settings.sampling.cosineSampledDiffuse, "Sampled method: diffuse from N cosine samples instead of SH9");
+    command.add_flag("--multiscatter", settings.sampling.multiscatter, "Multiple-scattering energy compensation from the LUT");
+    command.add_option("--metallic", settings.material.metallic, "Metallic, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+    command.add_option("--roughness", settings.material.roughness, "Perceptual roughness, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+    command.add_option("--ao", settings.material.ambientOcclusion, "Ambient occlusion, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+    command.add_option("--specular", settings.material.specular, "Dielectric reflectance (F0 = 0.16 specular^2)")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+    command
+        .add_option_function<std::string>(
+            "--base-color",
+            [&settings](const std::string& value) {
+                const auto colour = parseColour(value);
+                if (!colour) throw CLI::ValidationError("--base-color", "expected r,g,b in 0..1 (linear) or #rrggbb (sRGB), got \"" + value + "\"");
+                settings.material.baseColor = *colour;
+            },
+            "Base colour: r,g,b (linear, 0..1) or #rrggbb (sRGB)");
+    command.add_flag("!--model-material", settings.material.overrideModel, "Keep a glTF model's own material factors instead of the sliders'");
+    addNamedOption(command, "--view", "View: final|prefilter-mips|lut|furnace|irradiance", settings.view.mode, parseViewMode, viewModeName);
+    addNamedOption(command, "--background", "Background: environment|irradiance|prefilter-mip|solid", settings.view.background, parseBackgroundMode,
+                   backgroundModeName);
+    command.add_option("--background-mip", settings.view.backgroundMip, "Prefiltered mip shown by --background prefilter-mip")->capture_default_str();
+    command.add_option("--distance", settings.camera.distance, "Camera distance from its target")->default_str("0: frame the scene");
 }
 
 int runCommandLine(int argc, char** argv)
@@ -48,6 +151,7 @@ int runCommandLine(int argc, char** argv)
     app.set_version_flag("--version", "iblab 0.1.0");
 
     GuiOptions gui;
+    gui.settings.camera.distance = 0.0f; // frame whatever scene is shown, unless --distance says otherwise
     addFrameOptions(app, gui.settings);
     bool forceHeadless = false;
     app.add_flag("--headless", forceHeadless, "Render the default view to a PNG even when a display exists");
@@ -55,6 +159,9 @@ int runCommandLine(int argc, char** argv)
 
     std::vector<Command> commands;
     commands.push_back(addRenderCommand(app, processStart));
+    commands.push_back(addBakeCommand(app, processStart));
+    commands.push_back(addShCommand(app, processStart));
+    commands.push_back(addLutCommand(app, processStart));
 
     try {
         app.parse(argc, argv);

@@ -21,5 +21,8 @@ struct Command {
 void addFrameOptions(CLI::App& command, FrameSettings& settings);
 
 Command addRenderCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addShCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addLutCommand(CLI::App& app, ProcessClock::time_point processStart);
 
 } // namespace iblab::app

@@ -1,6 +1,9 @@
 #include "gui_app.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -16,6 +19,10 @@
 #include <imgui_impl_opengl3.h>
 
 #include "asset_paths.hpp"
+#include "camera.hpp"
+#include "debug_layout.hpp"
+#include "environment/atomic_file.hpp"
+#include "environment/error.hpp"
 #include "gl/context_info.hpp"
 #include "gl/debug_output.hpp"
 #include "lab_session.hpp"
@@ -77,6 +84,67 @@ void onDrop(GLFWwindow*, int count, const char** paths)
     for (int i = 0; i < count; ++i) g_droppedFiles.emplace_back(paths[i]);
 }
 
+void handleDrop(const std::string& path, ui::UiRequests& requests, ui::PanelState& panels)
+{
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".exr" || extension == ".hdr")
+        requests.loadEnvironment = path;
+    else if (extension == ".gltf" || extension == ".glb")
+        requests.loadModel = path;
+    else if (extension == ".json")
+        requests.loadPreset = path;
+    else
+        panels.environmentStatus = {path + ": cannot open this kind of file (drop .exr, .hdr, .gltf, .glb or a .json preset)", true};
+}
+
+ui::StatusLine savePreset(const std::string& path, const FrameSettings& settings)
+{
+    try {
+        writeTextFileAtomic(path, toJsonText(settings) + "\n");
+        return {"saved " + path, false};
+    } catch (const Error& e) {
+        return {e.what(), true};
+    }
+}
+
+// A preset replaces every setting; its environment and model load like a user's choice.
+ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, LabSession& session)
+{
+    FrameSettings loaded;
+    try {
+        loaded = frameSettingsFromJsonText(readTextFile(path));
+    } catch (const Error& e) {
+        return {e.what(), true};
+    } catch (const std::exception& e) {
+        return {path + ": " + e.what(), true};
+    }
+    const std::string environment = loaded.environment.source;
+    loaded.environment.source = settings.environment.source; // until the new one has loaded
+    settings = loaded;
+    if (!environment.empty()) session.requestEnvironment(environment);
+    if (settings.scene.kind == SceneKind::Model && !settings.scene.modelPath.empty()) {
+        const ui::StatusLine model = session.loadModel(settings.scene.modelPath, settings);
+        if (model.isError) return model;
+    }
+    return {"loaded " + path, false};
+}
+
+// Left drag orbits, the wheel zooms (multiplicatively, so it feels the same at any
+// distance), a double-click frames the scene.
+struct OrbitInput {
+    void update(CameraSettings& camera, const ImGuiIO& io, ui::UiRequests& requests)
+    {
+        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) requests.frameScene = true;
+        if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 1.0f)) {
+            camera.yawDegrees -= io.MouseDelta.x * 0.3f;
+            camera.pitchDegrees = std::clamp(camera.pitchDegrees + io.MouseDelta.y * 0.3f, -89.0f, 89.0f);
+            camera.yawDegrees = std::remainder(camera.yawDegrees, 360.0f);
+        }
+        if (io.MouseWheel != 0.0f) camera.distance = std::clamp(camera.distance * std::pow(0.9f, io.MouseWheel), 0.05f, 500.0f);
+    }
+};
+
 #ifdef NDEBUG
 constexpr bool kDebugContext = false;
 #else
@@ -114,18 +182,19 @@ int runGui(const GuiOptions& options)
     LabSession session(renderer);
     ui::PanelState panels;
     panels.catalog = session.catalog();
-    panels.environmentStatus = session.loadEnvironment(settings.environment.source, settings);
-    if (panels.environmentStatus.isError) {
-        // The requested environment failed: fall back to the bundled default so there is a sky.
-        std::fprintf(stderr, "iblab: %s\n", panels.environmentStatus.text.c_str());
-        session.loadEnvironment(defaultEnvironmentSpec(), settings);
-    }
+    // The environment loads on a worker thread and bakes in slices: the window is up at once.
+    session.requestEnvironment(settings.environment.source);
+    bool frameWhenReady = settings.camera.distance <= 0.0f;
+    if (frameWhenReady) settings.camera.distance = 3.5f;
+    if (settings.scene.kind == SceneKind::Model) panels.sceneStatus = session.loadModel(settings.scene.modelPath, settings);
 
     ui::FrameStats stats;
     stats.renderer = gl::describeCurrentContext();
     bool firstFrame = true;
     int framesShown = 0;
     auto previousFrame = Clock::now();
+    OrbitInput orbit;
+    std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
     while (!glfwWindowShouldClose(window.handle)) {
         glfwPollEvents();
         int fbWidth = 0, fbHeight = 0;
@@ -136,30 +205,55 @@ int runGui(const GuiOptions& options)
         }
         for (const std::string& error : renderer.reloadShaders()) std::fprintf(stderr, "iblab: %s\n", error.c_str());
 
+        // Background work first, within a budget that keeps the UI near interactive rates
+        // on a software renderer.
+        const LabSession::Finished finished = session.pump(settings, std::chrono::milliseconds(30));
+        if (finished.environment) panels.environmentStatus = *finished.environment;
+        if (finished.bake) panels.bakeStatus = *finished.bake;
+        panels.activity = {session.activity(), session.progress()};
+
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
         ui::UiRequests requests;
         ui::drawControlWindow(settings, panels, stats, requests);
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && !ImGui::GetIO().WantTextInput) glfwSetWindowShouldClose(window.handle, 1);
+        if (!furnaceReadings.empty()) ui::drawSphereReadings(furnaceReadings, float(fbHeight));
+        if (settings.view.mode == ViewMode::Final || settings.view.mode == ViewMode::Furnace)
+            ui::drawSceneLabels(renderer.sceneLabels(settings, fbWidth, fbHeight), float(fbHeight));
+        if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
+            const ImVec2 mouse = ImGui::GetIO().MousePos;
+            const TexelProbe probe = renderer.probe(settings, fbWidth, fbHeight, mouse.x, float(fbHeight) - mouse.y);
+            ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), fbWidth, fbHeight), float(fbHeight), probe.text);
+        }
+        const ImGuiIO& io = ImGui::GetIO();
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && !io.WantTextInput) glfwSetWindowShouldClose(window.handle, 1);
         if (ImGui::IsKeyPressed(GLFW_KEY_F12)) requests.captureTo = std::string(panels.capture.path);
+        if (!io.WantCaptureMouse) orbit.update(settings.camera, io, requests);
         ImGui::Render();
 
-        for (const std::string& dropped : std::exchange(g_droppedFiles, {})) {
-            const std::string extension = std::filesystem::path(dropped).extension().string();
-            if (extension == ".exr" || extension == ".hdr" || extension == ".EXR" || extension == ".HDR")
-                requests.loadEnvironment = dropped;
-            else
-                panels.environmentStatus = {dropped + ": not an environment (drop an .exr or .hdr file)", true};
+        for (const std::string& dropped : std::exchange(g_droppedFiles, {})) handleDrop(dropped, requests, panels);
+        if (requests.loadEnvironment) session.requestEnvironment(*requests.loadEnvironment);
+        if (requests.loadModel) {
+            panels.sceneStatus = session.loadModel(*requests.loadModel, settings);
+            requests.frameScene = !panels.sceneStatus.isError;
         }
-        if (requests.loadEnvironment) panels.environmentStatus = session.loadEnvironment(*requests.loadEnvironment, settings);
+        if (requests.loadPreset) panels.presetStatus = loadPreset(*requests.loadPreset, settings, session);
+        if (requests.savePreset) panels.presetStatus = savePreset(*requests.savePreset, settings);
+        if (requests.exportModel) panels.sceneStatus = session.exportModel(*requests.exportModel, settings);
+        if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
+            const SceneInfo scene = renderer.sceneInfo(settings);
+            frameBox(settings.camera, scene.centre, scene.halfExtents, float(fbWidth) / float(fbHeight));
+            frameWhenReady = false;
+        }
 
+        if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
         const auto renderStart = Clock::now();
         renderer.renderFrame(settings, fbWidth, fbHeight);
         glFinish(); // so that the reported pass time is the GPU's, not the submission's
         stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
         stats.width = fbWidth;
         stats.height = fbHeight;
+        furnaceReadings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
         if (requests.captureTo) panels.captureStatus = session.capture(*requests.captureTo, settings);
 
         glBindFramebuffer(GL_FRAMEBUFFER, 0);

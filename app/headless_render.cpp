@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.hpp"
+#include "camera.hpp"
 #include "commands.hpp"
 #include "gl/context_error.hpp"
 #include "gl/debug_output.hpp"
@@ -54,6 +55,17 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         const ui::StatusLine loaded = session.loadEnvironment(settings.environment.source, settings);
         if (loaded.isError) return fail(loaded.text);
         const double loadMs = millisecondsSince(loadStart);
+        std::string sceneStatus;
+        if (settings.scene.kind == SceneKind::Model) {
+            const ui::StatusLine model = session.loadModel(settings.scene.modelPath, settings);
+            if (model.isError) return fail(model.text);
+            sceneStatus = model.text;
+        }
+        if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
+        if (settings.camera.distance <= 0.0f) {
+            const SceneInfo scene = renderer.sceneInfo(settings);
+            frameBox(settings.camera, scene.centre, scene.halfExtents, float(job.width) / float(job.height));
+        }
 
         renderer.renderFrame(settings, job.width, job.height);
         glFinish();
@@ -81,6 +93,12 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
             report["height"] = job.height;
             report["renderer"] = context.description();
             report["environment"] = loaded.text;
+            if (!sceneStatus.empty()) report["scene"] = sceneStatus;
+            if (settings.view.mode == ViewMode::Furnace)
+                for (const SphereReading& r : renderer.measureSpheres(settings))
+                    report["furnace"].push_back({{"metallic", r.metallic},
+                                                 {"roughness", r.roughness},
+                                                 {"reflected", {r.radiance.r, r.radiance.g, r.radiance.b}}});
             report["timings_ms"]["start_to_context"] = contextMs;
             report["timings_ms"]["environment_load"] = loadMs;
             report["timings_ms"]["start_to_first_frame"] = firstFrameMs;
@@ -105,6 +123,7 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
 Command addRenderCommand(CLI::App& app, ProcessClock::time_point processStart)
 {
     auto job = std::make_shared<RenderJob>();
+    job->settings.camera.distance = 0.0f; // frame the scene unless --distance says otherwise
     CLI::App* command = app.add_subcommand("render", "Render one frame headless (EGL, no display) to a PNG or EXR");
     addFrameOptions(*command, job->settings);
     command->add_option("--width", job->width, "Image width")->capture_default_str()->check(CLI::Range(1, 16384));

@@ -6,21 +6,149 @@
 #include "environment/builtin_environments.hpp"
 #include "environment/error.hpp"
 #include "environment/image_writer.hpp"
+#include "scene/gltf_model.hpp"
 
 namespace iblab::app {
+namespace {
+
+std::string shortName(const std::string& spec)
+{
+    return isBuiltinSpec(spec) ? spec : std::filesystem::path(spec).filename().string();
+}
+
+} // namespace
 
 std::string defaultEnvironmentSpec() { return defaultEnvironmentPath(assetDirectory().string()); }
 
+LabSession::LabSession(Renderer& renderer, bake::BakeSettings bakeSettings) : renderer_(renderer), bakeSettings_(std::move(bakeSettings)) {}
+
+LabSession::~LabSession()
+{
+    if (pendingLoad_.valid()) pendingLoad_.wait(); // the worker only reads files; let it finish
+}
+
+void LabSession::requestEnvironment(const std::string& spec)
+{
+    if (pendingLoad_.valid()) pendingLoad_.wait(); // one load at a time; the newest request wins below
+    pendingSpec_ = spec;
+    pendingLoad_ = std::async(std::launch::async, [spec] { return iblab::loadEnvironment(spec); });
+}
+
+ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& settings)
+{
+    renderer_.setEnvironment(loaded.image);
+    std::string text = shortName(loaded.source) + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
+    // Repairs, downsampling and LDR input are all among the loader's warnings.
+    for (const auto& warning : loaded.warnings) text += "; " + warning;
+    settings.environment.source = pendingSpec_.empty() ? loaded.source : pendingSpec_;
+    job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), loaded, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
+    environment_ = std::move(loaded);
+    return {text, false};
+}
+
+ui::StatusLine LabSession::finishBake()
+{
+    auto result = std::make_shared<bake::BakeResult>(job_->takeResult());
+    job_.reset();
+    std::string text = "baked in " + std::to_string(int(result->totalMilliseconds + 0.5)) + " ms" + (result->fromCache ? " (from cache)" : "");
+    for (const auto& note : result->notes) text += "; " + note;
+    bake_ = result;
+    renderer_.setBake(bake_);
+    return {text, false};
+}
+
+LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::steady_clock::duration budget)
+{
+    Finished finished;
+    if (pendingLoad_.valid() && pendingLoad_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        try {
+            finished.environment = finishLoad(pendingLoad_.get(), settings);
+        } catch (const Error& e) {
+            finished.environment = ui::StatusLine{e.what(), true};
+        }
+        return finished; // the bake starts on the next pump, so this frame shows the new sky
+    }
+    if (job_) {
+        try {
+            if (!job_->runFor(budget)) finished.bake = finishBake();
+        } catch (const std::exception& e) {
+            job_.reset();
+            finished.bake = ui::StatusLine{std::string("bake failed: ") + e.what(), true};
+        }
+    }
+    return finished;
+}
+
+bool LabSession::busy() const { return pendingLoad_.valid() || job_ != nullptr; }
+
+std::string LabSession::activity() const
+{
+    if (pendingLoad_.valid()) return "loading " + shortName(pendingSpec_);
+    if (job_) return "baking: " + job_->currentPhase();
+    return {};
+}
+
+float LabSession::progress() const { return job_ ? job_->progress() : 0.0f; }
+
 ui::StatusLine LabSession::loadEnvironment(const std::string& spec, FrameSettings& settings)
 {
+    requestEnvironment(spec);
+    ui::StatusLine status;
+    while (busy()) {
+        const Finished finished = pump(settings, std::chrono::hours(1));
+        for (const auto& line : {finished.environment, finished.bake}) {
+            if (!line) continue;
+            if (line->isError) return *line;
+            status.text += (status.text.empty() ? "" : "; ") + line->text;
+        }
+    }
+    return status;
+}
+
+void LabSession::ensureFurnaceBake()
+{
+    if (renderer_.hasFurnaceBake()) return;
+    // A uniform environment needs no resolution: 64x32 keeps the bake to milliseconds,
+    // while the LUT (which decides the furnace's answer) keeps the session's settings.
+    const Environment white = iblab::loadEnvironment("builtin:white?width=64");
+    bake::BakeJob job(renderer_.shaders(), white, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
+    renderer_.setFurnaceBake(std::make_shared<bake::BakeResult>(job.runToCompletion()));
+}
+
+ui::StatusLine LabSession::loadModel(const std::string& path, FrameSettings& settings)
+{
     try {
-        Environment loaded = iblab::loadEnvironment(spec);
-        renderer_.setEnvironment(loaded.image);
-        std::string text = loaded.source + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
-        // Repairs, downsampling and LDR input are all among the loader's warnings.
-        for (const auto& warning : loaded.warnings) text += "; " + warning;
-        environment_ = std::move(loaded);
-        settings.environment.source = spec;
+        const ModelData model = loadGltfModel(path);
+        renderer_.setModel(model, path);
+        modelMaterials_ = model.materials;
+        settings.scene.kind = SceneKind::Model;
+        settings.scene.modelPath = path;
+        std::string text = shortName(path) + ": " + std::to_string(model.instances.size()) + " primitives, " +
+                           std::to_string(model.materials.size()) + " materials, " + std::to_string(model.textures.size()) + " textures";
+        for (const auto& warning : model.warnings) text += "; " + warning;
+        return {text, false};
+    } catch (const Error& e) {
+        return {e.what(), true};
+    }
+}
+
+ui::StatusLine LabSession::exportModel(const std::string& outPath, const FrameSettings& settings) const
+{
+    if (settings.scene.kind != SceneKind::Model || settings.scene.modelPath.empty()) return {"export: no glTF model is loaded", true};
+    const MaterialSettings& m = settings.material;
+    auto tuned = [&](PbrMaterial material) {
+        material.baseColorFactor = glm::vec4(m.baseColor, material.baseColorFactor.a);
+        material.metallicFactor = m.metallic;
+        material.roughnessFactor = m.roughness;
+        return material;
+    };
+    std::vector<MaterialEdit> edits;
+    for (std::size_t i = 0; i < modelMaterials_.size(); ++i) edits.push_back({int(i), tuned(modelMaterials_[i])});
+    if (edits.empty()) edits.push_back({-1, tuned(PbrMaterial{})}); // primitives without a material get one
+    try {
+        const std::vector<std::string> warnings = exportGltfWithMaterials(settings.scene.modelPath, outPath, edits);
+        std::string text = "exported " + outPath + " (" + std::to_string(edits.size()) + " materials)";
+        for (const auto& warning : warnings) text += "; " + warning;
         return {text, false};
     } catch (const Error& e) {
         return {e.what(), true};

@@ -1,12 +1,20 @@
 #pragma once
 // What the GUI and the headless commands share: which environment is loaded (and what
-// loading it found), and writing screenshots with their settings.
+// loading it found), its bake, the loaded model, and writing screenshots with their
+// settings. Environment files load on a worker thread and bakes run in slices, so the GUI
+// stays responsive; the headless commands wait for both.
+#include <chrono>
+#include <future>
+#include <memory>
 #include <optional>
 #include <string>
 
+#include "bake/bake_cache.hpp"
+#include "bake/bake_job.hpp"
 #include "environment/environment.hpp"
 #include "panels.hpp"
 #include "renderer.hpp"
+#include "scene/material.hpp"
 
 namespace iblab::app {
 
@@ -14,22 +22,60 @@ std::string defaultEnvironmentSpec();
 
 class LabSession {
 public:
-    explicit LabSession(Renderer& renderer) : renderer_(renderer) {}
+    explicit LabSession(Renderer& renderer, bake::BakeSettings bakeSettings = bake::defaultPreset());
+    ~LabSession();
 
-    // Loads spec (a path or builtin:NAME). On success the renderer gets it and
-    // settings.environment.source is updated; on failure the current environment stays
-    // and the returned status holds the one-line error.
+    // Starts loading spec (a path or builtin:NAME) in the background. Until it succeeds the
+    // current environment and bake stay; a failure leaves them and reports one line.
+    void requestEnvironment(const std::string& spec);
+    // Blocking form for scripts: loads, uploads and bakes to completion. On success
+    // settings.environment.source is updated.
     ui::StatusLine loadEnvironment(const std::string& spec, FrameSettings& settings);
+
+    // What finished during one pump: the environment load and/or the bake.
+    struct Finished {
+        std::optional<ui::StatusLine> environment;
+        std::optional<ui::StatusLine> bake;
+    };
+    // Advances background work for about `budget`: a finished load starts its bake; a
+    // finished bake goes to the renderer.
+    Finished pump(FrameSettings& settings, std::chrono::steady_clock::duration budget);
+    bool busy() const;
+    // "loading courtyard.exr", "baking: prefilter 40%", or "" when idle.
+    std::string activity() const;
+    float progress() const;
+
+    // The furnace view's bake of builtin:white (small and quick; made once, on first use).
+    void ensureFurnaceBake();
+
+    // Loads a .gltf/.glb for SceneKind::Model; on failure the current scene stays.
+    ui::StatusLine loadModel(const std::string& path, FrameSettings& settings);
+
+    // Writes a copy of the loaded glTF whose materials carry the material panel's factors.
+    ui::StatusLine exportModel(const std::string& outPath, const FrameSettings& settings) const;
+
     // Writes the last rendered frame: .png = tone-mapped sRGB, .exr = linear HDR, both with
     // the settings embedded and in a .json sidecar.
     ui::StatusLine capture(const std::string& path, const FrameSettings& settings) const;
 
     ui::EnvironmentCatalog catalog() const;
     const std::optional<Environment>& environment() const { return environment_; }
+    const std::shared_ptr<const bake::BakeResult>& bake() const { return bake_; }
+    const bake::BakeSettings& bakeSettings() const { return bakeSettings_; }
 
 private:
+    ui::StatusLine finishLoad(Environment loaded, FrameSettings& settings);
+    ui::StatusLine finishBake();
+
     Renderer& renderer_;
+    bake::BakeSettings bakeSettings_;
+    bake::BakeCache cache_;
     std::optional<Environment> environment_;
+    std::shared_ptr<const bake::BakeResult> bake_;
+    std::unique_ptr<bake::BakeJob> job_;
+    std::vector<PbrMaterial> modelMaterials_; // of the loaded model, for export
+    std::string pendingSpec_;
+    std::future<Environment> pendingLoad_;
 };
 
 } // namespace iblab::app

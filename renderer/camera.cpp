@@ -27,4 +27,22 @@ glm::mat4 cameraProjection(const CameraSettings& camera, float aspect)
     return glm::perspective(fov, aspect, 0.01f, 100.0f);
 }
 
+void frameBox(CameraSettings& camera, glm::vec3 centre, glm::vec3 halfExtents, float aspect)
+{
+    // The box's half extent along the camera's right, up and forward axes (the support of
+    // an axis-aligned box along a direction is the dot product with |direction|). It fits
+    // when, at the distance of its near face, both half extents are within the half field
+    // of view; 8% margin keeps silhouettes off the frame's edge.
+    const glm::vec3 forward = cameraForward(camera);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float halfRight = glm::dot(glm::abs(right), halfExtents);
+    const float halfUp = glm::dot(glm::abs(up), halfExtents);
+    const float halfDepth = glm::dot(glm::abs(forward), halfExtents);
+    const float tanVertical = std::tan(0.5f * glm::radians(std::clamp(camera.fovDegrees, 1.0f, 170.0f)));
+    const float tanHorizontal = tanVertical * aspect;
+    camera.target = centre;
+    camera.distance = 1.08f * std::max(halfRight / tanHorizontal, halfUp / tanVertical) + halfDepth;
+}
+
 } // namespace iblab

@@ -1,30 +1,278 @@
 #include "renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
 
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
+#include "bake/bake_result.hpp"
 #include "camera.hpp"
+#include "debug_layout.hpp"
 #include "gl/handles.hpp"
 #include "gl/render_target.hpp"
 #include "gl/shader_library.hpp"
+#include "gpu_scene.hpp"
+#include "ibl/sampling.hpp"
 
 namespace iblab {
+namespace {
+
+// Every sampler uniform of every program has its own fixed unit, so that a cube and a 2D
+// sampler never share one (a draw-time GL error) and binding never depends on the program.
+enum TextureUnit : GLuint {
+    kUnitEquirect,
+    kUnitEnvironmentCube,
+    kUnitPrefiltered,
+    kUnitIrradianceCube,
+    kUnitBrdfLut,
+    kUnitBaseColor,
+    kUnitMetallicRoughness,
+    kUnitNormal,
+    kUnitOcclusion,
+    kUnitEmissive,
+    kUnitHdrFrame,
+    kUnitLutSchlick,
+    kUnitLutCorrelated,
+};
+
+constexpr std::pair<const char*, TextureUnit> kSamplerUnits[] = {
+    {"uEquirect", kUnitEquirect},
+    {"uEnvironmentCube", kUnitEnvironmentCube},
+    {"uPrefiltered", kUnitPrefiltered},
+    {"uIrradianceCube", kUnitIrradianceCube},
+    {"uBrdfLut", kUnitBrdfLut},
+    {"uBaseColorTexture", kUnitBaseColor},
+    {"uMetallicRoughnessTexture", kUnitMetallicRoughness},
+    {"uNormalTexture", kUnitNormal},
+    {"uOcclusionTexture", kUnitOcclusion},
+    {"uEmissiveTexture", kUnitEmissive},
+    {"uHdrFrame", kUnitHdrFrame},
+    {"uLutSchlick", kUnitLutSchlick},
+    {"uLutCorrelated", kUnitLutCorrelated},
+};
+
+// Cube-cross cell -> GL face, as debug_views.frag lays them out (row 0 at the bottom).
+int crossFace(int column, int row)
+{
+    if (row == 1) return column == 0 ? 1 : column == 1 ? 4 : column == 2 ? 0 : 5;
+    if (column != 1) return -1;
+    return row == 2 ? 2 : row == 0 ? 3 : -1;
+}
+
+constexpr const char* kFaceNames[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+
+void assignSamplerUnits(const gl::ShaderProgram& program)
+{
+    for (const auto& [name, unit] : kSamplerUnits) program.set(name, int(unit));
+}
+
+constexpr int kMaxSamples = 1024;
+
+} // namespace
 
 struct Renderer::Impl {
     gl::ShaderLibrary shaders;
     gl::VertexArray emptyVertexArray = gl::createVertexArray();
     gl::Texture equirect;
-    gl::RenderTarget hdrFrame;     // RGBA16F: the linear frame the tone mapper reads
+    std::shared_ptr<const bake::BakeResult> bake;
+    std::shared_ptr<const bake::BakeResult> furnaceBake; // builtin:white, for ViewMode::Furnace
+    const bake::BakeResult* active = nullptr;            // the bake this frame lights with
+    GpuScene scene;
+    bool sceneBuilt = false;
+    SceneSettings builtFor;
+    gl::Buffer hammersley = gl::createBuffer();
+    int hammersleyCount = 0;
+    gl::RenderTarget hdrFrame;     // RGBA16F + depth: the linear frame the tone mapper reads
     gl::RenderTarget displayFrame; // RGBA8: exposure, tone curve and sRGB applied
 
-    explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory)) {}
+    explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory))
+    {
+        glNamedBufferStorage(hammersley.id(), kMaxSamples * sizeof(float) * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+
+    const gl::ShaderProgram& program(const std::vector<std::string>& stages, const gl::ShaderDefines& defines = {})
+    {
+        const gl::ShaderProgram& p = shaders.program(stages, defines);
+        assignSamplerUnits(p);
+        return p;
+    }
 
     void drawFullscreenTriangle() const
     {
         glBindVertexArray(emptyVertexArray.id());
         glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+
+    // The first n Hammersley points, uploaded only when N changes (std140 packs two per vec4).
+    void ensureHammersley(int n)
+    {
+        if (n == hammersleyCount) return;
+        std::vector<float> points(std::size_t(n) * 2);
+        for (int i = 0; i < n; ++i) {
+            const glm::dvec2 p = iblab::hammersley(std::uint32_t(i), std::uint32_t(n));
+            points[std::size_t(i) * 2] = float(p.x);
+            points[std::size_t(i) * 2 + 1] = float(p.y);
+        }
+        glNamedBufferSubData(hammersley.id(), 0, GLsizeiptr(points.size() * sizeof(float)), points.data());
+        hammersleyCount = n;
+    }
+
+    void ensureScene(const SceneSettings& settings)
+    {
+        const bool wantsProcedural = settings.kind != SceneKind::Model;
+        if (wantsProcedural && (!sceneBuilt || scene.kind != settings.kind ||
+                                builtFor.countingSpheres != settings.countingSpheres)) {
+            scene = buildProceduralScene(settings);
+            sceneBuilt = true;
+            builtFor = settings;
+        }
+        if (!sceneBuilt) {
+            scene = buildProceduralScene(settings); // a model was asked for but none is loaded yet
+            sceneBuilt = true;
+            builtFor = settings;
+        }
+    }
+
+    void bindIbl(const gl::ShaderProgram& p, const FrameSettings& settings) const
+    {
+        p.set("uEnvironmentYaw", glm::radians(settings.environment.yawDegrees));
+        p.set("uEnvironmentIntensity", std::exp2(settings.environment.intensityEv));
+        glBindTextureUnit(kUnitEquirect, equirect.id());
+        if (!active) return;
+        const bake::BakeResult& b = *active;
+        glBindTextureUnit(kUnitEnvironmentCube, b.environmentCube.id());
+        glBindTextureUnit(kUnitPrefiltered, b.prefiltered.id());
+        const bake::BakedTexture& irradiance = b.irradianceImportance ? b.irradianceImportance : b.irradianceRiemann;
+        glBindTextureUnit(kUnitIrradianceCube, irradiance.id());
+        const bake::BakedTexture& lut = b.lut(settings.sampling.geometry) ? b.lut(settings.sampling.geometry)
+                                                                         : b.lut(GeometryTerm::SchlickGGX) ? b.lut(GeometryTerm::SchlickGGX)
+                                                                                                           : b.lut(GeometryTerm::HeightCorrelatedSmith);
+        glBindTextureUnit(kUnitBrdfLut, lut.id());
+        std::array<glm::vec3, 9> sh{};
+        for (std::size_t i = 0; i < 9; ++i) sh[i] = glm::vec3(b.sh.irradianceWindowed.c[i]);
+        glProgramUniform3fv(p.id(), p.uniformLocation("uShIrradiance"), 9, glm::value_ptr(sh[0]));
+        p.set("uPrefilteredLevels", float(b.prefiltered.levels));
+        p.set("uEnvironmentFaceSize", float(b.environmentCube.size));
+        p.set("uEnvironmentLevels", float(b.environmentCube.levels));
+        p.set("uGeometry", int(settings.sampling.geometry));
+        const bool haveCube = bool(irradiance);
+        p.set("uDiffuseSource", settings.sampling.diffuse == DiffuseSource::IrradianceCube && haveCube ? 1 : 0);
+        p.set("uMultiscatter", int(settings.sampling.multiscatter));
+        p.set("uForcedMip", float(settings.sampling.forcedMip));
+        p.set("uPdfMipFiltering", int(settings.sampling.pdfMipFiltering));
+        p.set("uMipBias", settings.sampling.mipBias);
+    }
+
+    void drawDebugView(const FrameSettings& settings, int width, int height)
+    {
+        const std::vector<DebugTile> tiles = debugTiles(settings.view.mode, active->prefiltered.levels, width, height);
+        const gl::ShaderProgram& p = program({"fullscreen.vert", "debug_views.frag"}, {{"VIEW", settings.view.mode == ViewMode::Lut ? "2" : "1"}});
+        glUseProgram(p.id());
+        bindIbl(p, settings);
+        glBindTextureUnit(kUnitLutSchlick, active->lut(GeometryTerm::SchlickGGX).id());
+        glBindTextureUnit(kUnitLutCorrelated, active->lut(GeometryTerm::HeightCorrelatedSmith).id());
+        std::vector<glm::vec4> rects;
+        for (const DebugTile& tile : tiles) rects.push_back(tile.rect);
+        p.set("uTileCount", int(rects.size()));
+        glProgramUniform4fv(p.id(), p.uniformLocation("uTiles"), GLsizei(rects.size()), glm::value_ptr(rects[0]));
+        drawFullscreenTriangle();
+    }
+
+    void drawSky(const FrameSettings& settings, float aspect)
+    {
+        const glm::mat4 viewRotation = glm::mat4(glm::mat3(cameraView(settings.camera)));
+        const glm::mat4 inverseViewProjection = glm::inverse(cameraProjection(settings.camera, aspect) * viewRotation);
+        const gl::ShaderProgram& sky = program({"fullscreen.vert", "sky.frag"});
+        glUseProgram(sky.id());
+        bindIbl(sky, settings);
+        sky.set("uInverseViewProjection", inverseViewProjection);
+        // Views of baked data fall back to the environment until a bake exists.
+        int background = int(settings.view.background);
+        if (!active && (background == int(BackgroundMode::Irradiance) || background == int(BackgroundMode::PrefilterMip))) background = 0;
+        if (settings.view.mode == ViewMode::Irradiance && active) background = int(BackgroundMode::Irradiance);
+        glm::vec3 solid = settings.view.solidColour;
+        if (settings.view.mode == ViewMode::Furnace) {
+            // The furnace's environment is uniform radiance 1 (times the intensity).
+            background = int(BackgroundMode::SolidColour);
+            solid = glm::vec3(std::exp2(settings.environment.intensityEv));
+        }
+        sky.set("uBackground", background);
+        sky.set("uBackgroundMip", float(std::clamp(settings.view.backgroundMip, 0, active ? active->prefiltered.levels - 1 : 0)));
+        sky.set("uSolidColour", solid);
+        glDepthMask(GL_FALSE);
+        drawFullscreenTriangle();
+        glDepthMask(GL_TRUE);
+    }
+
+    void bindMaterial(const gl::ShaderProgram& p, const SceneDraw& draw, const FrameSettings& settings) const
+    {
+        const MaterialSettings& m = settings.material;
+        PbrMaterial material = draw.material;
+        const bool fromSliders = scene.kind != SceneKind::Model || m.overrideModel;
+        if (fromSliders) {
+            material.baseColorFactor = glm::vec4(m.baseColor, 1.0f);
+            if (!draw.materialFromScene) {
+                material.metallicFactor = m.metallic;
+                material.roughnessFactor = m.roughness;
+            }
+        }
+        p.set("uBaseColorFactor", material.baseColorFactor);
+        p.set("uMetallicFactor", material.metallicFactor);
+        p.set("uRoughnessFactor", material.roughnessFactor);
+        p.set("uEmissiveFactor", material.emissiveFactor);
+        p.set("uOcclusionStrength", material.occlusionStrength);
+        p.set("uNormalScale", material.normalScale);
+        p.set("uSpecular", m.specular);
+        p.set("uAmbientOcclusion", m.ambientOcclusion);
+        auto bindSlot = [&](const TextureRef& ref, TextureUnit unit, const char* flag) {
+            const bool present = ref.valid() && std::size_t(ref.index) < scene.textures.size();
+            p.set(flag, int(present));
+            glBindTextureUnit(unit, present ? scene.textures[std::size_t(ref.index)].id() : 0);
+        };
+        bindSlot(material.baseColorTexture, kUnitBaseColor, "uHasBaseColorTexture");
+        bindSlot(material.metallicRoughnessTexture, kUnitMetallicRoughness, "uHasMetallicRoughnessTexture");
+        bindSlot(material.normalTexture, kUnitNormal, "uHasNormalTexture");
+        bindSlot(material.occlusionTexture, kUnitOcclusion, "uHasOcclusionTexture");
+        bindSlot(material.emissiveTexture, kUnitEmissive, "uHasEmissiveTexture");
+        glProgramUniform4i(p.id(), p.uniformLocation("uTexCoordSets"), material.baseColorTexture.texCoord,
+                           material.metallicRoughnessTexture.texCoord, material.normalTexture.texCoord, material.occlusionTexture.texCoord);
+        p.set("uEmissiveTexCoordSet", material.emissiveTexture.texCoord);
+    }
+
+    void drawScene(const FrameSettings& settings, float aspect, glm::vec2 sampleRotation)
+    {
+        if (!active) return;
+        ensureScene(settings.scene);
+        const glm::mat4 viewProjection = cameraProjection(settings.camera, aspect) * cameraView(settings.camera);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 0, hammersley.id());
+        for (const SceneDraw& draw : scene.draws) {
+            const bool sampled = draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled;
+            const gl::ShaderProgram& p = program({"mesh.vert", "pbr.frag"}, {{"METHOD", sampled ? "1" : "0"}});
+            glUseProgram(p.id());
+            bindIbl(p, settings);
+            p.set("uViewProjection", viewProjection);
+            p.set("uCameraPosition", cameraPosition(settings.camera));
+            p.set("uModel", draw.model);
+            p.set("uNormalMatrix", glm::transpose(glm::inverse(glm::mat3(draw.model))));
+            bindMaterial(p, draw, settings);
+            if (sampled) {
+                const int n = std::clamp(draw.sampleCount > 0 ? draw.sampleCount : settings.sampling.samples, 1, kMaxSamples);
+                ensureHammersley(n);
+                p.set("uSampleCount", n);
+                p.set("uSampleRotation", sampleRotation);
+                p.set("uNormalizeByAccepted", 0);
+                p.set("uCosineSampledDiffuse", int(settings.sampling.cosineSampledDiffuse));
+            }
+            scene.meshes[std::size_t(draw.mesh)].draw();
+        }
+        glDisable(GL_DEPTH_TEST);
     }
 };
 
@@ -46,42 +294,94 @@ void Renderer::setEnvironment(const ImageRGB32F& image)
     impl_->equirect = std::move(texture);
 }
 
+void Renderer::setBake(std::shared_ptr<const bake::BakeResult> bake) { impl_->bake = std::move(bake); }
+void Renderer::setFurnaceBake(std::shared_ptr<const bake::BakeResult> bake) { impl_->furnaceBake = std::move(bake); }
+bool Renderer::hasFurnaceBake() const { return bool(impl_->furnaceBake); }
+
+std::vector<SphereReading> Renderer::measureSpheres(const FrameSettings& settings) const
+{
+    const Impl& r = *impl_;
+    std::vector<SphereReading> readings;
+    if (r.scene.kind == SceneKind::Model || r.hdrFrame.width() == 0) return readings;
+    const FrameReadback frame = readHdrFrame();
+    const glm::mat4 view = cameraView(settings.camera);
+    const glm::mat4 projection = cameraProjection(settings.camera, float(frame.width) / float(frame.height));
+    for (const SceneDraw& draw : r.scene.draws) {
+        // The unit sphere's centre and apparent radius in pixels; readings average the
+        // inner half of the disc, where n.v > 0.87: the near-normal reflectance.
+        const glm::vec3 centreView = glm::vec3(view * draw.model[3]);
+        const glm::vec4 clip = projection * glm::vec4(centreView, 1.0f);
+        const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(frame.width, frame.height);
+        const float radiusPixels = projection[1][1] / -centreView.z * 0.5f * float(frame.height);
+        const float reach = 0.5f * radiusPixels;
+        glm::dvec3 sum(0.0);
+        int count = 0;
+        for (int y = int(pixel.y - reach); y <= int(pixel.y + reach); ++y)
+            for (int x = int(pixel.x - reach); x <= int(pixel.x + reach); ++x) {
+                if (x < 0 || y < 0 || x >= frame.width || y >= frame.height) continue;
+                if (glm::length(glm::vec2(x + 0.5f, y + 0.5f) - pixel) > reach) continue;
+                const float* p = &frame.rgba[(std::size_t(y) * std::size_t(frame.width) + std::size_t(x)) * 4];
+                sum += glm::dvec3(p[0], p[1], p[2]);
+                ++count;
+            }
+        if (count == 0) continue;
+        const glm::vec3 mean = glm::vec3(sum / double(count));
+        readings.push_back({pixel, mean, draw.materialFromScene ? draw.material.metallicFactor : settings.material.metallic,
+                            draw.materialFromScene ? draw.material.roughnessFactor : settings.material.roughness});
+    }
+    return readings;
+}
+bool Renderer::hasBake() const { return bool(impl_->bake); }
+
+void Renderer::setModel(const ModelData& model, const std::string& path)
+{
+    impl_->scene = buildModelScene(model, path);
+    impl_->sceneBuilt = true;
+    impl_->builtFor.kind = SceneKind::Model;
+}
+
+SceneInfo Renderer::sceneInfo(const FrameSettings& settings)
+{
+    impl_->ensureScene(settings.scene);
+    const GpuScene& scene = impl_->scene;
+    return {scene.draws.size(), scene.gpuBytes, scene.bounds.center(), glm::max(0.5f * scene.bounds.size(), glm::vec3(1e-3f))};
+}
+
 void Renderer::renderFrame(const FrameSettings& settings, int width, int height)
 {
     Impl& r = *impl_;
-    r.hdrFrame.ensure(GL_RGBA16F, width, height);
+    r.hdrFrame.ensure(GL_RGBA16F, width, height, /*withDepth=*/true);
     r.displayFrame.ensure(GL_RGBA8, width, height);
-
-    // Sky: rotation-only view so that the background sits at infinity.
     const float aspect = float(width) / float(height);
-    const glm::mat4 viewRotation = glm::mat4(glm::mat3(cameraView(settings.camera)));
-    const glm::mat4 inverseViewProjection = glm::inverse(cameraProjection(settings.camera, aspect) * viewRotation);
 
-    glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, r.hdrFrame.framebuffer());
     glViewport(0, 0, width, height);
-    const gl::ShaderProgram& sky = r.shaders.program({"fullscreen.vert", "sky.frag"});
-    glUseProgram(sky.id());
-    sky.set("uInverseViewProjection", inverseViewProjection);
-    sky.set("uEnvironmentYaw", glm::radians(settings.environment.yawDegrees));
-    sky.set("uEnvironmentIntensity", std::exp2(settings.environment.intensityEv));
-    sky.set("uEquirect", 0);
-    glBindTextureUnit(0, r.equirect.id());
-    r.drawFullscreenTriangle();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    r.active = settings.view.mode == ViewMode::Furnace ? r.furnaceBake.get() : r.bake.get();
+    const bool debugView = r.active && (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut);
+    if (debugView) {
+        r.drawDebugView(settings, width, height);
+    } else {
+        r.drawSky(settings, aspect);
+        r.drawScene(settings, aspect, glm::vec2(0.0f));
+    }
 
     glBindFramebuffer(GL_FRAMEBUFFER, r.displayFrame.framebuffer());
-    const gl::ShaderProgram& tonemap = r.shaders.program({"fullscreen.vert", "tonemap.frag"});
+    const gl::ShaderProgram& tonemap = r.program({"fullscreen.vert", "tonemap.frag"});
     glUseProgram(tonemap.id());
-    tonemap.set("uHdrFrame", 0);
-    tonemap.set("uExposureEv", settings.toneMap.exposureEv);
-    tonemap.set("uToneMapOperator", int(settings.toneMap.op));
-    glBindTextureUnit(0, r.hdrFrame.texture());
+    // The LUT view shows data in [0, 1]: no exposure and no tone curve, just the display encoding.
+    const bool lutView = debugView && settings.view.mode == ViewMode::Lut;
+    tonemap.set("uExposureEv", lutView ? 0.0f : settings.toneMap.exposureEv);
+    tonemap.set("uToneMapOperator", int(lutView ? ToneMapOperator::None : settings.toneMap.op));
+    glBindTextureUnit(kUnitHdrFrame, r.hdrFrame.texture());
     r.drawFullscreenTriangle();
 
-    glBindTextureUnit(0, 0);
     glUseProgram(0);
+    glBindVertexArray(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -113,6 +413,55 @@ DisplayReadback Renderer::readDisplayImage() const
     return result;
 }
 
+std::vector<ScreenLabel> Renderer::sceneLabels(const FrameSettings& settings, int width, int height) const
+{
+    std::vector<ScreenLabel> labels;
+    const glm::mat4 viewProjection = cameraProjection(settings.camera, float(width) / float(height)) * cameraView(settings.camera);
+    for (const GridLabel& label : impl_->scene.labels) {
+        const glm::vec4 clip = viewProjection * glm::vec4(label.position, 1.0f);
+        if (clip.w <= 0.0f) continue; // behind the camera
+        const glm::vec2 pixel = (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(width, height);
+        labels.push_back({pixel, label.text, label.axisTitle});
+    }
+    return labels;
+}
+
+int Renderer::prefilterLevels() const { return impl_->bake ? impl_->bake->prefiltered.levels : 0; }
+
+TexelProbe Renderer::probe(const FrameSettings& settings, int width, int height, float x, float y) const
+{
+    const Impl& r = *impl_;
+    if (!r.bake) return {};
+    const std::vector<DebugTile> tiles = debugTiles(settings.view.mode, r.bake->prefiltered.levels, width, height);
+    const int t = debugTileAt(tiles, x, y);
+    if (t < 0) return {};
+    const DebugTile& tile = tiles[std::size_t(t)];
+    const glm::vec2 local = (glm::vec2(x, y) - glm::vec2(tile.rect)) / (glm::vec2(tile.rect.z, tile.rect.w) - glm::vec2(tile.rect));
+    glm::vec4 texel(0.0f);
+    char text[256];
+    if (settings.view.mode == ViewMode::PrefilterMips) {
+        const glm::vec2 cell = local * glm::vec2(4.0f, 3.0f);
+        const int face = crossFace(int(cell.x), int(cell.y));
+        if (face < 0) return {};
+        const int size = r.bake->prefiltered.levelSize(tile.index);
+        const int column = std::min(int(glm::fract(cell.x) * float(size)), size - 1);
+        const int row = std::min(int((1.0f - glm::fract(cell.y)) * float(size)), size - 1); // t = 0 at the top of the cell
+        glGetTextureSubImage(r.bake->prefiltered.id(), tile.index, column, row, face, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof texel, &texel.x);
+        std::snprintf(text, sizeof text, "%s, face %s, texel (%d, %d) of %d: %.4g %.4g %.4g", tile.label.c_str(), kFaceNames[face], column, row,
+                      size, texel.r, texel.g, texel.b);
+    } else {
+        const bake::BakedTexture& lut = r.bake->lut(GeometryTerm(tile.index));
+        if (!lut) return {};
+        const int column = std::min(int(local.x * float(lut.size)), lut.size - 1);
+        const int row = std::min(int(local.y * float(lut.size)), lut.size - 1);
+        glGetTextureSubImage(lut.id(), 0, column, row, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, sizeof texel, &texel.x);
+        std::snprintf(text, sizeof text, "n.v %.3f, roughness %.3f: A %.4f, B %.4f, A+B %.4f", (column + 0.5f) / float(lut.size),
+                      (row + 0.5f) / float(lut.size), texel.r, texel.g, texel.b);
+    }
+    return {true, text};
+}
+
+gl::ShaderLibrary& Renderer::shaders() { return impl_->shaders; }
 std::vector<std::string> Renderer::reloadShaders() { return impl_->shaders.reloadChanged(); }
 
 } // namespace iblab

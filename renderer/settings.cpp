@@ -14,8 +14,12 @@ template <typename Enum, std::size_t N>
 using NameTable = std::array<std::pair<Enum, std::string_view>, N>;
 
 constexpr NameTable<ShadingMethod, 2> kShadingMethods{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}}};
-constexpr NameTable<SceneKind, 4> kSceneKinds{
-    {{SceneKind::Sphere, "sphere"}, {SceneKind::Grid, "grid"}, {SceneKind::Counting, "counting"}, {SceneKind::Model, "model"}}};
+constexpr NameTable<SceneKind, 6> kSceneKinds{{{SceneKind::Sphere, "sphere"},
+                                               {SceneKind::None, "none"},
+                                               {SceneKind::Grid, "grid"},
+                                               {SceneKind::Counting, "counting"},
+                                               {SceneKind::Sweep, "sweep"},
+                                               {SceneKind::Model, "model"}}};
 constexpr NameTable<ViewMode, 5> kViewModes{{{ViewMode::Final, "final"},
                                              {ViewMode::PrefilterMips, "prefilter-mips"},
                                              {ViewMode::Lut, "lut"},

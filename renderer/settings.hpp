@@ -59,12 +59,15 @@ struct SamplingSettings {
     bool multiscatter = false;         // Fdez-Aguera energy compensation from the LUT's third channel
 };
 
-enum class SceneKind { Sphere, Grid, Counting, Model };
+// Counting: sphere i uses N = i. Sweep: every sphere uses N = SamplingSettings::samples and
+// roughness runs from 0 (left) to 1 (right), so reflections merge at 0 and spread apart.
+// None shows the environment alone.
+enum class SceneKind { Sphere, Grid, Counting, Sweep, Model, None };
 
 struct SceneSettings {
     SceneKind kind = SceneKind::Sphere;
     std::string modelPath;  // .gltf / .glb when kind == Model
-    int countingSpheres = 8; // the N = 1..k strip
+    int countingSpheres = 8; // spheres in the counting strip and the roughness sweep
 };
 
 enum class ViewMode { Final, PrefilterMips, Lut, Furnace, Irradiance };

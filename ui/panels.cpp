@@ -1,5 +1,6 @@
 #include "panels.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -86,6 +87,8 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
     ImGui::SliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
     ImGui::SliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
     drawStatus(state.environmentStatus);
+    if (!state.activity.text.empty()) ImGui::ProgressBar(state.activity.progress, ImVec2(-1.0f, 0.0f), state.activity.text.c_str());
+    drawStatus(state.bakeStatus);
 }
 
 void drawToneMapPanel(ToneMapSettings& settings)
@@ -103,12 +106,112 @@ void drawToneMapPanel(ToneMapSettings& settings)
     drawToneCurve(settings);
 }
 
-void drawCameraPanel(CameraSettings& settings)
+void drawCameraPanel(CameraSettings& settings, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (!ImGui::CollapsingHeader("Camera")) return;
     ImGui::SliderFloat("Yaw##camera", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
     ImGui::SliderFloat("Pitch", &settings.pitchDegrees, -89.0f, 89.0f, "%.1f deg");
     ImGui::SliderFloat("Field of view", &settings.fovDegrees, 10.0f, 120.0f, "%.0f deg");
+    ImGui::SliderFloat("Distance", &settings.distance, 0.1f, 200.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::Button("Frame the scene")) requests.frameScene = true;
+    ImGui::SameLine();
+    ImGui::TextDisabled("drag: orbit, wheel: zoom, double-click: frame");
+}
+
+// A combo over an enum whose names settings.hpp spells; returns true when it changed.
+template <typename Enum, std::size_t N>
+bool enumCombo(const char* label, Enum& value, const std::array<Enum, N>& values, std::string_view (*nameOf)(Enum))
+{
+    bool changed = false;
+    if (ImGui::BeginCombo(label, std::string(nameOf(value)).c_str())) {
+        for (Enum v : values)
+            if (ImGui::Selectable(std::string(nameOf(v)).c_str(), v == value)) {
+                changed = v != value;
+                value = v;
+            }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene)
+{
+    if (!ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (scene.kind == SceneKind::Model) ImGui::Checkbox("Override the model's factors", &settings.overrideModel);
+    ImGui::ColorEdit3("Base colour", &settings.baseColor.x, ImGuiColorEditFlags_Float);
+    if (scene.kind == SceneKind::Grid) ImGui::TextDisabled("The grid sets metallic (rows) and roughness (columns).");
+    ImGui::SliderFloat("Metallic", &settings.metallic, 0.0f, 1.0f);
+    ImGui::SliderFloat("Roughness", &settings.roughness, 0.0f, 1.0f);
+    ImGui::SliderFloat("AO", &settings.ambientOcclusion, 0.0f, 1.0f);
+    ImGui::SliderFloat("Specular", &settings.specular, 0.0f, 1.0f, "%.2f");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Dielectric F0 = 0.16 specular^2: 0.5 gives 4%%");
+}
+
+void drawSamplingPanel(SamplingSettings& settings)
+{
+    if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    enumCombo("Method", settings.method, std::array{ShadingMethod::SplitSum, ShadingMethod::Sampled}, shadingMethodName);
+    if (settings.method == ShadingMethod::Sampled) {
+        ImGui::SliderInt("N samples", &settings.samples, 1, 1024, "%d", ImGuiSliderFlags_Logarithmic);
+        ImGui::Checkbox("PDF mip filtering", &settings.pdfMipFiltering);
+        if (settings.pdfMipFiltering) ImGui::SliderFloat("Mip bias", &settings.mipBias, -1.0f, 3.0f, "%+.2f");
+        ImGui::Checkbox("Cosine-sampled diffuse", &settings.cosineSampledDiffuse);
+    }
+    bool automatic = settings.forcedMip < 0;
+    if (ImGui::Checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;
+    if (!automatic) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(120.0f);
+        ImGui::SliderInt("Forced mip", &settings.forcedMip, 0, 10);
+    }
+    enumCombo("Geometry term", settings.geometry, std::array{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith}, geometryTermShortName);
+    enumCombo("Diffuse", settings.diffuse, std::array{DiffuseSource::Sh9, DiffuseSource::IrradianceCube}, diffuseSourceName);
+    ImGui::Checkbox("Multiple-scattering compensation", &settings.multiscatter);
+}
+
+void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests)
+{
+    if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const std::array kinds{SceneKind::Sphere, SceneKind::Grid, SceneKind::Counting, SceneKind::Sweep, SceneKind::Model, SceneKind::None};
+    if (enumCombo("Scene", settings.kind, kinds, sceneKindName)) requests.sceneChanged = true;
+    if (settings.kind == SceneKind::Counting || settings.kind == SceneKind::Sweep) {
+        if (ImGui::SliderInt(settings.kind == SceneKind::Counting ? "Spheres (N = 1..k)" : "Spheres (roughness 0..1)", &settings.countingSpheres, 2, 16))
+            requests.sceneChanged = true;
+        ImGui::TextDisabled(settings.kind == SceneKind::Counting ? "Sampled method; try builtin:lights, forced mip 0, metallic 1."
+                                                                 : "Sampled method at the Sampling panel's N; try builtin:lights.");
+    }
+    ImGui::InputTextWithHint("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath);
+    ImGui::SameLine();
+    if (ImGui::Button("Load model") && state.modelPath[0] != '\0') requests.loadModel = std::string(state.modelPath);
+    if (settings.kind == SceneKind::Model && !settings.modelPath.empty()) {
+        ImGui::InputText("##export", state.exportPath, sizeof state.exportPath);
+        ImGui::SameLine();
+        if (ImGui::Button("Export glTF")) requests.exportModel = std::string(state.exportPath);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("A copy of the model with the material sliders' factors (.glb or .gltf)");
+    }
+    drawStatus(state.sceneStatus);
+}
+
+void drawViewPanel(ViewSettings& settings)
+{
+    if (!ImGui::CollapsingHeader("View")) return;
+    const std::array modes{ViewMode::Final, ViewMode::PrefilterMips, ViewMode::Lut, ViewMode::Furnace, ViewMode::Irradiance};
+    enumCombo("View", settings.mode, modes, viewModeName);
+    const std::array backgrounds{BackgroundMode::Environment, BackgroundMode::Irradiance, BackgroundMode::PrefilterMip, BackgroundMode::SolidColour};
+    enumCombo("Background", settings.background, backgrounds, backgroundModeName);
+    if (settings.background == BackgroundMode::PrefilterMip) ImGui::SliderInt("Mip", &settings.backgroundMip, 0, 8);
+    if (settings.background == BackgroundMode::SolidColour) ImGui::ColorEdit3("Colour", &settings.solidColour.x, ImGuiColorEditFlags_Float);
+}
+
+void drawPresetPanel(PanelState& state, UiRequests& requests)
+{
+    if (!ImGui::CollapsingHeader("Preset")) return;
+    ImGui::InputText("##preset", state.presetPath, sizeof state.presetPath);
+    ImGui::SameLine();
+    if (ImGui::Button("Save")) requests.savePreset = std::string(state.presetPath);
+    ImGui::SameLine();
+    if (ImGui::Button("Load##preset")) requests.loadPreset = std::string(state.presetPath);
+    drawStatus(state.presetStatus);
 }
 
 void drawCapturePanel(PanelState& state, UiRequests& requests)
@@ -127,18 +230,54 @@ void drawStatsOverlay(const FrameStats& stats)
     ImGui::TextDisabled("%s", stats.renderer.c_str());
 }
 
+void drawDebugOverlay(const std::vector<DebugTile>& tiles, float framebufferHeight, const std::string& probeText)
+{
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    for (const DebugTile& tile : tiles)
+        draw->AddText(ImVec2(tile.rect.x, framebufferHeight - tile.rect.w - 18.0f), IM_COL32(230, 230, 230, 255), tile.label.c_str());
+    if (!probeText.empty() && !ImGui::GetIO().WantCaptureMouse) ImGui::SetTooltip("%s", probeText.c_str());
+}
+
+void drawSceneLabels(const std::vector<ScreenLabel>& labels, float framebufferHeight)
+{
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    for (const ScreenLabel& label : labels) {
+        const ImVec2 size = ImGui::CalcTextSize(label.text.c_str());
+        const ImU32 colour = label.title ? IM_COL32(255, 255, 255, 255) : IM_COL32(210, 210, 210, 230);
+        draw->AddText(ImVec2(label.pixel.x - size.x * 0.5f, framebufferHeight - label.pixel.y - size.y * 0.5f), colour, label.text.c_str());
+    }
+}
+
+void drawSphereReadings(const std::vector<SphereReading>& readings, float framebufferHeight)
+{
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    for (const SphereReading& r : readings) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3f", 0.2126f * r.radiance.r + 0.7152f * r.radiance.g + 0.0722f * r.radiance.b);
+        const ImVec2 size = ImGui::CalcTextSize(text);
+        const ImVec2 at(r.pixel.x - size.x * 0.5f, framebufferHeight - r.pixel.y - size.y * 0.5f);
+        draw->AddRectFilled(ImVec2(at.x - 2, at.y - 1), ImVec2(at.x + size.x + 2, at.y + size.y + 1), IM_COL32(0, 0, 0, 160));
+        draw->AddText(at, IM_COL32(255, 255, 255, 255), text);
+    }
+}
+
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests)
 {
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab)) && !ImGui::GetIO().WantTextInput) state.showPanels = !state.showPanels;
     if (!state.showPanels) return;
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380, ImGui::GetIO().DisplaySize.y - 16.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("iblab");
     drawStatsOverlay(stats);
     drawEnvironmentPanel(settings.environment, state, requests);
+    drawScenePanel(settings.scene, state, requests);
+    drawMaterialPanel(settings.material, settings.scene);
+    drawSamplingPanel(settings.sampling);
     drawToneMapPanel(settings.toneMap);
-    drawCameraPanel(settings.camera);
+    drawViewPanel(settings.view);
+    drawCameraPanel(settings.camera, requests);
     drawCapturePanel(state, requests);
+    drawPresetPanel(state, requests);
     ImGui::End();
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "debug_layout.hpp"
+#include "renderer.hpp"
 #include "settings.hpp"
 
 namespace iblab::ui {
@@ -30,27 +32,61 @@ struct FrameStats {
 
 struct UiRequests {
     std::optional<std::string> loadEnvironment; // a path or builtin:NAME
+    std::optional<std::string> loadModel;       // a .gltf or .glb path
     std::optional<std::string> captureTo;       // a .png or .exr path
+    std::optional<std::string> savePreset;      // lab settings as JSON
+    std::optional<std::string> loadPreset;
+    std::optional<std::string> exportModel;     // a copy of the loaded glTF with the tuned material
+    bool frameScene = false;
+    bool sceneChanged = false;                  // the scene kind changed: frame it
 };
 
 struct CaptureSettings {
     char path[512] = "iblab-capture.png";
 };
 
+// Background work the app reports to the panels: an environment loading or a bake running.
+struct Activity {
+    std::string text; // "" when idle
+    float progress = 0.0f;
+};
+
 struct PanelState {
     EnvironmentCatalog catalog;
     StatusLine environmentStatus;
+    StatusLine bakeStatus;
+    StatusLine sceneStatus;
     StatusLine captureStatus;
+    StatusLine presetStatus;
     CaptureSettings capture;
+    Activity activity;
     char environmentPath[512] = "";
+    char modelPath[512] = "";
+    char presetPath[512] = "iblab-preset.json";
+    char exportPath[512] = "iblab-export.glb";
     bool showPanels = true;
 };
 
 void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRequests& requests);
 void drawToneMapPanel(ToneMapSettings& settings);
-void drawCameraPanel(CameraSettings& settings);
+void drawCameraPanel(CameraSettings& settings, UiRequests& requests);
+void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene);
+void drawSamplingPanel(SamplingSettings& settings);
+void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests);
+void drawViewPanel(ViewSettings& settings);
+void drawPresetPanel(PanelState& state, UiRequests& requests);
 void drawCapturePanel(PanelState& state, UiRequests& requests);
 void drawStatsOverlay(const FrameStats& stats);
+
+// Labels of the debug view's tiles (rects y up, in framebuffer pixels) and the readout of
+// the texel under the cursor.
+void drawDebugOverlay(const std::vector<DebugTile>& tiles, float framebufferHeight, const std::string& probeText);
+
+// Text anchored in the scene (the grid's axes), projected by the renderer.
+void drawSceneLabels(const std::vector<ScreenLabel>& labels, float framebufferHeight);
+
+// The furnace view's numbers: reflected radiance (1 = all energy) over each sphere.
+void drawSphereReadings(const std::vector<SphereReading>& readings, float framebufferHeight);
 
 // The full control window with all of the above, docked at the left.
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests);

@@ -1,15 +1,25 @@
-// The environment as the background: one view ray per pixel from the inverse camera.
-#include "common/environment_lookup.glsl"
+// The background: one view ray per pixel from the inverse camera, showing the environment,
+// its irradiance, one prefiltered mip, or a solid colour (BackgroundMode).
+#include "common/ibl_lighting.glsl"
 
 in vec2 vUv;
 out vec4 fragColor;
 
 uniform mat4 uInverseViewProjection; // rotation-only view: the sky is at infinity
+uniform int uBackground;             // 0 environment, 1 irradiance, 2 prefiltered mip, 3 solid
+uniform float uBackgroundMip;
+uniform vec3 uSolidColour;
 
 void main()
 {
     vec4 clip = vec4(vUv * 2.0 - 1.0, 1.0, 1.0);
     vec4 world = uInverseViewProjection * clip;
     vec3 direction = normalize(world.xyz / world.w);
-    fragColor = vec4(environmentRadiance(direction), 1.0);
+    vec3 colour = uSolidColour;
+    if (uBackground == 0) colour = environmentRadiance(direction);
+    // Irradiance shown as the radiance of a white Lambertian surface facing that way (E / pi),
+    // so it sits at the brightness of the sky it comes from.
+    else if (uBackground == 1) colour = diffuseIrradiance(direction) * (1.0 / IBL_PI);
+    else if (uBackground == 2) colour = textureLod(uPrefiltered, toEnvironment(direction), uBackgroundMip).rgb * uEnvironmentIntensity;
+    fragColor = vec4(colour, 1.0);
 }

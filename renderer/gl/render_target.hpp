@@ -9,7 +9,8 @@ namespace iblab::gl {
 // or size changes (window resizes happen every frame while dragging a corner).
 class RenderTarget {
 public:
-    void ensure(GLenum internalFormat, int width, int height);
+    // withDepth adds a 32-bit float depth renderbuffer (the mesh passes need one).
+    void ensure(GLenum internalFormat, int width, int height, bool withDepth = false);
     GLuint texture() const { return texture_.id(); }
     GLuint framebuffer() const { return framebuffer_.id(); }
     int width() const { return width_; }
@@ -18,7 +19,9 @@ public:
 private:
     Texture texture_;
     Framebuffer framebuffer_;
+    Renderbuffer depth_;
     GLenum format_ = 0;
+    bool withDepth_ = false;
     int width_ = 0;
     int height_ = 0;
 };

@@ -71,7 +71,7 @@ TEST_F(Cli, BareCommandRendersHeadlessWithoutADisplay)
 
 TEST_F(Cli, RenderWritesPngWithSettingsAndSidecar)
 {
-    const Result r = run("render --env builtin:white --tonemap none --width 32 --height 16 --env-yaw 12.5 -o white.png");
+    const Result r = run("render --scene none --env builtin:white --tonemap none --width 32 --height 16 --env-yaw 12.5 -o white.png");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto input = OIIO::ImageInput::open((dir / "white.png").string());
     ASSERT_TRUE(input);
@@ -90,7 +90,7 @@ TEST_F(Cli, RenderWritesPngWithSettingsAndSidecar)
 
 TEST_F(Cli, RenderWritesLinearExrBeforeToneMapping)
 {
-    const Result r = run("render --env builtin:white --env-intensity 2 --exposure -5 --width 8 --height 8 -o frame.exr");
+    const Result r = run("render --scene none --env builtin:white --env-intensity 2 --exposure -5 --width 8 --height 8 -o frame.exr");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto input = OIIO::ImageInput::open((dir / "frame.exr").string());
     ASSERT_TRUE(input);

@@ -24,6 +24,7 @@ protected:
         renderer.setEnvironment(loadEnvironment(environment).image);
         FrameSettings settings = base;
         settings.environment.source = environment;
+        settings.scene.kind = SceneKind::None; // the sky alone
         renderer.renderFrame(settings, width, height);
         lastDisplay = renderer.readDisplayImage();
         return renderer.readHdrFrame();

@@ -1,9 +1,13 @@
-// Radiance of the environment in a world direction, honouring the user's yaw and intensity.
+// The environment as seen from the world: the user's yaw and intensity, applied in one
+// place for every lookup (sky, irradiance, prefiltered and sampled radiance).
 #include "common/conventions.glsl"
 
-uniform sampler2D uEquirect;
+uniform sampler2D uEquirect;         // the source map, linear RGB with mips
 uniform float uEnvironmentYaw;       // radians, see rotateAboutY
 uniform float uEnvironmentIntensity; // linear scale, 2^EV
+
+// World direction -> the direction in the environment's own frame.
+vec3 toEnvironment(vec3 worldDirection) { return rotateAboutY(worldDirection, -uEnvironmentYaw); }
 
 // Equirect lookup with derivatives that do not explode across the u = 0/1 seam: of the
 // two continuous parameterisations u and fract(u + 0.5) - 0.5, take the one whose screen
@@ -26,6 +30,5 @@ vec3 sampleEquirectSeamless(sampler2D map, vec3 direction)
 
 vec3 environmentRadiance(vec3 worldDirection)
 {
-    vec3 d = rotateAboutY(worldDirection, -uEnvironmentYaw);
-    return sampleEquirectSeamless(uEquirect, d) * uEnvironmentIntensity;
+    return sampleEquirectSeamless(uEquirect, toEnvironment(worldDirection)) * uEnvironmentIntensity;
 }

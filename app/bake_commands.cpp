@@ -1,0 +1,505 @@
+// `iblab bake`, `iblab sh` and `iblab lut`: the bake from the command line, headless.
+// Each prints its result on stdout (a table, or JSON with --json) and, on failure, exits
+// non-zero with one line on stderr naming the file or the problem.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <nlohmann/json.hpp>
+
+#include "asset_paths.hpp"
+#include "bake/bake_accuracy.hpp"
+#include "bake/bake_cache.hpp"
+#include "bake/bake_files.hpp"
+#include "bake/bake_job.hpp"
+#include "bake/bake_passes.hpp"
+#include "commands.hpp"
+#include "environment/environment.hpp"
+#include "environment/error.hpp"
+#include "gl/context_error.hpp"
+#include "gl/context_info.hpp"
+#include "gl/debug_output.hpp"
+#include "gl/headless_context.hpp"
+#include "gl/shader_library.hpp"
+
+namespace iblab::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::ordered_json;
+
+double millisecondsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+int fail(const char* command, const std::string& reason)
+{
+    std::fprintf(stderr, "iblab %s: %s\n", command, oneLine(reason).c_str());
+    return 1;
+}
+
+// A headless context whose GL errors are collected: a bake with a GL error is a failed bake.
+struct GlSession {
+    gl::HeadlessContext context{gl::HeadlessContextOptions{.debug = true}};
+    gl::DebugOutput debug;
+    GlSession()
+    {
+        if (gl::currentContextHasDebugOutput())
+            debug.install();
+    }
+    std::string firstError() const
+    {
+        for (const auto& m : debug.messages())
+            if (m.isError)
+                return m.text;
+        return {};
+    }
+};
+
+ordered_json shArray(const SH9Color& sh)
+{
+    ordered_json a = ordered_json::array();
+    for (const glm::dvec3& c : sh.c)
+        a.push_back({c.x, c.y, c.z});
+    return a;
+}
+
+// Settings given on the command line; each one that is set replaces the preset's value.
+struct BakeOverrides {
+    std::optional<std::string> precision;
+    std::optional<bool> exactTexelSolidAngle;
+    std::optional<int> cubeSize;
+    std::optional<std::string> shDevice;
+    std::optional<std::string> shWindow;
+    std::optional<double> shWindowWidth;
+    std::optional<bool> riemann;
+    std::optional<int> riemannSize;
+    std::optional<float> riemannDelta;
+    std::optional<bool> riemannMipFilter;
+    std::optional<float> riemannMipBias;
+    std::optional<bool> importance;
+    std::optional<int> importanceSize;
+    std::optional<int> importanceSamples;
+    std::optional<bool> importanceMipFilter;
+    std::optional<float> importanceMipBias;
+    std::optional<int> prefilterSize;
+    std::optional<int> prefilterLevels;
+    std::optional<int> prefilterSamples;
+    std::optional<float> prefilterSampleGrowth;
+    std::optional<bool> prefilterMipFilter;
+    std::optional<float> prefilterMipBias;
+    std::optional<int> lutSize;
+    std::optional<int> lutSamples;
+    std::optional<std::string> lutGeometry;
+    std::optional<std::int64_t> samplesPerStep;
+};
+
+struct BakeCommandOptions {
+    std::string environment;
+    std::string preset = "default";
+    BakeOverrides overrides;
+    std::string out;
+    std::string cacheDir;
+    bool json = false;
+    bool noCache = false;
+    bool noErrors = false;
+    int repeat = 1;
+};
+
+template <typename T, typename U>
+void apply(const std::optional<T>& value, U& field)
+{
+    if (value)
+        field = U(*value);
+}
+
+bake::BakeSettings resolveSettings(const BakeCommandOptions& o)
+{
+    bake::BakeSettings s = bake::presetByName(o.preset);
+    const BakeOverrides& v = o.overrides;
+    if (v.precision) {
+        const auto p = bake::parsePrecision(*v.precision);
+        if (!p) throw Error("--precision", "expected half or float, got \"" + *v.precision + "\"");
+        s.precision = *p;
+    }
+    apply(v.exactTexelSolidAngle, s.exactTexelSolidAngle);
+    apply(v.cubeSize, s.cube.faceSize);
+    if (v.shDevice) {
+        const auto d = bake::parseShDevice(*v.shDevice);
+        if (!d) throw Error("--sh-device", "expected cpu or gpu, got \"" + *v.shDevice + "\"");
+        s.sh.device = *d;
+    }
+    if (v.shWindow) {
+        const auto w = bake::parseShWindow(*v.shWindow);
+        if (!w) throw Error("--sh-window", "expected none, hanning or lanczos, got \"" + *v.shWindow + "\"");
+        s.sh.window = *w;
+    }
+    apply(v.shWindowWidth, s.sh.windowWidth);
+    apply(v.riemann, s.riemann.enabled);
+    apply(v.riemannSize, s.riemann.faceSize);
+    apply(v.riemannDelta, s.riemann.sampleDelta);
+    apply(v.riemannMipFilter, s.riemann.mipFiltering);
+    apply(v.riemannMipBias, s.riemann.mipBias);
+    apply(v.importance, s.importance.enabled);
+    apply(v.importanceSize, s.importance.faceSize);
+    apply(v.importanceSamples, s.importance.samples);
+    apply(v.importanceMipFilter, s.importance.mipFiltering);
+    apply(v.importanceMipBias, s.importance.mipBias);
+    apply(v.prefilterSize, s.prefilter.faceSize);
+    apply(v.prefilterLevels, s.prefilter.levels);
+    apply(v.prefilterSamples, s.prefilter.samples);
+    apply(v.prefilterSampleGrowth, s.prefilter.sampleGrowth);
+    apply(v.prefilterMipFilter, s.prefilter.mipFiltering);
+    apply(v.prefilterMipBias, s.prefilter.mipBias);
+    apply(v.lutSize, s.lut.size);
+    apply(v.lutSamples, s.lut.samples);
+    if (v.lutGeometry) {
+        if (*v.lutGeometry == "both") {
+            s.lut.schlickGgx = s.lut.heightCorrelatedSmith = true;
+        } else if (*v.lutGeometry == "none") {
+            s.lut.schlickGgx = s.lut.heightCorrelatedSmith = false;
+        } else {
+            const auto g = bake::parseGeometryTerm(*v.lutGeometry);
+            if (!g) throw Error("--lut-geometry", "expected schlick, correlated, both or none, got \"" + *v.lutGeometry + "\"");
+            s.lut.schlickGgx = *g == GeometryTerm::SchlickGGX;
+            s.lut.heightCorrelatedSmith = *g == GeometryTerm::HeightCorrelatedSmith;
+        }
+    }
+    apply(v.samplesPerStep, s.samplesPerStep);
+    bake::validate(s);
+    return s;
+}
+
+ordered_json textureJson(const bake::BakedTexture& t)
+{
+    if (!t) return nullptr;
+    return {{"size", t.size},
+            {"levels", t.levels},
+            {"format", t.internalFormat == GL_RGBA16F ? "RGBA16F" : "RGBA32F"},
+            {"bytes", t.bytes()}};
+}
+
+void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>& errors, const std::string& out)
+{
+    std::printf("%s: %dx%d, preset %s%s\n", r.source.c_str(), r.sourceWidth, r.sourceHeight, r.settings.preset.c_str(),
+                r.fromCache ? " (loaded from the cache)" : "");
+    std::printf("environment cube %d (%d mips), prefiltered %d x %d mips, GPU memory %.2f MiB\n", r.environmentCube.size,
+                r.environmentCube.levels, r.prefiltered.size, r.prefiltered.levels, double(r.gpuBytes()) / (1024.0 * 1024.0));
+    std::printf("timings (steady clock around glFinish):\n");
+    for (const auto& t : r.timings)
+        std::printf("  %-22s %10.1f ms\n", t.phase.c_str(), t.milliseconds);
+    std::printf("  %-22s %10.1f ms\n", "total", r.totalMilliseconds);
+    if (errors) {
+        std::printf("errors against the exact references:\n");
+        for (const auto& e : errors->prefilter)
+            std::printf("  prefilter mip %d (roughness %.2f): relative RMSE %.4f\n", e.level, e.roughness, e.relativeRmse);
+        std::printf("  irradiance SH9:           mean %.4f max %.4f\n", errors->shIrradiance.mean, errors->shIrradiance.max);
+        std::printf("  irradiance SH9 windowed:  mean %.4f max %.4f\n", errors->shIrradianceWindowed.mean,
+                    errors->shIrradianceWindowed.max);
+        if (errors->irradianceRiemann)
+            std::printf("  irradiance cube Riemann:  mean %.4f max %.4f\n", errors->irradianceRiemann->mean,
+                        errors->irradianceRiemann->max);
+        if (errors->irradianceImportance)
+            std::printf("  irradiance cube cos-IS:   mean %.4f max %.4f\n", errors->irradianceImportance->mean,
+                        errors->irradianceImportance->max);
+        for (GeometryTerm term : bake::kGeometryTerms)
+            if (errors->lutMaxAbs[std::size_t(term)])
+                std::printf("  LUT %-24s max abs %.5f\n", std::string(geometryTermName(term)).c_str(), *errors->lutMaxAbs[std::size_t(term)]);
+    }
+    if (!out.empty()) std::printf("written to %s\n", out.c_str());
+}
+
+int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
+{
+    try {
+        const bake::BakeSettings settings = resolveSettings(o);
+        const auto loadStart = Clock::now();
+        const Environment environment = loadEnvironment(o.environment);
+        const double loadMs = millisecondsSince(loadStart);
+
+        const auto contextStart = Clock::now();
+        GlSession gl;
+        const double contextMs = millisecondsSince(contextStart);
+        gl::ShaderLibrary shaders(shaderDirectory());
+        std::optional<bake::BakeCache> cache;
+        if (!o.noCache) cache.emplace(o.cacheDir.empty() ? bake::defaultCacheDirectory() : std::filesystem::path(o.cacheDir));
+
+        // --repeat bakes again in the same process, without the cache, to time warm runs
+        // (llvmpipe loads each shader variant's machine code on its first dispatch in a
+        // process, Mesa's disk cache or not); the result and timings are the last run's.
+        bake::BakeResult result = bake::BakeJob(shaders, environment, settings, cache ? &*cache : nullptr).runToCompletion();
+        std::vector<double> totals{result.totalMilliseconds};
+        for (int i = 1; i < o.repeat; ++i) {
+            result = bake::BakeJob(shaders, environment, settings).runToCompletion();
+            totals.push_back(result.totalMilliseconds);
+        }
+        const auto waitStart = Clock::now();
+        std::vector<std::string> notes = result.notes;
+        if (cache)
+            for (std::string& note : cache->finishWrites())
+                notes.push_back(std::move(note));
+        const double cacheWriteWaitMs = millisecondsSince(waitStart);
+        for (const std::string& note : notes)
+            std::fprintf(stderr, "iblab bake: %s\n", note.c_str());
+
+        std::optional<bake::BakeErrors> errors;
+        const bake::AccuracyOptions accuracy;
+        if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, accuracy);
+
+        if (!o.out.empty()) {
+            const std::filesystem::path dir(o.out);
+            ordered_json extra;
+            if (errors) extra["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
+            bake::writeBakeDirectory(dir, result, extra.empty() ? std::string() : extra.dump());
+            for (GeometryTerm term : bake::kGeometryTerms)
+                if (const bake::BakedTexture& lut = result.lut(term))
+                    bake::writeLutExr(dir / ("brdf_lut_" + std::string(geometryTermName(term)) + ".exr"), bake::read2D(lut),
+                                      settings.lut.samples, term, true, false);
+        }
+        glFinish();
+        if (gl.debug.errorCount() > 0) return fail("bake", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.firstError());
+
+        if (o.json) {
+            ordered_json j;
+            j["source"] = result.source;
+            j["source_size"] = {result.sourceWidth, result.sourceHeight};
+            j["renderer"] = gl::describeCurrentContext();
+            j["preset"] = settings.preset;
+            j["settings"] = ordered_json::parse(bake::toJsonText(settings));
+            j["from_cache"] = result.fromCache;
+            j["lut_from_cache"] = {{"schlick-ggx", result.lutFromCache[0]}, {"height-correlated-smith", result.lutFromCache[1]}};
+            ordered_json timings;
+            for (const auto& t : result.timings) timings[t.phase] = t.milliseconds;
+            timings["total"] = result.totalMilliseconds;
+            j["timings_ms"] = timings;
+            j["timing_method"] = "steady clock around each step, each step ending in glFinish; shaders: compile (Mesa's disk "
+                                 "cache makes a second run warm)";
+            j["other_ms"] = {{"environment_load", loadMs},
+                             {"context", contextMs},
+                             {"cache_write_wait", cacheWriteWaitMs},
+                             {"process", millisecondsSince(processStart)}};
+            if (totals.size() > 1) {
+                j["repeat_totals_ms"] = totals;
+                j["repeat_min_total_ms"] = *std::min_element(totals.begin(), totals.end());
+            }
+            j["gpu_bytes"] = result.gpuBytes();
+            j["textures"] = {{"environment_cube", textureJson(result.environmentCube)},
+                             {"irradiance_riemann", textureJson(result.irradianceRiemann)},
+                             {"irradiance_importance", textureJson(result.irradianceImportance)},
+                             {"prefiltered", textureJson(result.prefiltered)},
+                             {"brdf_lut_schlick-ggx", textureJson(result.brdfLut[0])},
+                             {"brdf_lut_height-correlated-smith", textureJson(result.brdfLut[1])}};
+            j["sh"] = ordered_json::parse(bake::shJsonText(result.sh));
+            if (errors) j["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
+            j["notes"] = notes;
+            if (!o.out.empty()) j["output"] = o.out;
+            std::printf("%s\n", j.dump(2).c_str());
+        } else {
+            printTable(result, errors, o.out);
+        }
+        return 0;
+    } catch (const std::exception& e) {
+        return fail("bake", e.what());
+    }
+}
+
+struct ShCommandOptions {
+    std::string environment;
+    std::string device = "cpu";
+    std::string window = "hanning";
+    double windowWidth = 0.0;
+    bool json = false;
+};
+
+int runSh(const ShCommandOptions& o)
+{
+    try {
+        const auto device = bake::parseShDevice(o.device);
+        if (!device) throw Error("--device", "expected cpu or gpu, got \"" + o.device + "\"");
+        const auto window = bake::parseShWindow(o.window);
+        if (!window) throw Error("--window", "expected none, hanning or lanczos, got \"" + o.window + "\"");
+        const Environment environment = loadEnvironment(o.environment);
+        SH9Color radiance;
+        double ms = 0.0; // the projection only: upload and read-back included, context creation not
+        if (*device == bake::ShDevice::Cpu) {
+            const auto start = Clock::now();
+            radiance = projectEquirect(environment.image);
+            ms = millisecondsSince(start);
+        } else {
+            GlSession gl;
+            gl::ShaderLibrary shaders(shaderDirectory());
+            bake::BakePasses passes(shaders);
+            passes.compileAll();
+            glFinish();
+            const auto start = Clock::now();
+            const gl::Texture equirect = passes.uploadEquirect(environment.image);
+            radiance = passes.projectSh9(equirect.id(), environment.image.width, environment.image.height);
+            ms = millisecondsSince(start);
+            if (gl.debug.errorCount() > 0) return fail("sh", "GL error: " + gl.firstError());
+        }
+        const SH9Color irradiance = convolveWithCosineLobe(radiance);
+        const double width = *window == ShWindow::None ? 0.0
+                             : o.windowWidth > 0.0     ? o.windowWidth
+                                                       : findNonNegativeWindowWidth(irradiance, *window);
+        const SH9Color windowed = applyWindow(irradiance, *window, width);
+        if (o.json) {
+            ordered_json j;
+            j["basis"] = kSh9Convention;
+            j["radiance"] = shArray(radiance);
+            j["irradiance"] = shArray(irradiance);
+            j["irradiance_windowed"] = shArray(windowed);
+            j["window"] = bake::shWindowName(*window);
+            j["window_width"] = width;
+            j["source"] = environment.source;
+            j["device"] = o.device;
+            j["projection_ms"] = ms;
+            std::printf("%s\n", j.dump(2).c_str());
+        } else {
+            static const char* names[] = {"(0,0)", "(1,-1)", "(1,0)", "(1,1)", "(2,-2)", "(2,-1)", "(2,0)", "(2,1)", "(2,2)"};
+            std::printf("%s (%s, %.1f ms); %s\n", environment.source.c_str(), o.device.c_str(), ms, kSh9Convention);
+            std::printf("%-7s %38s %38s\n", "l,m", "radiance L_lm", "irradiance E_lm");
+            for (int i = 0; i < kSh9Count; ++i) {
+                const glm::dvec3 L = radiance.c[std::size_t(i)];
+                const glm::dvec3 E = irradiance.c[std::size_t(i)];
+                std::printf("%-7s %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g\n", names[i], L.x, L.y, L.z, E.x, E.y, E.z);
+            }
+        }
+        return 0;
+    } catch (const std::exception& e) {
+        return fail("sh", e.what());
+    }
+}
+
+struct LutCommandOptions {
+    int size = 128;
+    int samples = 1024;
+    std::string geometry = "correlated";
+    bool multiscatter = false;
+    std::string output;
+    bool json = false;
+};
+
+int runLut(const LutCommandOptions& o)
+{
+    try {
+        const auto term = bake::parseGeometryTerm(o.geometry);
+        if (!term) throw Error("--geometry", "expected schlick or correlated, got \"" + o.geometry + "\"");
+        GlSession gl;
+        gl::ShaderLibrary shaders(shaderDirectory());
+        bake::BakePasses passes(shaders);
+        passes.compileAll();
+        const auto start = Clock::now();
+        const bake::BakedTexture lut = bake::create2DTexture(GL_RGBA16F, o.size);
+        passes.brdfLut(lut, 0, o.size, o.samples, *term);
+        glFinish();
+        const double ms = millisecondsSince(start);
+        bake::writeLutExr(o.output, bake::read2D(lut), o.samples, *term, o.multiscatter, false);
+        if (gl.debug.errorCount() > 0) return fail("lut", "GL error: " + gl.firstError());
+        if (o.json) {
+            ordered_json j;
+            j["output"] = o.output;
+            j["size"] = o.size;
+            j["samples"] = o.samples;
+            j["geometry"] = geometryTermName(*term);
+            j["multiscatter"] = o.multiscatter;
+            j["bake_ms"] = ms;
+            j["timing_method"] = "steady clock around the dispatch and glFinish";
+            std::printf("%s\n", j.dump(2).c_str());
+        } else {
+            std::printf("%s\n", o.output.c_str());
+        }
+        return 0;
+    } catch (const std::exception& e) {
+        return fail("lut", e.what());
+    }
+}
+
+std::string exrOnly(const std::string& path)
+{
+    return std::filesystem::path(path).extension() == ".exr" ? std::string() : "the output must end in .exr, got \"" + path + "\"";
+}
+
+} // namespace
+
+Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
+{
+    auto o = std::make_shared<BakeCommandOptions>();
+    CLI::App* c = app.add_subcommand("bake", "Bake an environment on the GPU (headless): cubemap, SH9, irradiance, GGX "
+                                             "prefilter, BRDF LUTs; prints per-phase timings and errors against exact references");
+    c->add_option("--env", o->environment, "Environment: an .exr/.hdr file or builtin:NAME")->required();
+    c->add_option("--preset", o->preset, "Starting settings: default (fast, accurate) or tutorial (LearnOpenGL's)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"default", "tutorial"}));
+    BakeOverrides& v = o->overrides;
+    c->add_option("--precision", v.precision, "Cube storage: half (RGBA16F) or float (RGBA32F)");
+    c->add_option("--exact-texel-solid-angle", v.exactTexelSolidAngle,
+                  "PDF mip selection against the solid angle of the texel read (on) or the face average (off)");
+    c->add_option("--cube-size", v.cubeSize, "Environment cube face size; 0 = from the source (6 f^2 <= W H)");
+    c->add_option("--sh-device", v.shDevice, "SH9 projection on the cpu or the gpu");
+    c->add_option("--sh-window", v.shWindow, "SH window against ringing: none, hanning or lanczos");
+    c->add_option("--sh-window-width", v.shWindowWidth, "SH window width in bands; 0 = the gentlest non-negative one");
+    c->add_option("--riemann", v.riemann, "Bake the Riemann-sum irradiance cube (on/off)");
+    c->add_option("--riemann-size", v.riemannSize, "Riemann irradiance cube face size");
+    c->add_option("--riemann-delta", v.riemannDelta, "Riemann sample delta, radians");
+    c->add_option("--riemann-mip-filter", v.riemannMipFilter, "Read each Riemann cell from the mip matching its size (on/off)");
+    c->add_option("--riemann-mip-bias", v.riemannMipBias, "Bias added to the Riemann cells' source lod");
+    c->add_option("--importance", v.importance, "Bake the cosine-importance-sampled irradiance cube (on/off)");
+    c->add_option("--importance-size", v.importanceSize, "Importance-sampled irradiance cube face size");
+    c->add_option("--importance-samples", v.importanceSamples, "Cosine samples per irradiance texel");
+    c->add_option("--importance-mip-filter", v.importanceMipFilter, "PDF-based source-mip selection for irradiance (on/off)");
+    c->add_option("--importance-mip-bias", v.importanceMipBias, "Bias added to the irradiance source lod");
+    c->add_option("--prefilter-size", v.prefilterSize, "Prefiltered cube face size (power of two)");
+    c->add_option("--prefilter-levels", v.prefilterLevels, "Prefiltered mips; mip m has roughness m / (levels - 1)");
+    c->add_option("--prefilter-samples", v.prefilterSamples, "GGX samples per prefiltered texel at mip 1");
+    c->add_option("--prefilter-sample-growth", v.prefilterSampleGrowth, "Mip m takes samples * growth^(m-1)");
+    c->add_option("--prefilter-mip-filter", v.prefilterMipFilter, "PDF-based source-mip selection for the prefilter (on/off)");
+    c->add_option("--prefilter-mip-bias", v.prefilterMipBias, "Bias added to the prefilter source lod (0 LearnOpenGL, 1 Filament)");
+    c->add_option("--lut-size", v.lutSize, "BRDF LUT size");
+    c->add_option("--lut-samples", v.lutSamples, "BRDF LUT samples per texel");
+    c->add_option("--lut-geometry", v.lutGeometry, "LUT geometry terms: schlick, correlated, both or none");
+    c->add_option("--step-samples", v.samplesPerStep, "Work per bake step, in texture samples");
+    c->add_option("--out", o->out, "Write the results to DIR (EXR + JSON, see docs/bake.md)");
+    c->add_option("--cache-dir", o->cacheDir, "Cache directory (default $IBLAB_CACHE_DIR, $XDG_CACHE_HOME/iblab or ~/.cache/iblab)");
+    c->add_flag("--no-cache", o->noCache, "Neither read nor write the cache");
+    c->add_flag("--no-errors", o->noErrors, "Skip the comparison with the exact references");
+    c->add_option("--repeat", o->repeat, "Bake N times in this process (the later ones without the cache) and report each total")
+        ->check(CLI::Range(1, 100));
+    c->add_flag("--json", o->json, "Print a JSON report");
+    return {c, [o, processStart] { return runBake(*o, processStart); }};
+}
+
+Command addShCommand(CLI::App& app, ProcessClock::time_point)
+{
+    auto o = std::make_shared<ShCommandOptions>();
+    CLI::App* c = app.add_subcommand("sh", "Project an environment onto SH9: radiance and irradiance coefficients");
+    c->add_option("--env", o->environment, "Environment: an .exr/.hdr file or builtin:NAME")->required();
+    c->add_option("--device", o->device, "Where to project: cpu (no GL needed) or gpu")->capture_default_str()->check(CLI::IsMember({"cpu", "gpu"}));
+    c->add_option("--window", o->window, "Window for irradiance_windowed: none, hanning or lanczos")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"none", "hanning", "lanczos"}));
+    c->add_option("--window-width", o->windowWidth, "Window width in bands; 0 = the gentlest non-negative one")->capture_default_str();
+    c->add_flag("--json", o->json, "Print {\"basis\", \"radiance\", \"irradiance\", ...} as JSON");
+    return {c, [o] { return runSh(*o); }};
+}
+
+Command addLutCommand(CLI::App& app, ProcessClock::time_point)
+{
+    auto o = std::make_shared<LutCommandOptions>();
+    CLI::App* c = app.add_subcommand("lut", "Bake the split-sum BRDF LUT on the GPU to an EXR: R = A, G = B, x = NdotV, y = "
+                                            "roughness, first scanline = roughness near 0");
+    c->add_option("--size", o->size, "Width and height")->capture_default_str()->check(CLI::Range(1, 4096));
+    c->add_option("--samples", o->samples, "GGX samples per texel")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+    c->add_option("--geometry", o->geometry, "schlick (Schlick-GGX, k = alpha/2) or correlated (height-correlated Smith)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"schlick", "correlated", "schlick-ggx", "height-correlated-smith"}));
+    c->add_flag("--multiscatter", o->multiscatter, "Store A + B in the B channel (energy compensation); otherwise B = 0");
+    c->add_option("-o,--output", o->output, "Output FILE.exr")->required()->check(exrOnly);
+    c->add_flag("--json", o->json, "Print a JSON report");
+    return {c, [o] { return runLut(*o); }};
+}
+
+} // namespace iblab::app

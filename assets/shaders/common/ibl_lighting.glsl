@@ -1,0 +1,132 @@
+// Image-based lighting of one surface point: the split-sum approximation and runtime GGX
+// importance sampling with N samples, over the baked textures. Directions are in world
+// space; the environment's yaw is applied here, once, for every lookup.
+#include "common/environment_lookup.glsl"
+#include "common/brdf.glsl"
+#include "common/sampling.glsl"
+#include "common/prefilter_lod.glsl"
+#include "common/sh9.glsl"
+
+uniform samplerCube uEnvironmentCube; // radiance with a box-filtered mip chain (PDF mip filtering source)
+uniform samplerCube uPrefiltered;     // mip m = roughness prefilterRoughnessFromMip(m, levels)
+uniform samplerCube uIrradianceCube;  // E (white environment -> pi)
+uniform sampler2D uBrdfLut;           // x = n.v, y = roughness; R = A, G = B, B = A + B
+uniform vec3 uShIrradiance[9];        // E_lm, windowed
+uniform float uPrefilteredLevels;
+uniform float uEnvironmentFaceSize;
+uniform float uEnvironmentLevels;
+uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
+uniform int uDiffuseSource;  // 0: SH9, 1: irradiance cube
+uniform bool uMultiscatter;
+uniform float uForcedMip;    // < 0: automatic
+uniform bool uPdfMipFiltering;
+uniform float uMipBias;
+
+struct SurfacePoint {
+    vec3 N;
+    vec3 V;
+    vec3 baseColor;
+    float metallic;
+    float roughness; // perceptual
+    float occlusion;
+    vec3 F0;
+};
+
+vec3 diffuseIrradiance(vec3 N)
+{
+    if (uDiffuseSource == 0) return max(sh9Evaluate(uShIrradiance, toEnvironment(N)), vec3(0.0)) * uEnvironmentIntensity;
+    return textureLod(uIrradianceCube, toEnvironment(N), 0.0).rgb * uEnvironmentIntensity;
+}
+
+// Fdez-Aguera 2019 (Filament's "energy compensation"): single scattering misses the energy
+// of rays that bounce between microfacets; scaling by 1 + F0 (1 / E_ss - 1), with the
+// single-scattering albedo E_ss = A + B from the LUT's third channel, restores it.
+vec3 energyCompensation(vec3 F0, float singleScatterAlbedo)
+{
+    return uMultiscatter ? vec3(1.0) + F0 * (1.0 / max(singleScatterAlbedo, 1e-4) - 1.0) : vec3(1.0);
+}
+
+// Split sum (Karis 2013): the specular integral as (prefiltered radiance at R) times
+// (F0 A + B), with A and B from the LUT. LearnOpenGL multiplies the LUT by the
+// roughness-aware Fresnel instead of F0; that counts Fresnel twice (it is already inside A
+// and B), so here F_roughness only sets the diffuse weight kD = (1 - F)(1 - metallic).
+vec3 shadeSplitSum(SurfacePoint s)
+{
+    float NdotV = max(dot(s.N, s.V), 1e-4);
+    vec3 R = reflect(-s.V, s.N);
+    float lod = uForcedMip >= 0.0 ? uForcedMip : prefilterMipFromRoughness(s.roughness, uPrefilteredLevels);
+    vec3 prefiltered = textureLod(uPrefiltered, toEnvironment(R), lod).rgb * uEnvironmentIntensity;
+    vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
+    vec3 specular = prefiltered * (s.F0 * lut.r + lut.g) * energyCompensation(s.F0, lut.b);
+    vec3 F = fresnelSchlickRoughness(NdotV, s.F0, s.roughness);
+    vec3 kD = (vec3(1.0) - F) * (1.0 - s.metallic);
+    vec3 diffuse = kD * s.baseColor * (1.0 / IBL_PI) * diffuseIrradiance(s.N);
+    return (diffuse + specular) * s.occlusion;
+}
+
+// The first 1024 Hammersley points for the current N, two per vec4, uploaded once per N.
+layout(std140, binding = 0) uniform HammersleyPoints { vec4 uHammersley[512]; };
+uniform int uSampleCount;
+uniform vec2 uSampleRotation; // Cranley-Patterson rotation: 0 for the plain set, per-frame for accumulation
+uniform bool uNormalizeByAccepted;
+uniform bool uCosineSampledDiffuse;
+
+vec2 samplePoint(int i)
+{
+    vec4 pair = uHammersley[i >> 1];
+    return fract(((i & 1) == 0 ? pair.xy : pair.zw) + uSampleRotation);
+}
+
+float sampleLod(float pdf)
+{
+    if (uForcedMip >= 0.0) return uForcedMip;
+    if (!uPdfMipFiltering) return 0.0;
+    return clamp(sourceLodFromPdf(pdf, float(uSampleCount), uEnvironmentFaceSize, uMipBias), 0.0, uEnvironmentLevels - 1.0);
+}
+
+// Monte Carlo estimate of the specular integral with N GGX half-vector samples: each term
+// is L(l) f(v, l) (n.l) / pdf(l), with pdf(l) = D (n.h) / (4 v.h), so D cancels:
+//   f (n.l) / pdf = F V 4 (v.h) (n.l) / (n.h), V the visibility G / (4 n.l n.v).
+// Samples below the horizon are valid draws that contribute 0: dividing by N keeps the
+// estimator unbiased. uNormalizeByAccepted divides by the accepted count instead, as the
+// prefilter of LearnOpenGL does (slightly bright at grazing angles).
+vec3 shadeSampled(SurfacePoint s)
+{
+    float NdotV = max(dot(s.N, s.V), 1e-4);
+    float alpha = max(s.roughness * s.roughness, 1e-3);
+    mat3 frame = tangentFrame(s.N);
+    vec3 specular = vec3(0.0);
+    vec3 diffuseSum = vec3(0.0);
+    int accepted = 0;
+    for (int i = 0; i < uSampleCount; ++i) {
+        vec2 u = samplePoint(i);
+        vec3 H = frame * sampleGgxHalfVector(u, alpha);
+        vec3 L = reflect(-s.V, H);
+        float NdotL = dot(s.N, L);
+        if (NdotL > 0.0) {
+            float NdotH = max(dot(s.N, H), 1e-4);
+            float VdotH = max(dot(s.V, H), 1e-4);
+            float pdf = pdfGgxReflected(pdfGgxHalfVector(NdotH, alpha), VdotH);
+            vec3 radiance = textureLod(uEnvironmentCube, toEnvironment(L), sampleLod(pdf)).rgb;
+            vec3 F = fresnelSchlick(VdotH, s.F0);
+            float V = geometryVisibility(uGeometry, NdotV, NdotL, alpha);
+            specular += radiance * F * (V * 4.0 * VdotH * NdotL / NdotH);
+            ++accepted;
+        }
+        if (uCosineSampledDiffuse) {
+            // Lambert: f cos / pdf = (albedo / pi) cos / (cos / pi) = albedo, so the
+            // estimate of E / pi is the mean radiance of cosine-distributed directions.
+            vec3 Ld = frame * sampleCosineHemisphere(u);
+            float pdfD = pdfCosineHemisphere(max(dot(s.N, Ld), 1e-4));
+            diffuseSum += textureLod(uEnvironmentCube, toEnvironment(Ld), sampleLod(pdfD)).rgb;
+        }
+    }
+    float denominator = uNormalizeByAccepted ? float(max(accepted, 1)) : float(uSampleCount);
+    vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
+    specular *= energyCompensation(s.F0, lut.b) * uEnvironmentIntensity / denominator;
+    vec3 F = fresnelSchlickRoughness(NdotV, s.F0, s.roughness);
+    vec3 kD = (vec3(1.0) - F) * (1.0 - s.metallic);
+    vec3 irradianceOverPi = uCosineSampledDiffuse ? diffuseSum * uEnvironmentIntensity / float(uSampleCount)
+                                                  : diffuseIrradiance(s.N) * (1.0 / IBL_PI);
+    return (kD * s.baseColor * irradianceOverPi + specular) * s.occlusion;
+}

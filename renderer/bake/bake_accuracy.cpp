@@ -1,0 +1,176 @@
+#include "bake/bake_accuracy.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "bake/prefilter_lod.hpp"
+#include "ibl/brdf_lut.hpp"
+#include "ibl/reference.hpp"
+
+namespace iblab::bake {
+namespace {
+
+ImageRGB32F reduceTo(const ImageRGB32F& env, int maxWidth)
+{
+    ImageRGB32F out = env;
+    while (out.width > maxWidth && out.width % 2 == 0 && out.height % 2 == 0)
+        out = downsampleEquirect2x(out);
+    return out;
+}
+
+ErrorStats relativeErrors(const std::vector<glm::dvec3>& baked, const std::vector<glm::dvec3>& reference)
+{
+    ErrorStats stats;
+    for (std::size_t i = 0; i < baked.size(); ++i) {
+        const double ref = glm::length(reference[i]);
+        const double e = ref > 0.0 ? glm::length(baked[i] - reference[i]) / ref : glm::length(baked[i]);
+        stats.mean += e;
+        stats.max = std::max(stats.max, e);
+    }
+    stats.directions = int(baked.size());
+    if (!baked.empty())
+        stats.mean /= double(baked.size());
+    return stats;
+}
+
+ErrorStats cubeIrradianceErrors(const BakedTexture& cube, const std::vector<CubeTexelRef>& texels,
+                                const std::vector<glm::dvec3>& reference)
+{
+    const CubeImage image = readCubeLevel(cube, 0);
+    std::vector<glm::dvec3> baked;
+    for (const CubeTexelRef& t : texels)
+        baked.emplace_back(image.rgb(t.face, t.x, t.row));
+    return relativeErrors(baked, reference);
+}
+
+nlohmann::ordered_json statsJson(const ErrorStats& s)
+{
+    return {{"mean_relative", s.mean}, {"max_relative", s.max}, {"directions", s.directions}};
+}
+
+} // namespace
+
+std::vector<CubeTexelRef> cubeTexelGrid(int size, int grid)
+{
+    std::vector<CubeTexelRef> texels;
+    const int n = std::min(size, grid);
+    for (int face = 0; face < 6; ++face)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                texels.push_back({face, (2 * i + 1) * size / (2 * n), (2 * j + 1) * size / (2 * n)});
+    return texels;
+}
+
+BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& environment, const AccuracyOptions& options)
+{
+    const auto start = std::chrono::steady_clock::now();
+    BakeErrors errors;
+    const ImageRGB32F reduced = reduceTo(environment, options.maxReferenceWidthForWideLobes);
+
+    const BakedTexture& pre = result.prefiltered;
+    for (int level = 0; level < pre.levels; ++level) {
+        const CubeImage image = readCubeLevel(pre, level);
+        const float roughness = prefilterRoughnessFromMip(float(level), float(pre.levels));
+        const ImageRGB32F& env = roughness >= 0.5f ? reduced : environment;
+        double sumErr2 = 0.0;
+        double sumRef2 = 0.0;
+        const auto texels = cubeTexelGrid(image.size, options.texelsPerFaceEdge);
+        for (const CubeTexelRef& t : texels) {
+            const glm::dvec3 n = glm::normalize(glm::dvec3(image.texelDirection(t.face, t.x, t.row)));
+            const glm::dvec3 ref = referencePrefilteredRadiance(env, n, roughness);
+            const glm::dvec3 d = glm::dvec3(image.rgb(t.face, t.x, t.row)) - ref;
+            sumErr2 += glm::dot(d, d);
+            sumRef2 += glm::dot(ref, ref);
+        }
+        errors.prefilter.push_back({level, roughness, sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2),
+                                    int(texels.size()), env.width});
+    }
+
+    // Irradiance: the SH and every cube at the same directions, the grid texels of a
+    // cube of the irradiance size (32 by default).
+    const int irradianceSize = result.irradianceImportance ? result.irradianceImportance.size
+                               : result.irradianceRiemann  ? result.irradianceRiemann.size
+                                                           : 32;
+    const auto texels = cubeTexelGrid(irradianceSize, options.texelsPerFaceEdge);
+    const CubeImage directions(irradianceSize);
+    std::vector<glm::dvec3> reference;
+    std::vector<glm::dvec3> sh;
+    std::vector<glm::dvec3> shWindowed;
+    for (const CubeTexelRef& t : texels) {
+        const glm::dvec3 n = glm::normalize(glm::dvec3(directions.texelDirection(t.face, t.x, t.row)));
+        reference.push_back(referenceIrradiance(reduced, n));
+        sh.push_back(evaluate(result.sh.irradiance, n));
+        shWindowed.push_back(evaluate(result.sh.irradianceWindowed, n));
+    }
+    errors.irradianceReferenceWidth = reduced.width;
+    errors.shIrradiance = relativeErrors(sh, reference);
+    errors.shIrradianceWindowed = relativeErrors(shWindowed, reference);
+    if (result.irradianceRiemann && result.irradianceRiemann.size == irradianceSize)
+        errors.irradianceRiemann = cubeIrradianceErrors(result.irradianceRiemann, texels, reference);
+    if (result.irradianceImportance)
+        errors.irradianceImportance = cubeIrradianceErrors(result.irradianceImportance, texels, reference);
+
+    for (GeometryTerm term : kGeometryTerms) {
+        const BakedTexture& lut = result.lut(term);
+        if (!lut)
+            continue;
+        const Image2D image = read2D(lut);
+        const int n = std::min(lut.size, options.lutGrid);
+        double worst = 0.0;
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int x = (2 * i + 1) * lut.size / (2 * n);
+                const int row = (2 * j + 1) * lut.size / (2 * n);
+                const glm::dvec3 ref = integrateSplitSumBrdf((x + 0.5) / lut.size, (row + 0.5) / lut.size,
+                                                             options.lutReferenceSamples, term);
+                const glm::dvec3 d = glm::abs(glm::dvec3(glm::vec3(image.at(x, row))) - ref);
+                worst = std::max({worst, d.x, d.y, d.z});
+            }
+        errors.lutMaxAbs[std::size_t(term)] = worst;
+    }
+    errors.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return errors;
+}
+
+std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& options)
+{
+    nlohmann::ordered_json j;
+    nlohmann::ordered_json pre = nlohmann::ordered_json::array();
+    for (const PrefilterLevelError& e : errors.prefilter)
+        pre.push_back({{"mip", e.level},
+                       {"roughness", e.roughness},
+                       {"relative_rmse", e.relativeRmse},
+                       {"directions", e.directions},
+                       {"reference_width", e.referenceWidth}});
+    j["prefilter"] = pre;
+    nlohmann::ordered_json irr;
+    irr["sh"] = statsJson(errors.shIrradiance);
+    irr["sh_windowed"] = statsJson(errors.shIrradianceWindowed);
+    if (errors.irradianceRiemann)
+        irr["cube_riemann"] = statsJson(*errors.irradianceRiemann);
+    if (errors.irradianceImportance)
+        irr["cube_importance"] = statsJson(*errors.irradianceImportance);
+    irr["reference_width"] = errors.irradianceReferenceWidth;
+    j["irradiance"] = irr;
+    nlohmann::ordered_json lut = nlohmann::ordered_json::object();
+    for (GeometryTerm term : kGeometryTerms)
+        if (errors.lutMaxAbs[std::size_t(term)])
+            lut[std::string(geometryTermName(term))] = *errors.lutMaxAbs[std::size_t(term)];
+    j["lut_max_abs"] = lut;
+    j["method"] = "exact references of renderer/ibl (sums over every texel) at the texel centres of a " +
+                  std::to_string(options.texelsPerFaceEdge) + "x" + std::to_string(options.texelsPerFaceEdge) +
+                  " texel grid per cube face; prefilter: relative RMSE = sqrt(sum|baked-ref|^2 / sum|ref|^2); "
+                  "irradiance: per-direction |baked-ref|/|ref|; references for roughness >= 0.5 and irradiance on the "
+                  "environment halved to at most " +
+                  std::to_string(options.maxReferenceWidthForWideLobes) + " wide; LUT: max abs error on a " +
+                  std::to_string(options.lutGrid) + "x" + std::to_string(options.lutGrid) + " texel grid against " +
+                  std::to_string(options.lutReferenceSamples) + "-sample CPU integration";
+    j["milliseconds"] = errors.milliseconds;
+    return j.dump();
+}
+
+} // namespace iblab::bake

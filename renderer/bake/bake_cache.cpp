@@ -1,0 +1,170 @@
+#include "bake/bake_cache.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/bake_files.hpp"
+#include "environment/error.hpp"
+
+namespace iblab::bake {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::uint64_t fnv1a(std::string_view text)
+{
+    std::uint64_t h = 14695981039346656037ull;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+std::string hex16(std::uint64_t v)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+    return text;
+}
+
+const char* envOrNull(const char* name)
+{
+    const char* v = std::getenv(name);
+    return v && *v ? v : nullptr;
+}
+
+// Removing a corrupt entry must not throw over the report it follows.
+void removeQuietly(const fs::path& path)
+{
+    std::error_code ec;
+    fs::remove_all(path, ec);
+}
+
+} // namespace
+
+fs::path defaultCacheDirectory()
+{
+    if (const char* dir = envOrNull("IBLAB_CACHE_DIR"))
+        return dir;
+    if (const char* xdg = envOrNull("XDG_CACHE_HOME"))
+        return fs::path(xdg) / "iblab";
+    if (const char* home = envOrNull("HOME"))
+        return fs::path(home) / ".cache" / "iblab";
+    return {};
+}
+
+BakeCache::BakeCache(fs::path root) : root_(std::move(root)) {}
+
+BakeCache::~BakeCache() { finishWrites(); }
+
+void BakeCache::writeInBackground(std::function<void()> write)
+{
+    pending_.push_back(std::async(std::launch::async, [this, write = std::move(write)] {
+        try {
+            write();
+        } catch (const std::exception& e) {
+            const std::lock_guard<std::mutex> lock(notesMutex_);
+            writeNotes_.push_back(std::string("bake cache: not stored: ") + oneLine(e.what()));
+        }
+    }));
+}
+
+std::vector<std::string> BakeCache::finishWrites()
+{
+    for (std::future<void>& f : pending_)
+        f.wait();
+    pending_.clear();
+    const std::lock_guard<std::mutex> lock(notesMutex_);
+    return std::exchange(writeNotes_, {});
+}
+
+std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)
+{
+    nlohmann::json j = nlohmann::json::parse(toJsonText(settings));
+    j.erase("preset");
+    j.erase("samples_per_step");
+    return hex16(fnv1a("iblab-bake-" + std::to_string(kBakeFormatVersion) + "|" + hex16(contentHash) + "|" + j.dump()));
+}
+
+std::string BakeCache::lutKey(int size, int samples, GeometryTerm term)
+{
+    return "brdf_lut_" + std::string(geometryTermName(term)) + "_" + std::to_string(size) + "_" + std::to_string(samples) + "_v" +
+           std::to_string(kBakeFormatVersion);
+}
+
+fs::path BakeCache::bakeDirectory(const std::string& key) const { return root_ / "bake" / key; }
+fs::path BakeCache::lutPath(const std::string& key) const { return root_ / "lut" / (key + ".exr"); }
+
+bool BakeCache::loadBake(BakeResult& result, std::vector<std::string>& notes)
+{
+    if (!enabled())
+        return false;
+    for (std::string& note : finishWrites())
+        notes.push_back(std::move(note));
+    const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));
+    if (!hasBakeDirectory(dir))
+        return false;
+    try {
+        readBakeDirectory(dir, result);
+        return true;
+    } catch (const BakeFileError& e) {
+        notes.push_back(std::string("bake cache: ") + e.what() + "; removed the entry and baked again");
+        result.environmentCube = {};
+        result.irradianceRiemann = {};
+        result.irradianceImportance = {};
+        result.prefiltered = {};
+        removeQuietly(dir);
+        return false;
+    }
+}
+
+void BakeCache::storeBake(const BakeResult& result)
+{
+    if (!enabled())
+        return;
+    auto snapshot = std::make_shared<BakeSnapshot>(snapshotBake(result));
+    writeInBackground([dir = bakeDirectory(bakeKey(result.contentHash, result.settings)), snapshot] { writeBakeSnapshot(dir, *snapshot); });
+}
+
+bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes)
+{
+    if (!enabled())
+        return false;
+    for (std::string& note : finishWrites())
+        notes.push_back(std::move(note));
+    const fs::path path = lutPath(lutKey(size, samples, term));
+    if (!fs::exists(path))
+        return false;
+    try {
+        const Image2D image = readLutExr(path, size);
+        out = create2DTexture(GL_RGBA16F, size);
+        upload2D(out, image);
+        return true;
+    } catch (const BakeFileError& e) {
+        notes.push_back(std::string("bake cache: ") + e.what() + "; removed it and baked the LUT again");
+        removeQuietly(path);
+        removeQuietly(path.string() + ".json");
+        return false;
+    }
+}
+
+void BakeCache::storeLut(const BakedTexture& lut, int samples, GeometryTerm term)
+{
+    if (!enabled())
+        return;
+    auto image = std::make_shared<Image2D>(read2D(lut));
+    writeInBackground([path = lutPath(lutKey(lut.size, samples, term)), image, samples, term] {
+        std::error_code ec;
+        fs::create_directories(path.parent_path(), ec);
+        if (ec)
+            throw Error(path.parent_path().string(), "cannot create the directory: " + ec.message());
+        writeLutExr(path, *image, samples, term, true, true);
+    });
+}
+
+} // namespace iblab::bake

@@ -1,0 +1,75 @@
+#pragma once
+// The on-disk cache of bakes, so that an environment baked once with given settings is
+// loaded instead of recomputed.
+//
+//   <root>/bake/<key>/...       a bake directory (bake_files.hpp), key = hash of the input
+//                               pixels (Environment::contentHash) and every setting that
+//                               changes the output
+//   <root>/lut/<key>.exr        one BRDF LUT, key = its own (size, samples, geometry) only:
+//                               it depends on no environment
+//
+// root: $IBLAB_CACHE_DIR if set (tests), else $XDG_CACHE_HOME/iblab, else $HOME/.cache/iblab.
+// Files are written atomically (a reader never sees half a file) and bake.json last (an
+// entry without it is incomplete: a miss). A corrupt file (truncated EXR, bad JSON, wrong
+// size) is reported as one line naming it, the entry is removed and the bake is redone.
+// Failing to write the cache (read-only disk) is reported the same way and is not an error.
+//
+// Stores read the textures back on the calling (GL) thread and write the files on a
+// background thread: encoding and the fsyncs of the atomic writes take 100-200 ms for a
+// 256 cube, which would otherwise stall the frame (GUI) or the bake's timing. Lookups wait
+// for the writes in flight first, so a store followed by a load always hits.
+#include <future>
+#include <mutex>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bake/bake_result.hpp"
+
+namespace iblab::bake {
+
+// Empty when none of the variables is set.
+std::filesystem::path defaultCacheDirectory();
+
+class BakeCache {
+public:
+    explicit BakeCache(std::filesystem::path root = defaultCacheDirectory());
+    ~BakeCache(); // waits for the writes in flight
+    BakeCache(const BakeCache&) = delete;
+    BakeCache& operator=(const BakeCache&) = delete;
+
+    const std::filesystem::path& root() const { return root_; }
+    bool enabled() const { return !root_.empty(); }
+
+    // 16 hex digits: FNV-1a 64 of the format version, the content hash and the settings that
+    // affect the output (not the preset's name nor the step size).
+    static std::string bakeKey(std::uint64_t contentHash, const BakeSettings& settings);
+    static std::string lutKey(int size, int samples, GeometryTerm term);
+    std::filesystem::path bakeDirectory(const std::string& key) const;
+    std::filesystem::path lutPath(const std::string& key) const;
+
+    // Fills the environment-dependent part of result (environment cube, irradiance cubes,
+    // prefiltered cube, SH) from the entry for result.contentHash and result.settings. Returns
+    // false on a miss; a corrupt entry adds a line to notes, is removed, and is a miss.
+    bool loadBake(BakeResult& result, std::vector<std::string>& notes);
+    void storeBake(const BakeResult& result);
+
+    // Creates `out` (RGBA16F) from the cached LUT; false on a miss (corrupt: noted, removed).
+    bool loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes);
+    void storeLut(const BakedTexture& lut, int samples, GeometryTerm term);
+
+    // Waits for the background writes; returns one line for each that failed.
+    std::vector<std::string> finishWrites();
+
+private:
+    void writeInBackground(std::function<void()> write);
+
+    std::filesystem::path root_;
+    std::vector<std::future<void>> pending_;
+    std::mutex notesMutex_;
+    std::vector<std::string> writeNotes_; // failures of background writes, not yet collected
+};
+
+} // namespace iblab::bake

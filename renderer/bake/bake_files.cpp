@@ -1,0 +1,277 @@
+#include "bake/bake_files.hpp"
+
+#include <bit>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
+
+#include "environment/atomic_file.hpp"
+#include "environment/error.hpp"
+#include "environment/image_writer.hpp"
+
+namespace iblab::bake {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+struct RgbImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb;
+};
+
+RgbImage readExrRgb(const fs::path& path)
+{
+    if (!fs::exists(path))
+        throw BakeFileError(path, "missing");
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string());
+    if (!in)
+        throw BakeFileError(path, "cannot open: " + oneLine(OIIO::geterror()));
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.nchannels < 3)
+        throw BakeFileError(path, "has " + std::to_string(spec.nchannels) + " channels, expected RGB");
+    RgbImage image{spec.width, spec.height, std::vector<float>(std::size_t(spec.width) * std::size_t(spec.height) * 3)};
+    // A truncated file opens (the header is intact) and fails here.
+    if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data()))
+        throw BakeFileError(path, "cannot read pixels: " + oneLine(in->geterror()));
+    in->close();
+    return image;
+}
+
+std::vector<float> dropAlpha(const std::vector<glm::vec4>& texels)
+{
+    std::vector<float> rgb;
+    rgb.reserve(texels.size() * 3);
+    for (const glm::vec4& t : texels) {
+        rgb.push_back(t.r);
+        rgb.push_back(t.g);
+        rgb.push_back(t.b);
+    }
+    return rgb;
+}
+
+void writeCubeExr(const fs::path& path, const CubeImage& image, bool halfPixels)
+{
+    writeExr(path.string(), image.size, 6 * image.size, 3, dropAlpha(image.texels),
+             {.exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float});
+}
+
+CubeImage readCubeExr(const fs::path& path, int expectedSize)
+{
+    const RgbImage rgb = readExrRgb(path);
+    if (rgb.width != expectedSize || rgb.height != 6 * expectedSize)
+        throw BakeFileError(path, "is " + std::to_string(rgb.width) + "x" + std::to_string(rgb.height) + ", expected " +
+                                      std::to_string(expectedSize) + "x" + std::to_string(6 * expectedSize) + " (6 faces)");
+    CubeImage image(expectedSize);
+    for (std::size_t i = 0; i < image.texels.size(); ++i)
+        image.texels[i] = glm::vec4(rgb.rgb[i * 3], rgb.rgb[i * 3 + 1], rgb.rgb[i * 3 + 2], 1.0f);
+    return image;
+}
+
+ordered_json shArray(const SH9Color& sh)
+{
+    ordered_json a = ordered_json::array();
+    for (const glm::dvec3& c : sh.c)
+        a.push_back({c.x, c.y, c.z});
+    return a;
+}
+
+SH9Color shFromArray(const fs::path& file, const nlohmann::json& a)
+{
+    if (!a.is_array() || a.size() != std::size_t(kSh9Count))
+        throw BakeFileError(file, "expected 9 RGB coefficients");
+    SH9Color sh;
+    for (std::size_t i = 0; i < sh.c.size(); ++i) {
+        const auto& c = a[i];
+        if (!c.is_array() || c.size() != 3 || !c[0].is_number() || !c[1].is_number() || !c[2].is_number())
+            throw BakeFileError(file, "coefficient " + std::to_string(i) + " is not [r, g, b]");
+        sh.c[i] = {c[0].get<double>(), c[1].get<double>(), c[2].get<double>()};
+    }
+    return sh;
+}
+
+nlohmann::json readJson(const fs::path& path)
+{
+    if (!fs::exists(path))
+        throw BakeFileError(path, "missing");
+    std::string text;
+    try {
+        text = readTextFile(path.string());
+    } catch (const Error& e) {
+        throw BakeFileError(path, e.what());
+    }
+    try {
+        return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {
+        throw BakeFileError(path, std::string("bad JSON: ") + oneLine(e.what()));
+    }
+}
+
+ordered_json textureJson(const BakedTexture& t)
+{
+    return {{"face_size", t.size}, {"levels", t.levels}, {"format", t.internalFormat == GL_RGBA16F ? "rgba16f" : "rgba32f"}};
+}
+
+std::string prefilterFile(int level) { return "prefiltered_mip" + std::to_string(level) + ".exr"; }
+
+} // namespace
+
+std::string shJsonText(const ShResult& sh, int indent)
+{
+    ordered_json j;
+    j["basis"] = kSh9Convention;
+    j["radiance"] = shArray(sh.radiance);
+    j["irradiance"] = shArray(sh.irradiance);
+    j["irradiance_windowed"] = shArray(sh.irradianceWindowed);
+    j["window"] = shWindowName(sh.window);
+    j["window_width"] = sh.windowWidth;
+    return j.dump(indent);
+}
+
+BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson)
+{
+    BakeSnapshot snapshot;
+    snapshot.halfPixels = result.environmentCube.internalFormat == GL_RGBA16F;
+    snapshot.cubes.push_back({"environment.exr", readCubeLevel(result.environmentCube, 0)});
+    if (result.irradianceRiemann)
+        snapshot.cubes.push_back({"irradiance_riemann.exr", readCubeLevel(result.irradianceRiemann, 0)});
+    if (result.irradianceImportance)
+        snapshot.cubes.push_back({"irradiance_importance.exr", readCubeLevel(result.irradianceImportance, 0)});
+    for (int level = 0; level < result.prefiltered.levels; ++level)
+        snapshot.cubes.push_back({prefilterFile(level), readCubeLevel(result.prefiltered, level)});
+    snapshot.shJson = shJsonText(result.sh) + "\n";
+
+    ordered_json files = ordered_json::array();
+    for (const auto& cube : snapshot.cubes)
+        files.push_back(cube.name);
+    files.push_back("sh.json");
+    ordered_json meta;
+    meta["format"] = kBakeFormatVersion;
+    meta["source"] = result.source;
+    char hash[32];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(result.contentHash));
+    meta["content_hash"] = hash;
+    meta["source_size"] = {result.sourceWidth, result.sourceHeight};
+    meta["settings"] = ordered_json::parse(toJsonText(result.settings));
+    meta["environment_cube"] = textureJson(result.environmentCube);
+    if (result.irradianceRiemann)
+        meta["irradiance_riemann"] = textureJson(result.irradianceRiemann);
+    if (result.irradianceImportance)
+        meta["irradiance_importance"] = textureJson(result.irradianceImportance);
+    meta["prefiltered"] = textureJson(result.prefiltered);
+    ordered_json roughness = ordered_json::array();
+    for (int level = 0; level < result.prefiltered.levels; ++level)
+        roughness.push_back(level / double(std::max(result.prefiltered.levels - 1, 1)));
+    meta["prefiltered"]["roughness_per_mip"] = roughness;
+    meta["cube_layout"] = "one EXR per level: width = face size, height = 6 x face size, faces +X,-X,+Y,-Y,+Z,-Z top to "
+                          "bottom, each face's t = 0 row first";
+    meta["files"] = files;
+    ordered_json timings;
+    for (const PhaseTiming& t : result.timings)
+        timings[t.phase] = t.milliseconds;
+    timings["total"] = result.totalMilliseconds;
+    meta["timings_ms"] = timings;
+    if (!extraJson.empty()) {
+        const ordered_json extra = ordered_json::parse(extraJson);
+        for (const auto& [key, value] : extra.items())
+            meta[key] = value;
+    }
+    snapshot.metaJson = meta.dump(2) + "\n";
+    return snapshot;
+}
+
+void writeBakeSnapshot(const fs::path& directory, const BakeSnapshot& snapshot)
+{
+    std::error_code ec;
+    fs::create_directories(directory, ec);
+    if (ec)
+        throw Error(directory.string(), "cannot create the directory: " + ec.message());
+    for (const auto& cube : snapshot.cubes)
+        writeCubeExr(directory / cube.name, cube.image, snapshot.halfPixels);
+    writeTextFileAtomic((directory / "sh.json").string(), snapshot.shJson);
+    // Last: an entry without bake.json is incomplete and reads as a miss.
+    writeTextFileAtomic((directory / "bake.json").string(), snapshot.metaJson);
+}
+
+void writeBakeDirectory(const fs::path& directory, const BakeResult& result, const std::string& extraJson)
+{
+    writeBakeSnapshot(directory, snapshotBake(result, extraJson));
+}
+
+bool hasBakeDirectory(const fs::path& directory) { return fs::exists(directory / "bake.json"); }
+
+void readBakeDirectory(const fs::path& directory, BakeResult& result)
+{
+    const fs::path metaPath = directory / "bake.json";
+    const nlohmann::json meta = readJson(metaPath);
+    if (!meta.is_object() || meta.value("format", 0) != kBakeFormatVersion)
+        throw BakeFileError(metaPath, "not a bake of format " + std::to_string(kBakeFormatVersion));
+    const BakeSettings& s = result.settings;
+    const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
+
+    const int face = environmentFaceSize(s.cube, result.sourceWidth, result.sourceHeight);
+    const int levels = std::bit_width(unsigned(face));
+    result.environmentCube = createCubeTexture(format, face, levels);
+    uploadCubeLevel(result.environmentCube, 0, readCubeExr(directory / "environment.exr", face));
+    if (levels > 1)
+        glGenerateTextureMipmap(result.environmentCube.id());
+
+    if (s.riemann.enabled) {
+        result.irradianceRiemann = createCubeTexture(format, s.riemann.faceSize, 1);
+        uploadCubeLevel(result.irradianceRiemann, 0, readCubeExr(directory / "irradiance_riemann.exr", s.riemann.faceSize));
+    }
+    if (s.importance.enabled) {
+        result.irradianceImportance = createCubeTexture(format, s.importance.faceSize, 1);
+        uploadCubeLevel(result.irradianceImportance, 0,
+                        readCubeExr(directory / "irradiance_importance.exr", s.importance.faceSize));
+    }
+    result.prefiltered = createCubeTexture(format, s.prefilter.faceSize, s.prefilter.levels);
+    for (int level = 0; level < s.prefilter.levels; ++level)
+        uploadCubeLevel(result.prefiltered, level,
+                        readCubeExr(directory / prefilterFile(level), result.prefiltered.levelSize(level)));
+
+    const fs::path shPath = directory / "sh.json";
+    const nlohmann::json sh = readJson(shPath);
+    if (!sh.is_object() || !sh.contains("radiance") || !sh.contains("irradiance") || !sh.contains("irradiance_windowed"))
+        throw BakeFileError(shPath, "expected radiance, irradiance and irradiance_windowed");
+    result.sh.radiance = shFromArray(shPath, sh["radiance"]);
+    result.sh.irradiance = shFromArray(shPath, sh["irradiance"]);
+    result.sh.irradianceWindowed = shFromArray(shPath, sh["irradiance_windowed"]);
+    result.sh.window = parseShWindow(sh.value("window", std::string("none"))).value_or(ShWindow::None);
+    result.sh.windowWidth = sh.value("window_width", 0.0);
+}
+
+void writeLutExr(const fs::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel, bool halfPixels)
+{
+    std::vector<float> rgb;
+    rgb.reserve(lut.texels.size() * 3);
+    for (const glm::vec4& t : lut.texels) {
+        rgb.push_back(t.r);
+        rgb.push_back(t.g);
+        rgb.push_back(multiscatterChannel ? t.b : 0.0f);
+    }
+    // Rows in texture order, top-down writing: the file's first scanline is row 0, roughness
+    // near 0 (a viewer shows the LUT upside down compared with Karis's figure; the data
+    // order is what a loader uploading row 0 first expects).
+    writeExr(path.string(), lut.size, lut.size, 3, rgb,
+             {.settingsJson = lutJsonText(lut.size, samples, term, multiscatterChannel),
+              .exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float});
+}
+
+Image2D readLutExr(const fs::path& path, int expectedSize)
+{
+    const RgbImage rgb = readExrRgb(path);
+    if (rgb.width != expectedSize || rgb.height != expectedSize)
+        throw BakeFileError(path, "is " + std::to_string(rgb.width) + "x" + std::to_string(rgb.height) + ", expected " +
+                                      std::to_string(expectedSize) + "x" + std::to_string(expectedSize));
+    Image2D image{expectedSize, std::vector<glm::vec4>(std::size_t(expectedSize) * std::size_t(expectedSize))};
+    for (std::size_t i = 0; i < image.texels.size(); ++i)
+        image.texels[i] = glm::vec4(rgb.rgb[i * 3], rgb.rgb[i * 3 + 1], rgb.rgb[i * 3 + 2], 1.0f);
+    return image;
+}
+
+} // namespace iblab::bake

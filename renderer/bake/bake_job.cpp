@@ -1,0 +1,263 @@
+#include "bake/bake_job.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+
+#include "environment/error.hpp"
+
+namespace iblab::bake {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kEnvironmentGroup = "environment";
+
+// Work estimates in texture samples, the unit of BakeSettings::samplesPerStep. Steps that
+// are not sampling passes get a rough equivalent so that the progress bar does not stall
+// on them: shader compilation costs about as much as a few million samples on llvmpipe.
+constexpr double kCompileCost = 4.0e6;
+
+} // namespace
+
+std::size_t BakeResult::gpuBytes() const
+{
+    std::size_t total = environmentCube.bytes() + irradianceRiemann.bytes() + irradianceImportance.bytes() + prefiltered.bytes();
+    for (const BakedTexture& lut : brdfLut)
+        total += lut.bytes();
+    return total;
+}
+
+double BakeResult::phaseMilliseconds(std::string_view phase) const
+{
+    for (const PhaseTiming& t : timings)
+        if (t.phase == phase)
+            return t.milliseconds;
+    return 0.0;
+}
+
+BakeJob::BakeJob(gl::ShaderLibrary& shaders, const Environment& environment, const BakeSettings& settings, BakeCache* cache)
+    : shaders_(shaders), passes_(shaders), cache_(cache && cache->enabled() ? cache : nullptr)
+{
+    validate(settings);
+    if (environment.image.empty())
+        throw Error(environment.source, "cannot bake an empty environment");
+    image_ = environment.image;
+    result_.settings = settings;
+    result_.source = environment.source;
+    result_.contentHash = environment.contentHash;
+    result_.sourceWidth = image_.width;
+    result_.sourceHeight = image_.height;
+    plan();
+}
+
+BakeJob::~BakeJob() = default;
+
+void BakeJob::planCubeSlices(const std::string& phase, const std::string& group, int faceSize, int level, double samplesPerTexel,
+                             const std::function<void(const CubeSlice&)>& run)
+{
+    const int size = std::max(faceSize >> level, 1);
+    const double rowCost = double(size) * samplesPerTexel;
+    int rows = int(std::clamp(double(result_.settings.samplesPerStep) / rowCost, 1.0, double(size)));
+    if (rows >= 8)
+        rows -= rows % 8; // whole 8x8 work groups
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < size; row += rows) {
+            const CubeSlice slice{level, face, row, std::min(rows, size - row)};
+            steps_.push_back({phase, group, rowCost * slice.rowCount, [run, slice] { run(slice); }});
+        }
+}
+
+void BakeJob::plan()
+{
+    const BakeSettings& s = result_.settings;
+    const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
+    const double sourceTexels = double(image_.width) * double(image_.height);
+    const int envFace = environmentFaceSize(s.cube, image_.width, image_.height);
+    const int envLevels = std::bit_width(unsigned(envFace)); // full chain down to 1x1
+
+    steps_.push_back({"shaders", "", kCompileCost, [this] { passes_.compileAll(); }});
+    if (cache_)
+        steps_.push_back({"cache_lookup", "", sourceTexels, [this] {
+                              if (cache_->loadBake(result_, result_.notes)) {
+                                  result_.fromCache = true;
+                                  skipGroup(kEnvironmentGroup);
+                              }
+                          }});
+
+    steps_.push_back({"upload", kEnvironmentGroup, sourceTexels, [this, format, envFace, envLevels] {
+                          equirect_ = passes_.uploadEquirect(image_);
+                          const BakeSettings& st = result_.settings;
+                          result_.environmentCube = createCubeTexture(format, envFace, envLevels);
+                          if (st.riemann.enabled)
+                              result_.irradianceRiemann = createCubeTexture(format, st.riemann.faceSize, 1);
+                          if (st.importance.enabled)
+                              result_.irradianceImportance = createCubeTexture(format, st.importance.faceSize, 1);
+                          result_.prefiltered = createCubeTexture(format, st.prefilter.faceSize, st.prefilter.levels);
+                      }});
+
+    // Footprint filtering takes 1..16 taps, a few on average.
+    planCubeSlices("environment_cube", kEnvironmentGroup, envFace, 0, 2.0,
+                   [this](const CubeSlice& slice) { passes_.equirectToCube(equirect_.id(), result_.environmentCube, slice); });
+    steps_.push_back({"environment_cube", kEnvironmentGroup, 6.0 * envFace * envFace / 3.0,
+                      [this] { passes_.generateMips(result_.environmentCube); }});
+
+    steps_.push_back({"sh9", kEnvironmentGroup, sourceTexels, [this] {
+                          const ShSettings& sh = result_.settings.sh;
+                          ShResult& out = result_.sh;
+                          out.radiance = sh.device == ShDevice::Cpu ? projectEquirect(image_)
+                                                                    : passes_.projectSh9(equirect_.id(), image_.width, image_.height);
+                          out.irradiance = convolveWithCosineLobe(out.radiance);
+                          out.window = sh.window;
+                          if (sh.window == ShWindow::None)
+                              out.windowWidth = 0.0;
+                          else
+                              out.windowWidth = sh.windowWidth > 0.0 ? sh.windowWidth
+                                                                     : findNonNegativeWindowWidth(out.irradiance, sh.window);
+                          out.irradianceWindowed = applyWindow(out.irradiance, sh.window, out.windowWidth);
+                      }});
+
+    if (s.riemann.enabled) {
+        const double perTexel = double(BakePasses::riemannPhiSteps(s.riemann.sampleDelta)) *
+                                double(BakePasses::riemannThetaSteps(s.riemann.sampleDelta));
+        planCubeSlices("irradiance_riemann", kEnvironmentGroup, s.riemann.faceSize, 0, perTexel, [this](const CubeSlice& slice) {
+            passes_.irradianceRiemann(result_.environmentCube, result_.irradianceRiemann, slice, result_.settings.riemann,
+                                      result_.settings.exactTexelSolidAngle);
+        });
+    }
+    if (s.importance.enabled)
+        planCubeSlices("irradiance_importance", kEnvironmentGroup, s.importance.faceSize, 0, s.importance.samples,
+                       [this](const CubeSlice& slice) {
+                           passes_.irradianceImportance(result_.environmentCube, result_.irradianceImportance, slice,
+                                                        result_.settings.importance, result_.settings.exactTexelSolidAngle);
+                       });
+
+    for (int level = 0; level < s.prefilter.levels; ++level)
+        planCubeSlices("prefilter", kEnvironmentGroup, s.prefilter.faceSize, level, double(prefilterSamples(s.prefilter, level)),
+                       [this](const CubeSlice& slice) {
+                           passes_.prefilter(result_.environmentCube, result_.prefiltered, slice, result_.settings.prefilter,
+                                             result_.settings.exactTexelSolidAngle);
+                       });
+
+    for (GeometryTerm term : kGeometryTerms) {
+        if (!s.lut.wants(term))
+            continue;
+        const std::string group = "lut_" + std::string(geometryTermName(term));
+        const std::size_t index = std::size_t(term);
+        if (cache_)
+            steps_.push_back({"brdf_lut", "", 1.0e5, [this, term, index, group] {
+                                  const LutSettings& lut = result_.settings.lut;
+                                  if (cache_->loadLut(lut.size, lut.samples, term, result_.brdfLut[index], result_.notes)) {
+                                      result_.lutFromCache[index] = true;
+                                      skipGroup(group);
+                                  }
+                              }});
+        steps_.push_back({"brdf_lut", group, 1.0, [this, index] {
+                              result_.brdfLut[index] = create2DTexture(GL_RGBA16F, result_.settings.lut.size);
+                          }});
+        const double rowCost = double(s.lut.size) * s.lut.samples;
+        int rows = int(std::clamp(double(s.samplesPerStep) / rowCost, 1.0, double(s.lut.size)));
+        if (rows >= 8)
+            rows -= rows % 8;
+        for (int row = 0; row < s.lut.size; row += rows) {
+            const int count = std::min(rows, s.lut.size - row);
+            steps_.push_back({"brdf_lut", group, rowCost * count, [this, index, term, row, count] {
+                                  passes_.brdfLut(result_.brdfLut[index], row, count, result_.settings.lut.samples, term);
+                              }});
+        }
+        if (cache_)
+            steps_.push_back({"brdf_lut", group, 1.0e5, [this, term, index] {
+                                  cache_->storeLut(result_.brdfLut[index], result_.settings.lut.samples, term);
+                              }});
+    }
+
+    if (cache_)
+        steps_.push_back({"cache_store", kEnvironmentGroup, sourceTexels, [this] { cache_->storeBake(result_); }});
+
+    for (const Step& step : steps_)
+        totalCost_ += step.cost;
+}
+
+void BakeJob::skipGroup(const std::string& group)
+{
+    for (auto it = steps_.begin(); it != steps_.end();) {
+        if (it->group == group) {
+            doneCost_ += it->cost;
+            it = steps_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+}
+
+void BakeJob::addTiming(const std::string& phase, double ms)
+{
+    auto it = std::find_if(result_.timings.begin(), result_.timings.end(), [&](const PhaseTiming& t) { return t.phase == phase; });
+    if (it == result_.timings.end())
+        result_.timings.push_back({phase, ms});
+    else
+        it->milliseconds += ms;
+    result_.totalMilliseconds += ms;
+}
+
+bool BakeJob::step()
+{
+    if (steps_.empty() || failed_)
+        return false;
+    Step current = std::move(steps_.front());
+    steps_.pop_front();
+    const auto start = Clock::now();
+    try {
+        current.run();
+        glFinish();
+    } catch (...) {
+        failed_ = true;
+        steps_.clear();
+        throw;
+    }
+    addTiming(current.phase, std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    doneCost_ += current.cost;
+    if (steps_.empty()) {
+        // The intermediates are not part of the result.
+        equirect_.reset();
+        image_ = {};
+    }
+    return !steps_.empty();
+}
+
+bool BakeJob::runFor(Clock::duration budget)
+{
+    const auto start = Clock::now();
+    do {
+        if (!step())
+            return false;
+    } while (Clock::now() - start < budget);
+    return true;
+}
+
+BakeResult BakeJob::runToCompletion()
+{
+    while (step()) {
+    }
+    return takeResult();
+}
+
+float BakeJob::progress() const
+{
+    if (steps_.empty())
+        return 1.0f;
+    return totalCost_ > 0.0 ? float(std::clamp(doneCost_ / totalCost_, 0.0, 1.0)) : 0.0f;
+}
+
+std::string BakeJob::currentPhase() const { return steps_.empty() ? std::string() : steps_.front().phase; }
+
+BakeResult BakeJob::takeResult()
+{
+    if (failed_)
+        throw std::logic_error("BakeJob::takeResult: the bake failed");
+    if (!steps_.empty())
+        throw std::logic_error("BakeJob::takeResult: the bake has " + std::to_string(steps_.size()) + " steps left");
+    return std::move(result_);
+}
+
+} // namespace iblab::bake

@@ -1,0 +1,82 @@
+#pragma once
+// A bake as a job of small steps, so that the GUI can run a time-budgeted slice of it per
+// frame and draw a progress bar, and the CLI can run it to the end:
+//
+//   BakeJob job(shaders, environment, settings, &cache);
+//   while (job.runFor(std::chrono::milliseconds(8))) drawProgress(job.progress());   // GUI
+//   BakeResult result = job.takeResult();
+//   BakeResult result = BakeJob(shaders, environment, settings).runToCompletion();   // CLI
+//
+// A step is at most one face of one mip (or a band of its rows, settings.samplesPerStep),
+// one SH projection, one cache read or write. Every step ends with glFinish, so per-phase
+// timings are wall-clock GPU time (llvmpipe's timer queries are wrong) and a step never
+// leaves work queued behind the caller's frame. Needs the context that was current when the
+// job was made to be current at every call. Step failures (a shader that does not compile,
+// a GL error surfaced as an exception) propagate out of step(); the job is then failed.
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "bake/bake_cache.hpp"
+#include "bake/bake_passes.hpp"
+#include "bake/bake_result.hpp"
+#include "environment/environment.hpp"
+#include "gl/shader_library.hpp"
+
+namespace iblab::bake {
+
+class BakeJob {
+public:
+    // Copies the environment's pixels (the caller may load another one meanwhile). cache may
+    // be null (no cache); it must outlive the job. Throws iblab::Error for invalid settings.
+    BakeJob(gl::ShaderLibrary& shaders, const Environment& environment, const BakeSettings& settings, BakeCache* cache = nullptr);
+    ~BakeJob();
+    BakeJob(const BakeJob&) = delete;
+    BakeJob& operator=(const BakeJob&) = delete;
+
+    // Runs the next step; returns true while steps remain.
+    bool step();
+    // Runs steps until `budget` has passed (at least one step); returns true while steps remain.
+    bool runFor(std::chrono::steady_clock::duration budget);
+    // Runs every remaining step and returns the result.
+    BakeResult runToCompletion();
+
+    bool done() const { return steps_.empty(); }
+    bool failed() const { return failed_; }
+    // Share of the estimated work done, 0..1 (work = texture samples; cache hits skip ahead).
+    float progress() const;
+    // The phase the next step belongs to ("" when done).
+    std::string currentPhase() const;
+
+    // The result, once done (throws std::logic_error before).
+    BakeResult takeResult();
+
+private:
+    struct Step {
+        std::string phase;
+        std::string group; // a cache hit skips the rest of its group
+        double cost = 1.0;
+        std::function<void()> run;
+    };
+    void plan();
+    void planCubeSlices(const std::string& phase, const std::string& group, int faceSize, int level,
+                        double samplesPerTexel, const std::function<void(const CubeSlice&)>& run);
+    void skipGroup(const std::string& group);
+    void addTiming(const std::string& phase, double ms);
+
+    gl::ShaderLibrary& shaders_;
+    BakePasses passes_;
+    BakeCache* cache_;
+    BakeResult result_;
+    ImageRGB32F image_;
+    gl::Texture equirect_;
+    std::deque<Step> steps_;
+    double totalCost_ = 0.0;
+    double doneCost_ = 0.0;
+    bool failed_ = false;
+};
+
+} // namespace iblab::bake

@@ -1,0 +1,153 @@
+#pragma once
+// What a bake computes and how: the plain settings struct that the UI edits, the CLI fills
+// from a preset plus overrides, and the cache hashes. No GL here (the UI includes it).
+//
+// Conventions every consumer of a bake relies on (docs/bake.md has the long form):
+//  - cube faces in GL order +X, -X, +Y, -Y, +Z, -Z, texel (x, row) at face-local
+//    ((x + 0.5) / size, (row + 0.5) / size) of conventions.glsl;
+//  - prefiltered mip m holds perceptual roughness prefilterRoughnessFromMip(m, levels)
+//    (prefilter_lod.hpp: linear, m / (levels - 1));
+//  - irradiance cubes and SH irradiance hold E (a white environment of radiance 1 gives pi);
+//    Lambertian outgoing radiance is albedo / pi * E;
+//  - BRDF LUT texel (x, y): n.v = (x + 0.5) / size, roughness = (y + 0.5) / size, row 0 =
+//    roughness near 0; R = A, G = B, B = A + B (brdf_lut.hpp).
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ibl/brdf.hpp"
+#include "ibl/sh.hpp"
+
+namespace iblab::bake {
+
+// Texture storage of the cubes: half floats are what a renderer wants (half the memory and
+// bandwidth, 11-bit mantissa: 5e-4 relative rounding); float is for checks that need more.
+// Both are image-load/store capable (RGB16F is not).
+enum class Precision { Half, Float };
+
+enum class ShDevice { Cpu, Gpu };
+
+struct EnvironmentCubeSettings {
+    // 0: from the source, the largest power of two f with 6 f^2 <= width * height, so the
+    // cube never holds more texels than the equirect it comes from (capped at maxFaceSize).
+    int faceSize = 0;
+    int maxFaceSize = 2048;
+};
+
+struct ShSettings {
+    ShDevice device = ShDevice::Gpu; // measured faster on llvmpipe (12 vs 25 ms at 1024x512); docs/bake.md
+    ShWindow window = ShWindow::Hanning;
+    // Window width in bands (sh.hpp); 0 picks the gentlest width that makes the windowed
+    // irradiance non-negative everywhere (findNonNegativeWindowWidth).
+    double windowWidth = 0.0;
+};
+
+// LearnOpenGL's irradiance convolution: a (theta, phi) grid of step sampleDelta radians.
+// mipFiltering (not in the tutorial) reads each cell's radiance from the source mip whose
+// texels are as large as the cell, so a coarse grid averages instead of point-sampling.
+struct RiemannIrradianceSettings {
+    bool enabled = false;
+    int faceSize = 32;
+    float sampleDelta = 0.025f;
+    bool mipFiltering = false;
+    float mipBias = 0.0f;
+};
+
+// Cosine-weighted importance sampling with PDF-based source-mip selection.
+struct ImportanceIrradianceSettings {
+    bool enabled = true;
+    int faceSize = 16; // irradiance is smooth: 16^2 x 1024 samples beats 32^2 x 256 at equal cost
+    int samples = 1024;
+    bool mipFiltering = true;
+    float mipBias = 0.0f;
+};
+
+struct PrefilterSettings {
+    int faceSize = 128;
+    int levels = 5;  // mip m has roughness m / (levels - 1); levels <= log2(faceSize) + 1
+    int samples = 64; // GGX samples per texel at mip 1 (mip 0, roughness 0, is a copy)
+    // Mip m >= 1 takes samples * sampleGrowth^(m - 1) (prefilterSamples()). Each mip has a
+    // quarter of the texels of the one above and a wider lobe, so growth 2 halves the work of
+    // each further mip while giving the wide lobes, which need them most, more samples.
+    float sampleGrowth = 2.0f;
+    bool mipFiltering = true;
+    // Added to 0.5 log2(Omega_s / Omega_p): 0 = LearnOpenGL's anchor, 1 = Filament's.
+    float mipBias = 0.0f;
+    // Mip 0 (roughness 0, a mirror) as a copy of the source mip with the same texel size
+    // (one box-filtered read per texel). false: sampled like every other mip, `samples`
+    // times at source lod 0, which is what LearnOpenGL does (every sample is n itself).
+    bool mirrorCopy = true;
+};
+
+// The sample count of prefiltered mip `level`, capped at 65536 (1 for a copied mirror level).
+int prefilterSamples(const PrefilterSettings& settings, int level);
+
+// The split-sum LUT. Depends on no environment: baked once per (size, samples, geometry)
+// and cached on its own.
+struct LutSettings {
+    int size = 128;
+    int samples = 2048; // baked once and cached: more samples cost nothing per environment
+    bool schlickGgx = true;            // GeometryTerm::SchlickGGX
+    bool heightCorrelatedSmith = true; // GeometryTerm::HeightCorrelatedSmith
+    bool wants(GeometryTerm term) const { return term == GeometryTerm::SchlickGGX ? schlickGgx : heightCorrelatedSmith; }
+};
+
+struct BakeSettings {
+    std::string preset = "default"; // informational: where the values started
+    Precision precision = Precision::Half;
+    // PDF-based source-mip selection compares a sample's solid angle with the source texel's:
+    // true uses the texel the sample reads (prefilter_lod.glsl, sourceLodFromPdfAt), false the
+    // face average 4 pi / (6 f^2) as LearnOpenGL and Filament do.
+    bool exactTexelSolidAngle = true;
+    EnvironmentCubeSettings cube;
+    ShSettings sh;
+    RiemannIrradianceSettings riemann;
+    ImportanceIrradianceSettings importance;
+    PrefilterSettings prefilter;
+    LutSettings lut;
+    // Work per bake step, in texture samples (about 20 ms on llvmpipe per million); each
+    // step is one face x one mip, or a band of its rows when that is more than this.
+    std::int64_t samplesPerStep = 1 << 20;
+};
+
+inline constexpr std::array<GeometryTerm, 2> kGeometryTerms{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith};
+
+// LearnOpenGL's settings: cube 512, irradiance 32x32 by Riemann sum (delta 0.025, mip 0),
+// prefilter 128 with 5 mips x 1024 samples read at source mip 0, LUT 512^2 x 1024 samples
+// (Schlick-GGX only, as the tutorial). SH9 is computed as well (it costs milliseconds).
+BakeSettings tutorialPreset();
+// The fast and accurate choice (docs/bake.md has the measurements): cube sized from the
+// source, SH9 for diffuse plus a 16^2 irradiance cube by cosine importance sampling (1024
+// samples, PDF source-mip filtering), prefilter 128 x 5 mips with PDF source-mip filtering
+// (bias 0), 64 samples at mip 1 doubling per mip, LUTs 128^2 x 2048 for both geometry terms
+// (cached: they depend on no environment).
+BakeSettings defaultPreset();
+std::vector<std::string> presetNames();
+// Throws iblab::Error naming the preset and the valid ones.
+BakeSettings presetByName(std::string_view name);
+
+// Throws iblab::Error ("bake settings: prefilter.levels: 9 levels need a face of at least
+// 256, got 128") for values no bake can use.
+void validate(const BakeSettings& settings);
+
+// The face size the environment cube gets for a width x height equirect.
+int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int height);
+
+// Every field, as a JSON object (stable key order). The cache key hashes it.
+std::string toJsonText(const BakeSettings& settings, int indent = -1);
+// The LUT's own settings for one geometry term, as JSON (its cache key and file metadata).
+std::string lutJsonText(int size, int samples, GeometryTerm term, bool multiscatterChannel);
+
+std::string_view precisionName(Precision precision);
+std::string_view shDeviceName(ShDevice device);
+std::string_view shWindowName(ShWindow window);
+std::optional<Precision> parsePrecision(std::string_view name);
+std::optional<ShDevice> parseShDevice(std::string_view name);
+std::optional<ShWindow> parseShWindow(std::string_view name);
+// "schlick" / "schlick-ggx" and "correlated" / "height-correlated-smith".
+std::optional<GeometryTerm> parseGeometryTerm(std::string_view name);
+
+} // namespace iblab::bake

@@ -1,0 +1,126 @@
+#include "gpu_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scene/sphere.hpp"
+
+namespace iblab {
+namespace {
+
+// Enough segments that the silhouette and the highlights of a mirror sphere stay round
+// at full-window size; 64 x 32 is 4k triangles, nothing even for llvmpipe.
+MeshData unitSphere() { return makeUvSphere(1.0f, 64, 32); }
+
+Bounds sphereBounds(const glm::mat4& model)
+{
+    Bounds b;
+    const glm::vec3 centre(model[3]);
+    b.extend(centre - glm::vec3(1.0f));
+    b.extend(centre + glm::vec3(1.0f));
+    return b;
+}
+
+gl::Texture uploadTexture(const TextureImage& image)
+{
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+    gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture.id(), levels, image.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // TextureImage row 0 is the top of the picture, which glTF's v = 0 addresses: uploading
+    // it as GL's row 0 (t = 0) makes uv map to texels with no flip.
+    glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba8.data());
+    glGenerateTextureMipmap(texture.id());
+    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    return texture;
+}
+
+} // namespace
+
+GpuScene buildProceduralScene(const SceneSettings& settings)
+{
+    GpuScene scene;
+    scene.kind = settings.kind;
+    scene.meshes.emplace_back(unitSphere());
+    auto add = [&](const glm::mat4& model, SceneDraw draw) {
+        draw.mesh = 0;
+        draw.model = model;
+        scene.bounds.extend(sphereBounds(model));
+        scene.draws.push_back(draw);
+    };
+    switch (settings.kind) {
+    case SceneKind::Grid: {
+        const SphereGrid grid = sphereGrid(7, 7, 2.5f);
+        for (const GridSphere& sphere : grid.spheres) {
+            SceneDraw draw;
+            draw.material.metallicFactor = sphere.metallic;
+            draw.material.roughnessFactor = sphere.roughness;
+            draw.materialFromScene = true;
+            add(sphere.transform, draw);
+        }
+        scene.labels = grid.labels;
+        break;
+    }
+    case SceneKind::Counting: {
+        const int k = std::clamp(settings.countingSpheres, 1, 64);
+        const std::vector<glm::mat4> strip = countingStrip(k, 2.5f);
+        for (int i = 0; i < k; ++i) {
+            SceneDraw draw;
+            draw.sampleCount = i + 1; // sphere i shows i reflections of a single light
+            draw.forceSampled = true;
+            add(strip[std::size_t(i)], draw);
+        }
+        break;
+    }
+    case SceneKind::Sweep: {
+        const int k = std::clamp(settings.countingSpheres, 2, 64);
+        const std::vector<glm::mat4> strip = countingStrip(k, 2.5f);
+        for (int i = 0; i < k; ++i) {
+            SceneDraw draw;
+            draw.material.metallicFactor = 1.0f;
+            draw.material.roughnessFactor = float(i) / float(k - 1);
+            draw.materialFromScene = true;
+            draw.forceSampled = true;
+            add(strip[std::size_t(i)], draw);
+        }
+        break;
+    }
+    case SceneKind::None:
+        scene.bounds.extend(glm::vec3(-1.0f));
+        scene.bounds.extend(glm::vec3(1.0f));
+        break;
+    case SceneKind::Sphere:
+    case SceneKind::Model: // no model loaded yet: show the sphere
+        add(glm::mat4(1.0f), SceneDraw{});
+        break;
+    }
+    for (const GpuMesh& mesh : scene.meshes) scene.gpuBytes += mesh.byteSize();
+    return scene;
+}
+
+GpuScene buildModelScene(const ModelData& model, const std::string& path)
+{
+    GpuScene scene;
+    scene.kind = SceneKind::Model;
+    scene.modelPath = path;
+    for (const TextureImage& image : model.textures) {
+        scene.textures.push_back(uploadTexture(image));
+        scene.gpuBytes += image.rgba8.size() * 4 / 3; // with the mip chain
+    }
+    for (const MeshInstance& instance : model.instances) {
+        scene.meshes.emplace_back(instance.mesh);
+        scene.gpuBytes += scene.meshes.back().byteSize();
+        SceneDraw draw;
+        draw.mesh = int(scene.meshes.size()) - 1;
+        draw.model = glm::mat4(1.0f); // instance meshes are already in world space
+        draw.material = model.material(instance.materialIndex);
+        scene.draws.push_back(draw);
+    }
+    scene.bounds = model.bounds;
+    return scene;
+}
+
+} // namespace iblab

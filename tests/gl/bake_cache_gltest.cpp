@@ -1,0 +1,255 @@
+// The bake as a job of steps, and its on-disk cache: results loaded from the cache are the
+// results baked, corrupt entries are reported by name and rebuilt, the LUT cache ignores
+// the environment, and cutting the work into smaller steps changes nothing.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+
+#include <glm/glm.hpp>
+
+#include "bake/bake_cache.hpp"
+#include "bake/bake_files.hpp"
+#include "bake_test_support.hpp"
+#include "environment/error.hpp"
+#include "environment/image_writer.hpp"
+#include "gl_test_fixture.hpp"
+
+namespace iblab {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::GlTest;
+using testing::runBake;
+using testing::smallBakeSettings;
+using testing::TempDirectory;
+
+gl::ShaderLibrary library() { return gl::ShaderLibrary(IBLAB_SHADER_DIR); }
+
+void expectSameTexels(const bake::BakedTexture& a, const bake::BakedTexture& b, const std::string& what)
+{
+    ASSERT_EQ(a.size, b.size) << what;
+    ASSERT_EQ(a.levels, b.levels) << what;
+    for (int level = 0; level < a.levels; ++level) {
+        if (a.target == GL_TEXTURE_2D) {
+            EXPECT_EQ(bake::read2D(a).texels, bake::read2D(b).texels) << what;
+        } else {
+            EXPECT_EQ(bake::readCubeLevel(a, level).texels, bake::readCubeLevel(b, level).texels) << what << " level " << level;
+        }
+    }
+}
+
+void expectSameResults(const bake::BakeResult& a, const bake::BakeResult& b)
+{
+    expectSameTexels(a.environmentCube, b.environmentCube, "environment cube");
+    expectSameTexels(a.irradianceRiemann, b.irradianceRiemann, "Riemann irradiance");
+    expectSameTexels(a.irradianceImportance, b.irradianceImportance, "importance irradiance");
+    expectSameTexels(a.prefiltered, b.prefiltered, "prefiltered");
+    for (GeometryTerm term : bake::kGeometryTerms)
+        expectSameTexels(a.lut(term), b.lut(term), std::string(geometryTermName(term)));
+    for (std::size_t i = 0; i < a.sh.radiance.c.size(); ++i) {
+        EXPECT_EQ(a.sh.radiance.c[i], b.sh.radiance.c[i]);
+        EXPECT_EQ(a.sh.irradianceWindowed.c[i], b.sh.irradianceWindowed.c[i]);
+    }
+}
+
+TEST_F(GlTest, ASecondBakeIsLoadedFromTheCacheUnchanged)
+{
+    auto shaders = library();
+    TempDirectory dir("bake-cache");
+    bake::BakeCache cache(dir.path());
+    const Environment env = loadEnvironment("builtin:sun?width=64&size=10");
+    const bake::BakeResult first = runBake(shaders, env, smallBakeSettings(), &cache);
+    EXPECT_FALSE(first.fromCache);
+    EXPECT_TRUE(first.notes.empty());
+    EXPECT_TRUE(cache.finishWrites().empty()); // the files are written in the background
+    EXPECT_TRUE(fs::exists(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, first.settings)) / "bake.json"));
+
+    const bake::BakeResult second = runBake(shaders, env, smallBakeSettings(), &cache);
+    EXPECT_TRUE(second.fromCache);
+    EXPECT_TRUE(second.lutFromCache[0] && second.lutFromCache[1]);
+    EXPECT_EQ(second.phaseMilliseconds("prefilter"), 0.0); // nothing was baked
+    // Half floats written as half-float EXR and read back: bit-identical; mips rebuilt by the
+    // same pass from the same level 0.
+    expectSameResults(first, second);
+}
+
+TEST_F(GlTest, TheLutCacheIgnoresTheEnvironment)
+{
+    auto shaders = library();
+    TempDirectory dir("lut-cache");
+    bake::BakeCache cache(dir.path());
+    runBake(shaders, loadEnvironment("builtin:white?width=32"), smallBakeSettings(), &cache);
+    const bake::BakeResult other = runBake(shaders, loadEnvironment("builtin:sky?width=32"), smallBakeSettings(), &cache);
+    EXPECT_FALSE(other.fromCache);
+    EXPECT_TRUE(other.lutFromCache[0] && other.lutFromCache[1]);
+    // ... but not the LUT's own settings.
+    bake::BakeSettings more = smallBakeSettings();
+    more.lut.samples *= 2;
+    EXPECT_FALSE(runBake(shaders, loadEnvironment("builtin:sky?width=32"), more, &cache).lutFromCache[0]);
+}
+
+TEST_F(GlTest, TheCacheKeyFollowsTheOutputNotTheBookkeeping)
+{
+    const bake::BakeSettings base = smallBakeSettings();
+    const std::string key = bake::BakeCache::bakeKey(42, base);
+    bake::BakeSettings s = base;
+    s.samplesPerStep *= 4;
+    s.preset = "renamed";
+    EXPECT_EQ(bake::BakeCache::bakeKey(42, s), key);
+    EXPECT_NE(bake::BakeCache::bakeKey(43, base), key);
+    s = base;
+    s.prefilter.mipBias += 0.5f;
+    EXPECT_NE(bake::BakeCache::bakeKey(42, s), key);
+    s = base;
+    s.precision = bake::Precision::Float;
+    EXPECT_NE(bake::BakeCache::bakeKey(42, s), key);
+}
+
+// Damages one file of a cached entry, bakes again, and checks that the damage is reported
+// by the file's name, that the bake is redone, and that the entry is whole again after.
+void expectDetectedAndRebuilt(const std::string& file, const std::function<void(const fs::path&)>& damage)
+{
+    auto shaders = library();
+    TempDirectory dir("bake-corrupt");
+    bake::BakeCache cache(dir.path());
+    const Environment env = loadEnvironment("builtin:studio?width=64");
+    const bake::BakeResult original = runBake(shaders, env, smallBakeSettings(), &cache);
+    ASSERT_TRUE(cache.finishWrites().empty());
+    const fs::path entry = cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, original.settings));
+    damage(entry / file);
+
+    const bake::BakeResult rebuilt = runBake(shaders, env, smallBakeSettings(), &cache);
+    EXPECT_FALSE(rebuilt.fromCache) << file;
+    ASSERT_EQ(rebuilt.notes.size(), 1u) << file;
+    EXPECT_NE(rebuilt.notes[0].find((entry / file).string()), std::string::npos) << rebuilt.notes[0];
+    EXPECT_EQ(rebuilt.notes[0].find('\n'), std::string::npos) << "one line";
+    expectSameResults(original, rebuilt);
+
+    const bake::BakeResult again = runBake(shaders, env, smallBakeSettings(), &cache);
+    EXPECT_TRUE(again.fromCache) << file;
+    EXPECT_TRUE(again.notes.empty()) << file;
+}
+
+TEST_F(GlTest, ATruncatedExrIsReportedAndRebuilt)
+{
+    expectDetectedAndRebuilt("prefiltered_mip2.exr", [](const fs::path& p) { fs::resize_file(p, fs::file_size(p) / 2); });
+}
+
+TEST_F(GlTest, BadJsonIsReportedAndRebuilt)
+{
+    expectDetectedAndRebuilt("sh.json", [](const fs::path& p) { std::ofstream(p) << "{\"radiance\": [[1, 2, 3], "; });
+}
+
+TEST_F(GlTest, AnExrOfTheWrongSizeIsReportedAndRebuilt)
+{
+    expectDetectedAndRebuilt("environment.exr", [](const fs::path& p) {
+        writeExr(p.string(), ImageRGB32F(8, 48)); // a valid EXR, but a cube of face 8, not 16
+    });
+}
+
+TEST_F(GlTest, ACorruptLutIsReportedAndRebuilt)
+{
+    auto shaders = library();
+    TempDirectory dir("lut-corrupt");
+    bake::BakeCache cache(dir.path());
+    const Environment env = loadEnvironment("builtin:white?width=32");
+    const bake::BakeSettings settings = smallBakeSettings();
+    runBake(shaders, env, settings, &cache);
+    ASSERT_TRUE(cache.finishWrites().empty());
+    const fs::path lut = cache.lutPath(bake::BakeCache::lutKey(settings.lut.size, settings.lut.samples, GeometryTerm::SchlickGGX));
+    ASSERT_TRUE(fs::exists(lut));
+    std::ofstream(lut, std::ios::trunc) << "not an EXR";
+    const bake::BakeResult result = runBake(shaders, env, settings, &cache);
+    EXPECT_FALSE(result.lutFromCache[0]);
+    EXPECT_TRUE(result.lutFromCache[1]);
+    ASSERT_EQ(result.notes.size(), 1u);
+    EXPECT_NE(result.notes[0].find(lut.string()), std::string::npos) << result.notes[0];
+    EXPECT_TRUE(runBake(shaders, env, settings, &cache).lutFromCache[0]); // stored again
+}
+
+TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
+{
+    auto shaders = library();
+    const Environment env = loadEnvironment("builtin:studio?width=64");
+    bake::BakeSettings fine = smallBakeSettings();
+    fine.samplesPerStep = 4096; // a few rows of a face per step
+    bake::BakeJob job(shaders, env, fine);
+    EXPECT_THROW(job.takeResult(), std::logic_error);
+    float last = job.progress();
+    EXPECT_EQ(last, 0.0f);
+    int steps = 0;
+    bool more = true;
+    while (more) {
+        EXPECT_FALSE(job.currentPhase().empty());
+        more = job.step();
+        ++steps;
+        EXPECT_GE(job.progress(), last);
+        EXPECT_LE(job.progress(), 1.0f);
+        last = job.progress();
+    }
+    EXPECT_TRUE(job.done());
+    EXPECT_EQ(job.progress(), 1.0f);
+    EXPECT_FALSE(job.step());
+    EXPECT_GT(steps, 100); // every sampling pass was cut into bands of rows
+    const bake::BakeResult sliced = job.takeResult();
+
+    bake::BakeSettings coarse = smallBakeSettings();
+    coarse.samplesPerStep = std::int64_t(1) << 40; // whole faces
+    bake::BakeJob whole(shaders, env, coarse);
+    while (whole.runFor(std::chrono::milliseconds(5))) {
+    }
+    const bake::BakeResult unsliced = whole.takeResult();
+    // Each texel is computed by the same code from the same inputs whichever dispatch it is in.
+    expectSameResults(sliced, unsliced);
+    for (const char* phase : {"shaders", "upload", "environment_cube", "sh9", "irradiance_riemann", "irradiance_importance",
+                              "prefilter", "brdf_lut"})
+        EXPECT_GT(sliced.phaseMilliseconds(phase), 0.0) << phase;
+    EXPECT_GT(sliced.gpuBytes(), 0u);
+}
+
+TEST_F(GlTest, InvalidSettingsAreRefusedWithTheirName)
+{
+    auto shaders = library();
+    bake::BakeSettings s = smallBakeSettings();
+    s.prefilter.levels = 9; // more mips than a 16 face has
+    try {
+        bake::BakeJob job(shaders, loadEnvironment("builtin:white?width=32"), s);
+        FAIL() << "accepted 9 levels on a face of 16";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("prefilter.levels"), std::string::npos) << e.what();
+    }
+}
+
+TEST(BakeCacheDirectory, FollowsTheEnvironmentVariables)
+{
+    // Restores the variables it changes so that the other tests see the caller's.
+    struct Saved {
+        const char* name;
+        std::optional<std::string> value;
+    };
+    std::vector<Saved> saved;
+    for (const char* name : {"IBLAB_CACHE_DIR", "XDG_CACHE_HOME", "HOME"}) {
+        const char* v = std::getenv(name);
+        saved.push_back({name, v ? std::optional<std::string>(v) : std::nullopt});
+    }
+    ::setenv("IBLAB_CACHE_DIR", "/tmp/override", 1);
+    ::setenv("XDG_CACHE_HOME", "/tmp/xdg", 1);
+    ::setenv("HOME", "/tmp/home", 1);
+    EXPECT_EQ(bake::defaultCacheDirectory(), fs::path("/tmp/override"));
+    ::unsetenv("IBLAB_CACHE_DIR");
+    EXPECT_EQ(bake::defaultCacheDirectory(), fs::path("/tmp/xdg/iblab"));
+    ::unsetenv("XDG_CACHE_HOME");
+    EXPECT_EQ(bake::defaultCacheDirectory(), fs::path("/tmp/home/.cache/iblab"));
+    for (const Saved& s : saved) {
+        if (s.value)
+            ::setenv(s.name, s.value->c_str(), 1);
+        else
+            ::unsetenv(s.name);
+    }
+}
+
+} // namespace
+} // namespace iblab

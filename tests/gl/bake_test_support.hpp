@@ -1,0 +1,62 @@
+#pragma once
+// Small bakes for the bake gltests: tiny environments and settings that run in tens of
+// milliseconds on llvmpipe, and helpers that build environments directly from images.
+#include <filesystem>
+#include <unistd.h>
+#include <string>
+
+#include "bake/bake_job.hpp"
+#include "bake/bake_settings.hpp"
+#include "environment/environment.hpp"
+#include "gl/shader_library.hpp"
+
+namespace iblab::testing {
+
+// The default preset scaled down: every output present, every pass exercised (both
+// irradiance cubes, PDF filtering with growing sample counts, both LUTs), nothing large.
+inline bake::BakeSettings smallBakeSettings()
+{
+    bake::BakeSettings s = bake::defaultPreset();
+    s.riemann = {.enabled = true, .faceSize = 8, .sampleDelta = 0.05f, .mipFiltering = false, .mipBias = 0.0f};
+    s.importance = {.enabled = true, .faceSize = 8, .samples = 256, .mipFiltering = true, .mipBias = 0.0f};
+    s.prefilter = {.faceSize = 16, .levels = 5, .samples = 64, .sampleGrowth = 2.0f, .mipFiltering = true, .mipBias = 0.0f};
+    s.lut = {.size = 16, .samples = 256, .schlickGgx = true, .heightCorrelatedSmith = true};
+    return s;
+}
+
+inline Environment environmentFromImage(ImageRGB32F image, std::string name)
+{
+    Environment e;
+    e.source = std::move(name);
+    e.image = std::move(image);
+    e.contentHash = contentHash(e.image);
+    return e;
+}
+
+inline bake::BakeResult runBake(gl::ShaderLibrary& shaders, const Environment& environment, const bake::BakeSettings& settings,
+                                bake::BakeCache* cache = nullptr)
+{
+    return bake::BakeJob(shaders, environment, settings, cache).runToCompletion();
+}
+
+// A fresh empty directory under the system temp dir, removed by the destructor.
+class TempDirectory {
+public:
+    explicit TempDirectory(const std::string& name)
+        : path_(std::filesystem::temp_directory_path() / ("iblab-" + name + "-" + std::to_string(::getpid())))
+    {
+        std::filesystem::remove_all(path_);
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDirectory()
+    {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
+
+} // namespace iblab::testing
