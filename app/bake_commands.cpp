@@ -92,6 +92,7 @@ struct BakeOverrides {
     std::optional<float> prefilterSampleGrowth;
     std::optional<bool> prefilterMipFilter;
     std::optional<float> prefilterMipBias;
+    std::optional<bool> prefilterMirrorCopy;
     std::optional<int> lutSize;
     std::optional<int> lutSamples;
     std::optional<std::string> lutGeometry;
@@ -155,6 +156,7 @@ bake::BakeSettings resolveSettings(const BakeCommandOptions& o)
     apply(v.prefilterSampleGrowth, s.prefilter.sampleGrowth);
     apply(v.prefilterMipFilter, s.prefilter.mipFiltering);
     apply(v.prefilterMipBias, s.prefilter.mipBias);
+    apply(v.prefilterMirrorCopy, s.prefilter.mirrorCopy);
     apply(v.lutSize, s.lut.size);
     apply(v.lutSamples, s.lut.samples);
     if (v.lutGeometry) {
@@ -458,6 +460,8 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_option("--prefilter-sample-growth", v.prefilterSampleGrowth, "Mip m takes samples * growth^(m-1)");
     c->add_option("--prefilter-mip-filter", v.prefilterMipFilter, "PDF-based source-mip selection for the prefilter (on/off)");
     c->add_option("--prefilter-mip-bias", v.prefilterMipBias, "Bias added to the prefilter source lod (0 LearnOpenGL, 1 Filament)");
+    c->add_option("--prefilter-mirror-copy", v.prefilterMirrorCopy,
+                  "Mip 0 as a copy of the matching source mip (on), or sampled like the other mips as LearnOpenGL does (off)");
     c->add_option("--lut-size", v.lutSize, "BRDF LUT size");
     c->add_option("--lut-samples", v.lutSamples, "BRDF LUT samples per texel");
     c->add_option("--lut-geometry", v.lutGeometry, "LUT geometry terms: schlick, correlated, both or none");

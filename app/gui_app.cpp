@@ -195,14 +195,19 @@ int runGui(const GuiOptions& options)
     auto previousFrame = Clock::now();
     OrbitInput orbit;
     std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
+    float previousScale = 1.0f;
     while (!glfwWindowShouldClose(window.handle)) {
         glfwPollEvents();
-        int fbWidth = 0, fbHeight = 0;
-        glfwGetFramebufferSize(window.handle, &fbWidth, &fbHeight);
+        int windowWidth = 0, windowHeight = 0;
+        glfwGetFramebufferSize(window.handle, &windowWidth, &windowHeight);
+        // The 3D view is the part of the window right of the docked panel.
+        const int viewX = panels.showPanels ? std::min(int(panels.panelWidth), windowWidth - 16) : 0;
+        const int fbWidth = windowWidth - viewX, fbHeight = windowHeight;
         if (fbWidth <= 0 || fbHeight <= 0) { // minimised
             glfwWaitEvents();
             continue;
         }
+        const glm::vec2 viewOrigin(float(viewX), 0.0f);
         for (const std::string& error : renderer.reloadShaders()) std::fprintf(stderr, "iblab: %s\n", error.c_str());
 
         // Background work first, within a budget that keeps the UI near interactive rates
@@ -217,13 +222,14 @@ int runGui(const GuiOptions& options)
         ImGui::NewFrame();
         ui::UiRequests requests;
         ui::drawControlWindow(settings, panels, stats, requests);
-        if (!furnaceReadings.empty()) ui::drawSphereReadings(furnaceReadings, float(fbHeight));
+        if (!furnaceReadings.empty()) ui::drawSphereReadings(furnaceReadings, viewOrigin, float(fbHeight));
         if (settings.view.mode == ViewMode::Final || settings.view.mode == ViewMode::Furnace)
-            ui::drawSceneLabels(renderer.sceneLabels(settings, fbWidth, fbHeight), float(fbHeight));
+            ui::drawSceneLabels(renderer.sceneLabels(settings, fbWidth, fbHeight), viewOrigin, float(fbHeight));
         if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
             const ImVec2 mouse = ImGui::GetIO().MousePos;
-            const TexelProbe probe = renderer.probe(settings, fbWidth, fbHeight, mouse.x, float(fbHeight) - mouse.y);
-            ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), fbWidth, fbHeight), float(fbHeight), probe.text);
+            const TexelProbe probe = renderer.probe(settings, fbWidth, fbHeight, mouse.x - float(viewX), float(fbHeight) - mouse.y);
+            ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), fbWidth, fbHeight), viewOrigin, float(fbHeight),
+                                 probe.text);
         }
         const ImGuiIO& io = ImGui::GetIO();
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && !io.WantTextInput) glfwSetWindowShouldClose(window.handle, 1);
@@ -247,8 +253,19 @@ int runGui(const GuiOptions& options)
         }
 
         if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
+        // Responsive on a software renderer: while the user drags something, expensive
+        // frames render fewer pixels (aiming at ~30 fps); when idle, the sampled method
+        // refines progressively instead of re-rendering the same noisy image.
+        const bool interacting = ImGui::IsAnyItemActive() || ImGui::IsMouseDragging(ImGuiMouseButton_Left) || io.MouseWheel != 0.0f;
+        Renderer::Options renderOptions;
+        if (interacting && !requests.captureTo && stats.renderMs > 33.0)
+            renderOptions.resolutionScale = std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(previousScale * previousScale))), 0.25f, 1.0f);
+        renderOptions.accumulate = !interacting;
+        previousScale = renderOptions.resolutionScale;
         const auto renderStart = Clock::now();
-        renderer.renderFrame(settings, fbWidth, fbHeight);
+        renderer.renderFrame(settings, fbWidth, fbHeight, renderOptions);
+        stats.resolutionScale = renderOptions.resolutionScale;
+        stats.accumulatedFrames = renderer.accumulatedFrames();
         glFinish(); // so that the reported pass time is the GPU's, not the submission's
         stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
         stats.width = fbWidth;
@@ -257,8 +274,10 @@ int runGui(const GuiOptions& options)
         if (requests.captureTo) panels.captureStatus = session.capture(*requests.captureTo, settings);
 
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glViewport(0, 0, fbWidth, fbHeight);
-        renderer.presentToDefaultFramebuffer(fbWidth, fbHeight);
+        glViewport(0, 0, windowWidth, windowHeight);
+        glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        renderer.presentToDefaultFramebuffer(viewX, 0, windowWidth, windowHeight);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         glfwSwapBuffers(window.handle);
 

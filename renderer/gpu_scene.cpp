@@ -8,9 +8,13 @@
 namespace iblab {
 namespace {
 
-// Enough segments that the silhouette and the highlights of a mirror sphere stay round
-// at full-window size; 64 x 32 is 4k triangles, nothing even for llvmpipe.
-MeshData unitSphere() { return makeUvSphere(1.0f, 64, 32); }
+// Enough segments that the silhouette of a sphere filling the window stays round (64 x 32,
+// 4k triangles); scenes of many small spheres use 32 x 16, because llvmpipe's triangle
+// setup, not shading, dominates a frame of 49 spheres at full tessellation.
+MeshData unitSphere(SceneKind kind)
+{
+    return kind == SceneKind::Sphere ? makeUvSphere(1.0f, 64, 32) : makeUvSphere(1.0f, 32, 16);
+}
 
 Bounds sphereBounds(const glm::mat4& model)
 {
@@ -44,7 +48,7 @@ GpuScene buildProceduralScene(const SceneSettings& settings)
 {
     GpuScene scene;
     scene.kind = settings.kind;
-    scene.meshes.emplace_back(unitSphere());
+    scene.meshes.emplace_back(unitSphere(settings.kind));
     auto add = [&](const glm::mat4& model, SceneDraw draw) {
         draw.mesh = 0;
         draw.model = model;
@@ -62,6 +66,12 @@ GpuScene buildProceduralScene(const SceneSettings& settings)
             add(sphere.transform, draw);
         }
         scene.labels = grid.labels;
+        // Frame the axis labels too: a title is about two sphere diameters of text wide.
+        for (const GridLabel& label : grid.labels) {
+            const float halfWidth = label.axisTitle ? 2.0f : 0.6f;
+            scene.bounds.extend(label.position - glm::vec3(halfWidth, 0.4f, 0.0f));
+            scene.bounds.extend(label.position + glm::vec3(halfWidth, 0.4f, 0.0f));
+        }
         break;
     }
     case SceneKind::Counting: {

@@ -88,6 +88,10 @@ struct Renderer::Impl {
     int hammersleyCount = 0;
     gl::RenderTarget hdrFrame;     // RGBA16F + depth: the linear frame the tone mapper reads
     gl::RenderTarget displayFrame; // RGBA8: exposure, tone curve and sRGB applied
+    gl::RenderTarget accumulation; // RGBA32F running mean of hdrFrame over accumulated frames
+    std::string accumulationKey;   // settings and size the running mean belongs to
+    int accumulatedFrames = 0;
+    const gl::RenderTarget* resolved = &hdrFrame; // what the tone mapper read last
 
     explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory))
     {
@@ -186,7 +190,7 @@ struct Renderer::Impl {
     {
         const glm::mat4 viewRotation = glm::mat4(glm::mat3(cameraView(settings.camera)));
         const glm::mat4 inverseViewProjection = glm::inverse(cameraProjection(settings.camera, aspect) * viewRotation);
-        const gl::ShaderProgram& sky = program({"fullscreen.vert", "sky.frag"});
+        const gl::ShaderProgram& sky = program({"fullscreen.vert", "sky.frag"}, {{"AT_FAR_PLANE", "1"}});
         glUseProgram(sky.id());
         bindIbl(sky, settings);
         sky.set("uInverseViewProjection", inverseViewProjection);
@@ -203,9 +207,12 @@ struct Renderer::Impl {
         sky.set("uBackground", background);
         sky.set("uBackgroundMip", float(std::clamp(settings.view.backgroundMip, 0, active ? active->prefiltered.levels - 1 : 0)));
         sky.set("uSolidColour", solid);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LEQUAL);
         glDepthMask(GL_FALSE);
         drawFullscreenTriangle();
         glDepthMask(GL_TRUE);
+        glDisable(GL_DEPTH_TEST);
     }
 
     void bindMaterial(const gl::ShaderProgram& p, const SceneDraw& draw, const FrameSettings& settings) const
@@ -252,25 +259,31 @@ struct Renderer::Impl {
         glDepthFunc(GL_LESS);
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, hammersley.id());
-        for (const SceneDraw& draw : scene.draws) {
-            const bool sampled = draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled;
-            const gl::ShaderProgram& p = program({"mesh.vert", "pbr.frag"}, {{"METHOD", sampled ? "1" : "0"}});
-            glUseProgram(p.id());
-            bindIbl(p, settings);
-            p.set("uViewProjection", viewProjection);
-            p.set("uCameraPosition", cameraPosition(settings.camera));
-            p.set("uModel", draw.model);
-            p.set("uNormalMatrix", glm::transpose(glm::inverse(glm::mat3(draw.model))));
-            bindMaterial(p, draw, settings);
-            if (sampled) {
-                const int n = std::clamp(draw.sampleCount > 0 ? draw.sampleCount : settings.sampling.samples, 1, kMaxSamples);
-                ensureHammersley(n);
-                p.set("uSampleCount", n);
-                p.set("uSampleRotation", sampleRotation);
-                p.set("uNormalizeByAccepted", 0);
-                p.set("uCosineSampledDiffuse", int(settings.sampling.cosineSampledDiffuse));
+        // Per program: the IBL and camera state once; per draw only what differs.
+        for (const bool sampled : {false, true}) {
+            const gl::ShaderProgram* p = nullptr;
+            for (const SceneDraw& draw : scene.draws) {
+                if ((draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
+                if (!p) {
+                    p = &program({"mesh.vert", "pbr.frag"}, {{"METHOD", sampled ? "1" : "0"}});
+                    glUseProgram(p->id());
+                    bindIbl(*p, settings);
+                    p->set("uViewProjection", viewProjection);
+                    p->set("uCameraPosition", cameraPosition(settings.camera));
+                    p->set("uSampleRotation", sampleRotation);
+                    p->set("uNormalizeByAccepted", 0);
+                    p->set("uCosineSampledDiffuse", int(settings.sampling.cosineSampledDiffuse));
+                }
+                p->set("uModel", draw.model);
+                p->set("uNormalMatrix", glm::transpose(glm::inverse(glm::mat3(draw.model))));
+                bindMaterial(*p, draw, settings);
+                if (sampled) {
+                    const int n = std::clamp(draw.sampleCount > 0 ? draw.sampleCount : settings.sampling.samples, 1, kMaxSamples);
+                    ensureHammersley(n);
+                    p->set("uSampleCount", n);
+                }
+                scene.meshes[std::size_t(draw.mesh)].draw();
             }
-            scene.meshes[std::size_t(draw.mesh)].draw();
         }
         glDisable(GL_DEPTH_TEST);
     }
@@ -347,12 +360,29 @@ SceneInfo Renderer::sceneInfo(const FrameSettings& settings)
     return {scene.draws.size(), scene.gpuBytes, scene.bounds.center(), glm::max(0.5f * scene.bounds.size(), glm::vec3(1e-3f))};
 }
 
-void Renderer::renderFrame(const FrameSettings& settings, int width, int height)
+// The n-th point of the R2 sequence (Roberts 2018): a low-discrepancy sequence of
+// Cranley-Patterson rotations, so frame n's sample set fills the gaps of frames 0..n-1.
+static glm::vec2 r2Rotation(int n)
+{
+    constexpr double g = 1.32471795724474602596; // the plastic number
+    return glm::vec2(float(std::fmod(double(n) / g, 1.0)), float(std::fmod(double(n) / (g * g), 1.0)));
+}
+
+void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int fullHeight, const Options& options)
 {
     Impl& r = *impl_;
+    const float scale = std::clamp(options.resolutionScale, 0.05f, 1.0f);
+    const int width = std::max(1, int(std::lround(float(fullWidth) * scale)));
+    const int height = std::max(1, int(std::lround(float(fullHeight) * scale)));
     r.hdrFrame.ensure(GL_RGBA16F, width, height, /*withDepth=*/true);
     r.displayFrame.ensure(GL_RGBA8, width, height);
     const float aspect = float(width) / float(height);
+
+    // A new running mean whenever anything that changes the image changes.
+    const std::string key = toJsonText(settings, -1) + "@" + std::to_string(width) + "x" + std::to_string(height);
+    if (!options.accumulate || key != r.accumulationKey) r.accumulatedFrames = 0;
+    r.accumulationKey = options.accumulate ? key : std::string();
+    const glm::vec2 rotation = r.accumulatedFrames == 0 ? glm::vec2(0.0f) : r2Rotation(r.accumulatedFrames);
 
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
@@ -366,9 +396,26 @@ void Renderer::renderFrame(const FrameSettings& settings, int width, int height)
     if (debugView) {
         r.drawDebugView(settings, width, height);
     } else {
+        // Meshes first, then the sky behind them: llvmpipe shades only the uncovered pixels.
+        r.drawScene(settings, aspect, rotation);
         r.drawSky(settings, aspect);
-        r.drawScene(settings, aspect, glm::vec2(0.0f));
     }
+
+    r.resolved = &r.hdrFrame;
+    if (options.accumulate) {
+        r.accumulation.ensure(GL_RGBA32F, width, height);
+        glBindFramebuffer(GL_FRAMEBUFFER, r.accumulation.framebuffer());
+        const gl::ShaderProgram& accumulate = r.program({"fullscreen.vert", "accumulate.frag"});
+        glUseProgram(accumulate.id());
+        glBindTextureUnit(kUnitHdrFrame, r.hdrFrame.texture());
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+        glBlendColor(0.0f, 0.0f, 0.0f, 1.0f / float(r.accumulatedFrames + 1));
+        r.drawFullscreenTriangle();
+        glDisable(GL_BLEND);
+        r.resolved = &r.accumulation;
+    }
+    r.accumulatedFrames = options.accumulate ? r.accumulatedFrames + 1 : 1;
 
     glBindFramebuffer(GL_FRAMEBUFFER, r.displayFrame.framebuffer());
     const gl::ShaderProgram& tonemap = r.program({"fullscreen.vert", "tonemap.frag"});
@@ -377,7 +424,7 @@ void Renderer::renderFrame(const FrameSettings& settings, int width, int height)
     const bool lutView = debugView && settings.view.mode == ViewMode::Lut;
     tonemap.set("uExposureEv", lutView ? 0.0f : settings.toneMap.exposureEv);
     tonemap.set("uToneMapOperator", int(lutView ? ToneMapOperator::None : settings.toneMap.op));
-    glBindTextureUnit(kUnitHdrFrame, r.hdrFrame.texture());
+    glBindTextureUnit(kUnitHdrFrame, r.resolved->texture());
     r.drawFullscreenTriangle();
 
     glUseProgram(0);
@@ -385,18 +432,19 @@ void Renderer::renderFrame(const FrameSettings& settings, int width, int height)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+int Renderer::accumulatedFrames() const { return impl_->accumulatedFrames; }
+
 unsigned int Renderer::displayTexture() const { return impl_->displayFrame.texture(); }
 
-void Renderer::presentToDefaultFramebuffer(int framebufferWidth, int framebufferHeight) const
+void Renderer::presentToDefaultFramebuffer(int x0, int y0, int x1, int y1) const
 {
     const gl::RenderTarget& display = impl_->displayFrame;
-    glBlitNamedFramebuffer(display.framebuffer(), 0, 0, 0, display.width(), display.height(), 0, 0, framebufferWidth,
-                           framebufferHeight, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    glBlitNamedFramebuffer(display.framebuffer(), 0, 0, 0, display.width(), display.height(), x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
 FrameReadback Renderer::readHdrFrame() const
 {
-    const gl::RenderTarget& hdr = impl_->hdrFrame;
+    const gl::RenderTarget& hdr = *impl_->resolved;
     FrameReadback result{hdr.width(), hdr.height(), {}};
     result.rgba.resize(std::size_t(hdr.width()) * std::size_t(hdr.height()) * 4);
     glGetTextureImage(hdr.texture(), 0, GL_RGBA, GL_FLOAT, GLsizei(result.rgba.size() * sizeof(float)), result.rgba.data());

@@ -82,7 +82,17 @@ public:
     void setModel(const ModelData& model, const std::string& path);
 
     // Renders the HDR frame and its tone-mapped display image at the given size.
-    void renderFrame(const FrameSettings& settings, int width, int height);
+    // resolutionScale < 1 renders fewer pixels (the view is scaled up when presented), for
+    // interaction with expensive settings; accumulate averages successive frames of the
+    // same settings with rotated sample sets (progressive refinement of the sampled method).
+    struct Options {
+        float resolutionScale = 1.0f;
+        bool accumulate = false;
+    };
+    void renderFrame(const FrameSettings& settings, int width, int height, const Options& options);
+    void renderFrame(const FrameSettings& settings, int width, int height) { renderFrame(settings, width, height, Options{}); }
+    // Frames averaged into the current image (1 without accumulation).
+    int accumulatedFrames() const;
 
     SceneInfo sceneInfo(const FrameSettings& settings);
     int prefilterLevels() const; // 0 before the first bake
@@ -94,8 +104,8 @@ public:
 
     // GL name of the display texture (RGBA8, sRGB-encoded) for ImGui::Image or a blit.
     unsigned int displayTexture() const;
-    // Copies the display image to the default framebuffer, scaled to fill it.
-    void presentToDefaultFramebuffer(int framebufferWidth, int framebufferHeight) const;
+    // Copies the display image into a rectangle of the default framebuffer (y up).
+    void presentToDefaultFramebuffer(int x0, int y0, int x1, int y1) const;
 
     FrameReadback readHdrFrame() const;
     DisplayReadback readDisplayImage() const;

@@ -227,35 +227,46 @@ void drawCapturePanel(PanelState& state, UiRequests& requests)
 void drawStatsOverlay(const FrameStats& stats)
 {
     ImGui::Text("%dx%d  frame %.1f ms  passes %.1f ms", stats.width, stats.height, stats.frameMs, stats.renderMs);
+    if (stats.resolutionScale < 1.0f) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), " %.0f%% res", 100.0f * stats.resolutionScale);
+    } else if (stats.accumulatedFrames > 1) {
+        ImGui::SameLine();
+        ImGui::TextDisabled(" x%d", stats.accumulatedFrames);
+    }
     ImGui::TextDisabled("%s", stats.renderer.c_str());
 }
 
-void drawDebugOverlay(const std::vector<DebugTile>& tiles, float framebufferHeight, const std::string& probeText)
+// Overlays are drawn in the view's pixels (y up, as the renderer reports them), placed at
+// viewOrigin (top-left of the view in window coordinates, y down).
+void drawDebugOverlay(const std::vector<DebugTile>& tiles, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText)
 {
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     for (const DebugTile& tile : tiles)
-        draw->AddText(ImVec2(tile.rect.x, framebufferHeight - tile.rect.w - 18.0f), IM_COL32(230, 230, 230, 255), tile.label.c_str());
+        draw->AddText(ImVec2(viewOrigin.x + tile.rect.x, viewOrigin.y + viewHeight - tile.rect.w - 18.0f), IM_COL32(230, 230, 230, 255),
+                      tile.label.c_str());
     if (!probeText.empty() && !ImGui::GetIO().WantCaptureMouse) ImGui::SetTooltip("%s", probeText.c_str());
 }
 
-void drawSceneLabels(const std::vector<ScreenLabel>& labels, float framebufferHeight)
+void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigin, float viewHeight)
 {
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     for (const ScreenLabel& label : labels) {
         const ImVec2 size = ImGui::CalcTextSize(label.text.c_str());
         const ImU32 colour = label.title ? IM_COL32(255, 255, 255, 255) : IM_COL32(210, 210, 210, 230);
-        draw->AddText(ImVec2(label.pixel.x - size.x * 0.5f, framebufferHeight - label.pixel.y - size.y * 0.5f), colour, label.text.c_str());
+        draw->AddText(ImVec2(viewOrigin.x + label.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - label.pixel.y - size.y * 0.5f), colour,
+                      label.text.c_str());
     }
 }
 
-void drawSphereReadings(const std::vector<SphereReading>& readings, float framebufferHeight)
+void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 viewOrigin, float viewHeight)
 {
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     for (const SphereReading& r : readings) {
         char text[32];
         std::snprintf(text, sizeof text, "%.3f", 0.2126f * r.radiance.r + 0.7152f * r.radiance.g + 0.0722f * r.radiance.b);
         const ImVec2 size = ImGui::CalcTextSize(text);
-        const ImVec2 at(r.pixel.x - size.x * 0.5f, framebufferHeight - r.pixel.y - size.y * 0.5f);
+        const ImVec2 at(viewOrigin.x + r.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - r.pixel.y - size.y * 0.5f);
         draw->AddRectFilled(ImVec2(at.x - 2, at.y - 1), ImVec2(at.x + size.x + 2, at.y + size.y + 1), IM_COL32(0, 0, 0, 160));
         draw->AddText(at, IM_COL32(255, 255, 255, 255), text);
     }
@@ -265,9 +276,12 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
 {
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab)) && !ImGui::GetIO().WantTextInput) state.showPanels = !state.showPanels;
     if (!state.showPanels) return;
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(380, ImGui::GetIO().DisplaySize.y - 16.0f), ImGuiCond_FirstUseEver);
-    ImGui::Begin("iblab");
+    // Docked at the left, full height; only its width is the user's to drag.
+    ImGui::SetNextWindowPos(ImVec2(0, 0));
+    ImGui::SetNextWindowSize(ImVec2(state.panelWidth, ImGui::GetIO().DisplaySize.y));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(260, ImGui::GetIO().DisplaySize.y), ImVec2(900, ImGui::GetIO().DisplaySize.y));
+    ImGui::Begin("iblab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
+    state.panelWidth = ImGui::GetWindowWidth();
     drawStatsOverlay(stats);
     drawEnvironmentPanel(settings.environment, state, requests);
     drawScenePanel(settings.scene, state, requests);

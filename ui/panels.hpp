@@ -28,6 +28,8 @@ struct FrameStats {
     int width = 0;
     int height = 0;
     std::string renderer; // GL renderer string
+    float resolutionScale = 1.0f;
+    int accumulatedFrames = 1;
 };
 
 struct UiRequests {
@@ -65,6 +67,7 @@ struct PanelState {
     char presetPath[512] = "iblab-preset.json";
     char exportPath[512] = "iblab-export.glb";
     bool showPanels = true;
+    float panelWidth = 380.0f; // the control window is docked at the left; the view takes the rest
 };
 
 void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRequests& requests);
@@ -80,13 +83,13 @@ void drawStatsOverlay(const FrameStats& stats);
 
 // Labels of the debug view's tiles (rects y up, in framebuffer pixels) and the readout of
 // the texel under the cursor.
-void drawDebugOverlay(const std::vector<DebugTile>& tiles, float framebufferHeight, const std::string& probeText);
+void drawDebugOverlay(const std::vector<DebugTile>& tiles, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText);
 
 // Text anchored in the scene (the grid's axes), projected by the renderer.
-void drawSceneLabels(const std::vector<ScreenLabel>& labels, float framebufferHeight);
+void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigin, float viewHeight);
 
 // The furnace view's numbers: reflected radiance (1 = all energy) over each sphere.
-void drawSphereReadings(const std::vector<SphereReading>& readings, float framebufferHeight);
+void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 viewOrigin, float viewHeight);
 
 // The full control window with all of the above, docked at the left.
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests);

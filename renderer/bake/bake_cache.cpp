@@ -100,7 +100,7 @@ std::string BakeCache::lutKey(int size, int samples, GeometryTerm term)
 fs::path BakeCache::bakeDirectory(const std::string& key) const { return root_ / "bake" / key; }
 fs::path BakeCache::lutPath(const std::string& key) const { return root_ / "lut" / (key + ".exr"); }
 
-bool BakeCache::loadBake(BakeResult& result, std::vector<std::string>& notes)
+bool BakeCache::loadBake(BakeResult& result, const MipBuilder& buildMips, std::vector<std::string>& notes)
 {
     if (!enabled())
         return false;
@@ -110,7 +110,7 @@ bool BakeCache::loadBake(BakeResult& result, std::vector<std::string>& notes)
     if (!hasBakeDirectory(dir))
         return false;
     try {
-        readBakeDirectory(dir, result);
+        readBakeDirectory(dir, result, buildMips);
         return true;
     } catch (const BakeFileError& e) {
         notes.push_back(std::string("bake cache: ") + e.what() + "; removed the entry and baked again");

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/bake_files.hpp"
 #include "bake/bake_result.hpp"
 
 namespace iblab::bake {
@@ -53,7 +54,7 @@ public:
     // Fills the environment-dependent part of result (environment cube, irradiance cubes,
     // prefiltered cube, SH) from the entry for result.contentHash and result.settings. Returns
     // false on a miss; a corrupt entry adds a line to notes, is removed, and is a miss.
-    bool loadBake(BakeResult& result, std::vector<std::string>& notes);
+    bool loadBake(BakeResult& result, const MipBuilder& buildMips, std::vector<std::string>& notes);
     void storeBake(const BakeResult& result);
 
     // Creates `out` (RGBA16F) from the cached LUT; false on a miss (corrupt: noted, removed).

@@ -204,7 +204,7 @@ void writeBakeDirectory(const fs::path& directory, const BakeResult& result, con
 
 bool hasBakeDirectory(const fs::path& directory) { return fs::exists(directory / "bake.json"); }
 
-void readBakeDirectory(const fs::path& directory, BakeResult& result)
+void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipBuilder& buildMips)
 {
     const fs::path metaPath = directory / "bake.json";
     const nlohmann::json meta = readJson(metaPath);
@@ -217,8 +217,7 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result)
     const int levels = std::bit_width(unsigned(face));
     result.environmentCube = createCubeTexture(format, face, levels);
     uploadCubeLevel(result.environmentCube, 0, readCubeExr(directory / "environment.exr", face));
-    if (levels > 1)
-        glGenerateTextureMipmap(result.environmentCube.id());
+    buildMips(result.environmentCube);
 
     if (s.riemann.enabled) {
         result.irradianceRiemann = createCubeTexture(format, s.riemann.faceSize, 1);

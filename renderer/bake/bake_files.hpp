@@ -15,6 +15,7 @@
 // size x size RGB whose first scanline is roughness near 0 (row 0 of the texture).
 // Every file is written atomically (writeFileAtomic).
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -62,7 +63,9 @@ bool hasBakeDirectory(const std::filesystem::path& directory);
 
 // Reads what writeBakeDirectory wrote back into textures, given a result whose settings and
 // source size say what to expect; throws BakeFileError for anything that does not match.
-void readBakeDirectory(const std::filesystem::path& directory, BakeResult& result);
+// buildMips fills the environment cube's mips from its level 0 (BakePasses::generateMips).
+using MipBuilder = std::function<void(const BakedTexture&)>;
+void readBakeDirectory(const std::filesystem::path& directory, BakeResult& result, const MipBuilder& buildMips);
 
 // LUT files. multiscatterChannel false writes 0 in B (the `iblab lut` default).
 void writeLutExr(const std::filesystem::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel,

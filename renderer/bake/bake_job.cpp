@@ -18,6 +18,16 @@ constexpr const char* kEnvironmentGroup = "environment";
 // on them: shader compilation costs about as much as a few million samples on llvmpipe.
 constexpr double kCompileCost = 4.0e6;
 
+// Rows of `size` per step so that a step costs about `budget` samples: at least one row, a
+// multiple of 8 (whole 8x8 work groups) where there are that many.
+int rowsPerStep(double budget, double rowCost, int size)
+{
+    int rows = int(std::clamp(budget / rowCost, 1.0, double(size)));
+    if (rows >= 8)
+        rows -= rows % 8;
+    return rows;
+}
+
 } // namespace
 
 std::size_t BakeResult::gpuBytes() const
@@ -37,7 +47,7 @@ double BakeResult::phaseMilliseconds(std::string_view phase) const
 }
 
 BakeJob::BakeJob(gl::ShaderLibrary& shaders, const Environment& environment, const BakeSettings& settings, BakeCache* cache)
-    : shaders_(shaders), passes_(shaders), cache_(cache && cache->enabled() ? cache : nullptr)
+    : passes_(shaders), cache_(cache && cache->enabled() ? cache : nullptr)
 {
     validate(settings);
     if (environment.image.empty())
@@ -58,9 +68,7 @@ void BakeJob::planCubeSlices(const std::string& phase, const std::string& group,
 {
     const int size = std::max(faceSize >> level, 1);
     const double rowCost = double(size) * samplesPerTexel;
-    int rows = int(std::clamp(double(result_.settings.samplesPerStep) / rowCost, 1.0, double(size)));
-    if (rows >= 8)
-        rows -= rows % 8; // whole 8x8 work groups
+    const int rows = rowsPerStep(double(result_.settings.samplesPerStep), rowCost, size);
     for (int face = 0; face < 6; ++face)
         for (int row = 0; row < size; row += rows) {
             const CubeSlice slice{level, face, row, std::min(rows, size - row)};
@@ -79,7 +87,8 @@ void BakeJob::plan()
     steps_.push_back({"shaders", "", kCompileCost, [this] { passes_.compileAll(); }});
     if (cache_)
         steps_.push_back({"cache_lookup", "", sourceTexels, [this] {
-                              if (cache_->loadBake(result_, result_.notes)) {
+                              const MipBuilder buildMips = [this](const BakedTexture& t) { passes_.generateMips(t); };
+                              if (cache_->loadBake(result_, buildMips, result_.notes)) {
                                   result_.fromCache = true;
                                   skipGroup(kEnvironmentGroup);
                               }
@@ -96,7 +105,7 @@ void BakeJob::plan()
                           result_.prefiltered = createCubeTexture(format, st.prefilter.faceSize, st.prefilter.levels);
                       }});
 
-    // Footprint filtering takes 1..16 taps, a few on average.
+    // Footprint filtering takes 1..4 taps, about 2 on average.
     planCubeSlices("environment_cube", kEnvironmentGroup, envFace, 0, 2.0,
                    [this](const CubeSlice& slice) { passes_.equirectToCube(equirect_.id(), result_.environmentCube, slice); });
     steps_.push_back({"environment_cube", kEnvironmentGroup, 6.0 * envFace * envFace / 3.0,
@@ -156,9 +165,7 @@ void BakeJob::plan()
                               result_.brdfLut[index] = create2DTexture(GL_RGBA16F, result_.settings.lut.size);
                           }});
         const double rowCost = double(s.lut.size) * s.lut.samples;
-        int rows = int(std::clamp(double(s.samplesPerStep) / rowCost, 1.0, double(s.lut.size)));
-        if (rows >= 8)
-            rows -= rows % 8;
+        const int rows = rowsPerStep(double(s.samplesPerStep), rowCost, s.lut.size);
         for (int row = 0; row < s.lut.size; row += rows) {
             const int count = std::min(rows, s.lut.size - row);
             steps_.push_back({"brdf_lut", group, rowCost * count, [this, index, term, row, count] {

@@ -67,7 +67,6 @@ private:
     void skipGroup(const std::string& group);
     void addTiming(const std::string& phase, double ms);
 
-    gl::ShaderLibrary& shaders_;
     BakePasses passes_;
     BakeCache* cache_;
     BakeResult result_;

@@ -8,8 +8,8 @@
 // Roughness 0 is a delta lobe: with uMirrorCopy the mirror level is the environment itself,
 // read at uCopyLod (the source mip with this level's texel size, so it is a box-filtered
 // copy, not a point sample that aliases when the source is larger). Without, the loop runs
-// as LearnOpenGL's does: alpha = 0 puts every half vector on n, and every sample reads n.
-// The roughness-0 pdf is infinite, so PDF filtering reads mip 0 (the lod clamps at 0).
+// as LearnOpenGL's does: alpha = 0 puts every half vector on n, and every sample reads n
+// (at mip 0: the roughness-0 pdf is a delta, there is no footprint to filter).
 #include "common/conventions.glsl"
 #include "common/brdf.glsl"
 #include "common/sampling.glsl"

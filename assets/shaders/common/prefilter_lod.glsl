@@ -55,8 +55,8 @@ IBL_FN float sourceLodFromPdf(float pdf, float sampleCount, float sourceFaceSize
 
 // The same with Omega_p the solid angle of the texel the sample actually reads, in direction
 // d (unit length). With the face average, the lod is off by -0.47 (face centres, where texels
-// are 1.9x the average) to +0.72 mips (corners, 0.37x): the bake uses this one, which
-// docs/bake.md measures as 15-20% less prefilter error at equal cost.
+// are 1.9x the average) to +0.72 mips (corners, 0.37x). The bake uses this one: at equal cost
+// it has 5-15% less prefilter error than the face average (docs/bake.md).
 IBL_FN float sourceLodFromPdfAt(vec3 d, float pdf, float sampleCount, float sourceFaceSize, float bias)
 {
     return sourceLodFromSolidAngle(1.0f / (sampleCount * pdf), cubeTexelSolidAngle(d, sourceFaceSize), bias);
