@@ -145,6 +145,9 @@ struct OrbitInput {
     }
 };
 
+// Progressive refinement stops here: 64 rotated sample sets of any N are plenty to judge.
+constexpr int kMaxAccumulatedFrames = 64;
+
 #ifdef NDEBUG
 constexpr bool kDebugContext = false;
 #else
@@ -196,8 +199,12 @@ int runGui(const GuiOptions& options)
     OrbitInput orbit;
     std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
     float previousScale = 1.0f;
+    bool idle = false;
+    std::string lastRenderedKey; // settings + size of the image on screen
     while (!glfwWindowShouldClose(window.handle)) {
-        glfwPollEvents();
+        // Idle and converged: sleep until input instead of re-rendering the same image.
+        if (idle) glfwWaitEventsTimeout(0.25);
+        else glfwPollEvents();
         int windowWidth = 0, windowHeight = 0;
         glfwGetFramebufferSize(window.handle, &windowWidth, &windowHeight);
         // The 3D view is the part of the window right of the docked panel.
@@ -262,12 +269,21 @@ int runGui(const GuiOptions& options)
             renderOptions.resolutionScale = std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(previousScale * previousScale))), 0.25f, 1.0f);
         renderOptions.accumulate = !interacting;
         previousScale = renderOptions.resolutionScale;
+        // A finished image needs no more frames: split-sum is deterministic, and the sampled
+        // method stops refining after kMaxAccumulatedFrames.
+        const std::string renderKey = toJsonText(settings, -1) + std::to_string(fbWidth) + "x" + std::to_string(fbHeight);
+        const bool sampledScene = settings.sampling.method == ShadingMethod::Sampled || settings.scene.kind == SceneKind::Counting ||
+                                  settings.scene.kind == SceneKind::Sweep;
+        const bool converged = renderKey == lastRenderedKey && !interacting && !session.busy() && !requests.captureTo &&
+                               renderer.accumulatedFrames() >= (sampledScene ? kMaxAccumulatedFrames : 1);
+        idle = converged && !ImGui::IsAnyItemHovered() && !io.WantTextInput;
+        lastRenderedKey = renderKey;
         const auto renderStart = Clock::now();
-        renderer.renderFrame(settings, fbWidth, fbHeight, renderOptions);
+        if (!converged) renderer.renderFrame(settings, fbWidth, fbHeight, renderOptions);
         stats.resolutionScale = renderOptions.resolutionScale;
         stats.accumulatedFrames = renderer.accumulatedFrames();
         glFinish(); // so that the reported pass time is the GPU's, not the submission's
-        stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
+        if (!converged) stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
         stats.width = fbWidth;
         stats.height = fbHeight;
         furnaceReadings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
