@@ -10,7 +10,7 @@ export IBLAB_CACHE_DIR="$out/cache" # a private cache: the first run bakes, late
 trap 'rm -rf "$out"' EXIT
 run() { "$iblab" render --width 1280 --height 720 --json -o "$out/frame.png" "$@"; }
 field() { python3 -c "import json,sys; print('%.1f' % json.load(sys.stdin)['timings_ms']['$1'])"; }
-renderer=$(run --scene none --time 1 | python3 -c "import json,sys; print(json.load(sys.stdin)['renderer'].split(': ',1)[1].split(',')[0])")
+renderer=$(run --scene none --time 1 | python3 -c "import json,sys; print(json.load(sys.stdin)['renderer'].split(': ',1)[1].split(', OpenGL')[0])")
 
 cold=$(MESA_SHADER_CACHE_DISABLE=true run --scene none --time 20)
 warm=$(run --scene none --time 20)
