@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gl/texture_upload.hpp"
 #include "scene/sphere.hpp"
 
 namespace iblab {
@@ -27,19 +28,10 @@ Bounds sphereBounds(const glm::mat4& model)
 
 gl::Texture uploadTexture(const TextureImage& image)
 {
-    const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
-    gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture.id(), levels, image.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // TextureImage row 0 is the top of the picture, which glTF's v = 0 addresses: uploading
     // it as GL's row 0 (t = 0) makes uv map to texels with no flip.
-    glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba8.data());
-    glGenerateTextureMipmap(texture.id());
-    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
-    return texture;
+    return gl::createMipmappedTexture2D({image.srgb ? GLenum(GL_SRGB8_ALPHA8) : GLenum(GL_RGBA8), image.width, image.height, GL_RGBA,
+                                         GL_UNSIGNED_BYTE, image.rgba8.data(), 1, GL_REPEAT, GL_REPEAT});
 }
 
 } // namespace

@@ -15,6 +15,7 @@
 #include "gl/handles.hpp"
 #include "gl/render_target.hpp"
 #include "gl/shader_library.hpp"
+#include "gl/texture_upload.hpp"
 #include "gpu_scene.hpp"
 #include "ibl/sampling.hpp"
 
@@ -294,17 +295,9 @@ Renderer::~Renderer() = default;
 
 void Renderer::setEnvironment(const ImageRGB32F& image)
 {
-    const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
-    gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture.id(), levels, GL_RGB32F, image.width, image.height);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, image.texels.data());
-    glGenerateTextureMipmap(texture.id());
-    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    impl_->equirect = std::move(texture);
+    // Repeat in u (longitude wraps), clamp in v (the poles do not).
+    impl_->equirect = gl::createMipmappedTexture2D(
+        {GL_RGB32F, image.width, image.height, GL_RGB, GL_FLOAT, image.texels.data(), 4, GL_REPEAT, GL_CLAMP_TO_EDGE});
 }
 
 void Renderer::setBake(std::shared_ptr<const bake::BakeResult> bake) { impl_->bake = std::move(bake); }

@@ -191,20 +191,31 @@ SH9Color BakePasses::projectSh9(GLuint equirect, int width, int height)
     return sh;
 }
 
+namespace {
+
+// What every pass that reads the environment cube with PDF-based mip selection needs:
+// the cube on unit 1 and the numbers sourceLodFromPdf[At] takes (prefilter_lod.glsl).
+void bindSource(const gl::ShaderProgram& program, const BakedTexture& environment, bool mipFiltering, float mipBias, bool exactTexelSolidAngle)
+{
+    program.set("uEnvironment", 1);
+    program.set("uMipFiltering", mipFiltering ? 1 : 0);
+    program.set("uMipBias", mipBias);
+    program.set("uSourceFaceSize", float(environment.size));
+    program.set("uExactTexelSolidAngle", exactTexelSolidAngle ? 1 : 0);
+    program.set("uMaxSourceLod", float(environment.levels - 1));
+    glBindTextureUnit(1, environment.id());
+}
+
+} // namespace
+
 void BakePasses::irradianceRiemann(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                                    const RiemannIrradianceSettings& settings, bool exactTexelSolidAngle)
 {
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kIrradianceRiemann);
-    program.set("uEnvironment", 1);
     program.set("uPhiSteps", riemannPhiSteps(settings.sampleDelta));
     program.set("uThetaSteps", riemannThetaSteps(settings.sampleDelta));
-    program.set("uMipFiltering", settings.mipFiltering ? 1 : 0);
-    program.set("uMipBias", settings.mipBias);
-    program.set("uSourceFaceSize", float(environment.size));
-    program.set("uExactTexelSolidAngle", exactTexelSolidAngle ? 1 : 0);
-    program.set("uMaxSourceLod", float(environment.levels - 1));
-    glBindTextureUnit(1, environment.id());
+    bindSource(program, environment, settings.mipFiltering, settings.mipBias, exactTexelSolidAngle);
     dispatchCube(program, out, slice);
 }
 
@@ -213,14 +224,8 @@ void BakePasses::irradianceImportance(const BakedTexture& environment, const Bak
 {
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kIrradianceImportance);
-    program.set("uEnvironment", 1);
     program.set("uSampleCount", settings.samples);
-    program.set("uMipFiltering", settings.mipFiltering ? 1 : 0);
-    program.set("uMipBias", settings.mipBias);
-    program.set("uSourceFaceSize", float(environment.size));
-    program.set("uExactTexelSolidAngle", exactTexelSolidAngle ? 1 : 0);
-    program.set("uMaxSourceLod", float(environment.levels - 1));
-    glBindTextureUnit(1, environment.id());
+    bindSource(program, environment, settings.mipFiltering, settings.mipBias, exactTexelSolidAngle);
     dispatchCube(program, out, slice);
 }
 
@@ -229,19 +234,13 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
 {
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kPrefilter);
-    program.set("uEnvironment", 1);
     program.set("uRoughness", prefilterRoughnessFromMip(float(slice.level), float(out.levels)));
     program.set("uMirrorCopy", settings.mirrorCopy ? 1 : 0);
     program.set("uSampleCount", prefilterSamples(settings, slice.level));
-    program.set("uMipFiltering", settings.mipFiltering ? 1 : 0);
-    program.set("uMipBias", settings.mipBias);
-    program.set("uSourceFaceSize", float(environment.size));
-    program.set("uExactTexelSolidAngle", exactTexelSolidAngle ? 1 : 0);
-    program.set("uMaxSourceLod", float(environment.levels - 1));
+    bindSource(program, environment, settings.mipFiltering, settings.mipBias, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
     const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
     program.set("uCopyLod", std::clamp(copyLod, 0.0f, float(environment.levels - 1)));
-    glBindTextureUnit(1, environment.id());
     dispatchCube(program, out, slice);
 }
 
