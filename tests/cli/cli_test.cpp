@@ -32,11 +32,12 @@ protected:
     void TearDown() override { fs::remove_all(dir); }
 
     // Runs iblab in the test's directory with DISPLAY unset, so that the run is headless
-    // whatever the machine has.
+    // whatever the machine has, and with a bake cache of its own.
     Result run(const std::string& arguments) const
     {
         const fs::path errFile = dir / "stderr.txt";
-        const std::string command = "cd '" + dir.string() + "' && env -u DISPLAY -u WAYLAND_DISPLAY '" IBLAB_EXECUTABLE "' " + arguments +
+        const std::string command = "cd '" + dir.string() + "' && env -u DISPLAY -u WAYLAND_DISPLAY IBLAB_CACHE_DIR='" + (dir / "cache").string() +
+                                    "' '" IBLAB_EXECUTABLE "' " + arguments +
                                     " 2> '" + errFile.string() + "'";
         Result result;
         FILE* pipe = popen(command.c_str(), "r");
@@ -144,12 +145,52 @@ TEST_F(Cli, UnwritableOutputFailsWithOneLine)
     EXPECT_NE(r.err.find("no/such/dir/a.png"), std::string::npos) << r.err;
 }
 
+// Every view and scene the UI offers renders headless without a GL error (--gl-debug makes
+// any KHR_debug error fail the command).
+TEST_F(Cli, EveryViewAndSceneRendersWithoutGlErrors)
+{
+    const std::string common = " --env builtin:studio?width=128 --width 96 --height 64 --gl-debug -o out.png";
+    for (const char* view : {"final", "prefilter-mips", "lut", "furnace", "irradiance"}) {
+        const Result r = run(std::string("render --view ") + view + common);
+        EXPECT_EQ(r.exitCode, 0) << view << ": " << r.err;
+    }
+    for (const char* scene : {"sphere", "grid", "counting", "sweep", "none", IBLAB_SOURCE_DIR "/assets/models/material_spheres.glb"}) {
+        const Result r = run(std::string("render --method sampled --samples 4 --scene ") + scene + common);
+        EXPECT_EQ(r.exitCode, 0) << scene << ": " << r.err;
+    }
+}
+
+TEST_F(Cli, FurnaceReportsReflectedEnergyPerSphere)
+{
+    // A white metal with energy compensation reflects all of a uniform environment.
+    const Result r = run("render --view furnace --scene grid --base-color 1,1,1 --multiscatter --width 280 --height 280 --json -o f.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto report = nlohmann::json::parse(r.out);
+    ASSERT_EQ(report["furnace"].size(), 49u);
+    for (const auto& sphere : report["furnace"]) {
+        if (sphere["metallic"].get<float>() != 1.0f) continue;
+        // 3%: the default LUT (128^2, half floats) and the sphere's central disc, where n.v
+        // runs from 1 down to 0.87.
+        EXPECT_NEAR(sphere["reflected"][0].get<float>(), 1.0f, 0.03f) << "roughness " << sphere["roughness"];
+    }
+}
+
+TEST_F(Cli, BadModelFailsWithOneLine)
+{
+    std::ofstream(dir / "broken.gltf") << "{ not json";
+    const Result r = run("render --scene broken.gltf -o out.png");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("broken.gltf"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, HelpListsEveryRenderOption)
 {
     const Result r = run("render --help");
     EXPECT_EQ(r.exitCode, 0);
     for (const char* option : {"--env", "--env-yaw", "--env-intensity", "--exposure", "--tonemap", "--yaw", "--pitch", "--fov", "--width",
-                               "--height", "--output", "--json"})
+                               "--height", "--output", "--json", "--scene", "--method", "--samples", "--mip", "--metallic", "--roughness",
+                               "--base-color", "--view"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }
 
