@@ -26,7 +26,6 @@ using testing::environmentFromImage;
 using testing::runBake;
 using testing::smallBakeSettings;
 
-gl::ShaderLibrary library() { return gl::ShaderLibrary(IBLAB_SHADER_DIR); }
 
 // Radiance (1.5 + x, 1.5 + y, 1.5 + z): every face and every orientation within a face reads
 // differently (a flipped t, a swapped face or a mirrored u changes a channel by up to 2).
@@ -43,7 +42,7 @@ ImageRGB32F linearEnvironment(int width)
 
 TEST_F(GlTest, EnvironmentCubeIsTheEquirectSeenFromEachTexel)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     bake::BakeSettings settings = smallBakeSettings();
     settings.precision = bake::Precision::Float;
     const Environment env = environmentFromImage(linearEnvironment(256), "linear");
@@ -67,7 +66,7 @@ TEST_F(GlTest, EnvironmentCubeIsTheEquirectSeenFromEachTexel)
 
 TEST_F(GlTest, PrefilteredMipsMatchTheExactReference)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     const Environment env = loadEnvironment("builtin:studio?width=128");
     const bake::BakeSettings settings = smallBakeSettings();
     const bake::BakeResult result = runBake(shaders, env, settings);
@@ -109,7 +108,7 @@ TEST_F(GlTest, PrefilteredMipsMatchTheExactReference)
 
 TEST_F(GlTest, GpuShProjectionMatchesTheCpuCore)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     const Environment env = loadEnvironment("builtin:studio?width=256");
     bake::BakePasses passes(shaders);
     const gl::Texture equirect = passes.uploadEquirect(env.image);
@@ -147,7 +146,7 @@ IrradianceErrors compare(const std::vector<glm::dvec3>& values, const std::vecto
 
 TEST_F(GlTest, IrradianceMatchesTheExactReference)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     // A sky over a darker ground: the irradiance is pi ground + pi (top - ground)(1 + n.y) / 2,
     // linear in n, so SH9 holds it exactly (the step has only odd bands besides band 0, and
     // the cosine lobe's odd bands above 1 vanish): SH9 must match the exact sum.
@@ -185,7 +184,7 @@ TEST_F(GlTest, IrradianceMatchesTheExactReference)
 
 TEST_F(GlTest, ShIrradianceOfASmallLightIsWithinTheSh9TruncationError)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     // A small bright disc: the worst case for SH9 (the irradiance has a kink along the
     // light's horizon that three bands cannot follow). The bake's SH must have the same
     // error as the CPU core's projection (which the core's tests check), and that error is
@@ -216,7 +215,7 @@ TEST_F(GlTest, ShIrradianceOfASmallLightIsWithinTheSh9TruncationError)
 
 TEST_F(GlTest, LutMatchesTheCpuReferenceWithTheSameSamples)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     bake::BakePasses passes(shaders);
     constexpr int kSize = 16;
     constexpr int kSamples = 256;
@@ -239,7 +238,7 @@ TEST_F(GlTest, LutMatchesTheCpuReferenceWithTheSameSamples)
 
 TEST_F(GlTest, LutConvergesToTheCpuReference)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     bake::BakePasses passes(shaders);
     constexpr int kSize = 32;
     for (GeometryTerm term : bake::kGeometryTerms) {

@@ -18,11 +18,10 @@ using testing::environmentFromImage;
 using testing::runBake;
 using testing::smallBakeSettings;
 
-gl::ShaderLibrary library() { return gl::ShaderLibrary(IBLAB_SHADER_DIR); }
 
 TEST_F(GlTest, WhiteFurnace)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     const bake::BakeResult result = runBake(shaders, loadEnvironment("builtin:white?width=64"), smallBakeSettings());
     // A uniform environment of radiance 1: every weighted average of it is 1 and every
     // cosine integral pi, whatever the lobe, sample set or lod. 0.5%: the 1 and pi stored
@@ -94,7 +93,7 @@ double turnedDifference(const bake::BakedTexture& turned, const bake::BakedTextu
 
 void expectBakesTurnTogether(const std::string& spec)
 {
-    auto shaders = library();
+    auto shaders = testing::bakeShaderLibrary();
     const Environment original = loadEnvironment(spec);
     const Environment turned = environmentFromImage(quarterTurn(original.image), spec + " turned");
     const bake::BakeSettings settings = smallBakeSettings();

@@ -24,6 +24,9 @@ inline bake::BakeSettings smallBakeSettings()
     return s;
 }
 
+// The shipped shaders, as the bake passes load them.
+inline gl::ShaderLibrary bakeShaderLibrary() { return gl::ShaderLibrary(IBLAB_SHADER_DIR); }
+
 inline Environment environmentFromImage(ImageRGB32F image, std::string name)
 {
     Environment e;
