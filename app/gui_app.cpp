@@ -235,8 +235,8 @@ int runGui(const GuiOptions& options)
         if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
             const ImVec2 mouse = ImGui::GetIO().MousePos;
             const TexelProbe probe = renderer.probe(settings, fbWidth, fbHeight, mouse.x - float(viewX), float(fbHeight) - mouse.y);
-            ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), fbWidth, fbHeight), viewOrigin, float(fbHeight),
-                                 probe.text);
+            ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), fbWidth, fbHeight),
+                                 settings.view.mode == ViewMode::Lut, viewOrigin, float(fbHeight), probe.text);
         }
         const ImGuiIO& io = ImGui::GetIO();
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && !io.WantTextInput) glfwSetWindowShouldClose(window.handle, 1);

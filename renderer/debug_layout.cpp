@@ -60,7 +60,14 @@ std::vector<DebugTile> debugTiles(ViewMode mode, int prefilterLevels, int width,
             tiles.push_back({rects[std::size_t(m)], label, m});
         }
     } else if (mode == ViewMode::Lut) {
-        const auto rects = grid(2, 1.0f, width, height);
+        // Inset for the axis ticks the UI draws left of and below each square.
+        auto rects = grid(2, 1.0f, width, height);
+        for (glm::vec4& r : rects) r += glm::vec4(44.0f, 22.0f, 0.0f, 0.0f) * glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
+        for (glm::vec4& r : rects) {
+            const float side = std::min(r.z - r.x, r.w - r.y);
+            r.z = r.x + side;
+            r.w = r.y + side;
+        }
         tiles.push_back({rects[0], "Schlick-GGX, k = alpha/2 (x: n.v, y: roughness)", int(GeometryTerm::SchlickGGX)});
         tiles.push_back({rects[1], "height-correlated Smith (x: n.v, y: roughness)", int(GeometryTerm::HeightCorrelatedSmith)});
     }

@@ -239,12 +239,27 @@ void drawStatsOverlay(const FrameStats& stats)
 
 // Overlays are drawn in the view's pixels (y up, as the renderer reports them), placed at
 // viewOrigin (top-left of the view in window coordinates, y down).
-void drawDebugOverlay(const std::vector<DebugTile>& tiles, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText)
+void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText)
 {
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    for (const DebugTile& tile : tiles)
-        draw->AddText(ImVec2(viewOrigin.x + tile.rect.x, viewOrigin.y + viewHeight - tile.rect.w - 18.0f), IM_COL32(230, 230, 230, 255),
-                      tile.label.c_str());
+    const ImU32 text = IM_COL32(230, 230, 230, 255);
+    for (const DebugTile& tile : tiles) {
+        const float left = viewOrigin.x + tile.rect.x, right = viewOrigin.x + tile.rect.z;
+        const float top = viewOrigin.y + viewHeight - tile.rect.w, bottom = viewOrigin.y + viewHeight - tile.rect.y;
+        draw->AddText(ImVec2(left, top - 18.0f), text, tile.label.c_str());
+        if (!axes) continue;
+        // Unit axes on both edges: x = n.v along the bottom, y = roughness up the left side.
+        for (int i = 0; i <= 4; ++i) {
+            const float t = float(i) / 4.0f;
+            char value[8];
+            std::snprintf(value, sizeof value, "%.2f", t);
+            const float x = left + t * (right - left), y = bottom - t * (bottom - top);
+            draw->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 5.0f), text);
+            draw->AddText(ImVec2(x - 12.0f, bottom + 6.0f), text, value);
+            draw->AddLine(ImVec2(left - 5.0f, y), ImVec2(left, y), text);
+            draw->AddText(ImVec2(left - 40.0f, y - 7.0f), text, value);
+        }
+    }
     if (!probeText.empty() && !ImGui::GetIO().WantCaptureMouse) ImGui::SetTooltip("%s", probeText.c_str());
 }
 

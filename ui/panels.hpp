@@ -81,9 +81,9 @@ void drawPresetPanel(PanelState& state, UiRequests& requests);
 void drawCapturePanel(PanelState& state, UiRequests& requests);
 void drawStatsOverlay(const FrameStats& stats);
 
-// Labels of the debug view's tiles (rects y up, in framebuffer pixels) and the readout of
-// the texel under the cursor.
-void drawDebugOverlay(const std::vector<DebugTile>& tiles, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText);
+// Labels of the debug view's tiles (rects y up, in framebuffer pixels), unit axes on each
+// tile when `axes` (the LUTs), and the readout of the texel under the cursor.
+void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText);
 
 // Text anchored in the scene (the grid's axes), projected by the renderer.
 void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigin, float viewHeight);

@@ -4,7 +4,8 @@
 //   VIEW 1: prefiltered mips, each as a cube cross (4 x 3 faces: -X +Z +X -Z across the middle
 //           row, +Y above +Z, -Y below), tile t = mip t
 //   VIEW 2: BRDF LUTs, tile 0 = Schlick-GGX, tile 1 = height-correlated Smith;
-//           x = n.v, y = roughness (up), shown as (R, G, B) = (A, B, A + B)
+//           x = n.v, y = roughness (up), shown as (R, G) = (A, B), the familiar red-green
+//           picture (A + B, the third channel, is in the readout)
 #include "common/environment_lookup.glsl"
 
 in vec2 vUv;
@@ -41,8 +42,8 @@ void main()
         vec3 radiance = textureLod(uPrefiltered, cubeFaceUvToDirection(face, st), float(t)).rgb * uEnvironmentIntensity;
         fragColor = vec4(radiance, 1.0);
 #else
-        vec3 lut = t == 0 ? texture(uLutSchlick, local).rgb : texture(uLutCorrelated, local).rgb;
-        fragColor = vec4(lut, 1.0);
+        vec2 lut = t == 0 ? texture(uLutSchlick, local).rg : texture(uLutCorrelated, local).rg;
+        fragColor = vec4(lut, 0.0, 1.0);
 #endif
         return;
     }
