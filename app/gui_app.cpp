@@ -20,7 +20,7 @@
 
 #include "asset_paths.hpp"
 #include "camera.hpp"
-#include "debug_layout.hpp"
+#include "view_overlays.hpp"
 #include "environment/atomic_file.hpp"
 #include "environment/error.hpp"
 #include "gl/context_info.hpp"
@@ -229,15 +229,9 @@ int runGui(const GuiOptions& options)
         ImGui::NewFrame();
         ui::UiRequests requests;
         ui::drawControlWindow(settings, panels, stats, requests);
-        if (!furnaceReadings.empty()) ui::drawSphereReadings(furnaceReadings, viewOrigin, float(fbHeight));
-        if (settings.view.mode == ViewMode::Final || settings.view.mode == ViewMode::Furnace)
-            ui::drawSceneLabels(renderer.sceneLabels(settings, fbWidth, fbHeight), viewOrigin, float(fbHeight));
-        if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
-            const ImVec2 mouse = ImGui::GetIO().MousePos;
-            const TexelProbe probe = renderer.probe(settings, fbWidth, fbHeight, mouse.x - float(viewX), float(fbHeight) - mouse.y);
-            ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), fbWidth, fbHeight),
-                                 settings.view.mode == ViewMode::Lut, viewOrigin, float(fbHeight), probe.text);
-        }
+        const ImVec2 mouse = ImGui::GetIO().MousePos;
+        drawViewOverlays(renderer, settings, fbWidth, fbHeight, viewOrigin, furnaceReadings,
+                         glm::vec2(mouse.x - float(viewX), float(fbHeight) - mouse.y));
         const ImGuiIO& io = ImGui::GetIO();
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && !io.WantTextInput) glfwSetWindowShouldClose(window.handle, 1);
         if (ImGui::IsKeyPressed(GLFW_KEY_F12)) requests.captureTo = std::string(panels.capture.path);

@@ -16,6 +16,7 @@
 #include "gl/headless_context.hpp"
 #include "gl/shader_library.hpp"
 #include "lab_session.hpp"
+#include "view_overlays.hpp"
 
 namespace iblab::app {
 namespace {
@@ -82,6 +83,12 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         }
         std::sort(frameMs.begin(), frameMs.end());
 
+        // Labels (grid axes, mip roughness, furnace energy) belong in the tone-mapped PNG;
+        // the EXR stays the pure linear frame.
+        if (std::filesystem::path(job.output).extension() == ".png") {
+            OffscreenOverlay overlay;
+            overlay.drawOver(renderer, settings, job.width, job.height);
+        }
         const ui::StatusLine written = session.capture(job.output, settings);
         if (written.isError) return fail(written.text);
         if (debug.errorCount() > 0) return fail(std::to_string(debug.errorCount()) + " GL error(s) while rendering; see above");

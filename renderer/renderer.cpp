@@ -435,6 +435,12 @@ void Renderer::presentToDefaultFramebuffer(int x0, int y0, int x1, int y1) const
     glBlitNamedFramebuffer(display.framebuffer(), 0, 0, 0, display.width(), display.height(), x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
+void Renderer::bindDisplayFramebuffer() const
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, impl_->displayFrame.framebuffer());
+    glViewport(0, 0, impl_->displayFrame.width(), impl_->displayFrame.height());
+}
+
 FrameReadback Renderer::readHdrFrame() const
 {
     const gl::RenderTarget& hdr = *impl_->resolved;

@@ -107,6 +107,10 @@ public:
     // Copies the display image into a rectangle of the default framebuffer (y up).
     void presentToDefaultFramebuffer(int x0, int y0, int x1, int y1) const;
 
+    // Binds the display image as the draw framebuffer (viewport included), for overlays
+    // drawn into it after renderFrame.
+    void bindDisplayFramebuffer() const;
+
     FrameReadback readHdrFrame() const;
     DisplayReadback readDisplayImage() const;
 

@@ -1,0 +1,53 @@
+#include "view_overlays.hpp"
+
+#include <epoxy/gl.h>
+#include <imgui.h>
+#include <imgui_impl_opengl3.h>
+
+#include "debug_layout.hpp"
+#include "panels.hpp"
+
+namespace iblab::app {
+
+void drawViewOverlays(const Renderer& renderer, const FrameSettings& settings, int width, int height, glm::vec2 viewOrigin,
+                      const std::vector<SphereReading>& furnaceReadings, std::optional<glm::vec2> mouseInView)
+{
+    if (!furnaceReadings.empty()) ui::drawSphereReadings(furnaceReadings, viewOrigin, float(height));
+    if (settings.view.mode == ViewMode::Final || settings.view.mode == ViewMode::Furnace)
+        ui::drawSceneLabels(renderer.sceneLabels(settings, width, height), viewOrigin, float(height));
+    if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
+        const TexelProbe probe = mouseInView ? renderer.probe(settings, width, height, mouseInView->x, mouseInView->y) : TexelProbe{};
+        ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), width, height), settings.view.mode == ViewMode::Lut,
+                             viewOrigin, float(height), probe.text);
+    }
+}
+
+OffscreenOverlay::OffscreenOverlay() : context_(ImGui::CreateContext())
+{
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui_ImplOpenGL3_Init("#version 450");
+}
+
+OffscreenOverlay::~OffscreenOverlay()
+{
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui::DestroyContext(context_);
+}
+
+void OffscreenOverlay::drawOver(Renderer& renderer, const FrameSettings& settings, int width, int height)
+{
+    ImGuiIO& io = ImGui::GetIO();
+    io.DisplaySize = ImVec2(float(width), float(height));
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    const std::vector<SphereReading> readings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
+    drawViewOverlays(renderer, settings, width, height, glm::vec2(0.0f), readings, std::nullopt);
+    ImGui::Render();
+    renderer.bindDisplayFramebuffer();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+} // namespace iblab::app
