@@ -6,6 +6,7 @@
 #include "bake/bake_job.hpp"
 #include "environment/environment.hpp"
 #include "gl/handles.hpp"
+#include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
 #include "renderer.hpp"
 #include "scene/gltf_model.hpp"
@@ -24,19 +25,6 @@ std::size_t residentBytes()
     return resident * std::size_t(sysconf(_SC_PAGESIZE));
 }
 
-bake::BakeSettings tinyBake()
-{
-    bake::BakeSettings s = bake::defaultPreset();
-    s.prefilter.faceSize = 16;
-    s.prefilter.levels = 5;
-    s.prefilter.samples = 16;
-    s.importance.faceSize = 4;
-    s.importance.samples = 16;
-    s.lut.size = 16;
-    s.lut.samples = 64;
-    return s;
-}
-
 TEST_F(GlTest, TwoHundredSwitchesLeakNothing)
 {
     const std::string environments[] = {"builtin:sky?width=64", "builtin:sun?width=64", "builtin:studio?width=64", "builtin:white?width=64"};
@@ -50,7 +38,7 @@ TEST_F(GlTest, TwoHundredSwitchesLeakNothing)
         for (int i = 0; i < 200; ++i) {
             const Environment environment = loadEnvironment(environments[i % 4]);
             renderer.setEnvironment(environment.image);
-            bake::BakeJob job(renderer.shaders(), environment, tinyBake());
+            bake::BakeJob job(renderer.shaders(), environment, testing::smallBakeSettings());
             renderer.setBake(std::make_shared<bake::BakeResult>(job.runToCompletion()));
             if (i % 2 == 0) {
                 renderer.setModel(model, "material_spheres.glb");
