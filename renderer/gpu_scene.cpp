@@ -58,8 +58,12 @@ GpuScene buildProceduralScene(const SceneSettings& settings)
             add(sphere.transform, draw);
         }
         scene.labels = grid.labels;
-        // Frame the axis labels too: a title is about two sphere diameters of text wide.
-        for (const GridLabel& label : grid.labels) {
+        // The row axis's title sits left of the tick values and is as wide as two sphere
+        // diameters: one more unit to the left keeps the two from overlapping.
+        for (GridLabel& label : scene.labels)
+            if (label.axisTitle && label.position.x < grid.spheres.front().transform[3].x) label.position.x -= 1.0f;
+        // Frame the axis labels too.
+        for (const GridLabel& label : scene.labels) {
             const float halfWidth = label.axisTitle ? 2.0f : 0.6f;
             scene.bounds.extend(label.position - glm::vec3(halfWidth, 0.4f, 0.0f));
             scene.bounds.extend(label.position + glm::vec3(halfWidth, 0.4f, 0.0f));
