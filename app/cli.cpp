@@ -184,12 +184,16 @@ int runCommandLine(int argc, char** argv)
     if (!forceHeadless && displayAvailable()) {
         try {
             return runGui(gui);
+        } catch (const WindowUnavailable& e) {
+            std::fprintf(stderr, "iblab: %s; rendering the default view headless\n", e.what());
+            forceHeadless = true; // the message above already says why
         } catch (const std::exception& e) {
             std::fprintf(stderr, "iblab: %s\n", e.what());
             return 1;
         }
+    } else if (!forceHeadless) {
+        std::fprintf(stderr, "iblab: no display (DISPLAY and WAYLAND_DISPLAY are unset or unusable); rendering the default view headless\n");
     }
-    if (!forceHeadless) std::fprintf(stderr, "iblab: no display (DISPLAY and WAYLAND_DISPLAY are unset or unusable); rendering the default view headless\n");
     RenderJob fallback;
     fallback.settings = gui.settings;
     fallback.output = std::filesystem::absolute("iblab-default.png").string();

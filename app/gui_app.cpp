@@ -36,7 +36,7 @@ struct GlfwLibrary {
     GlfwLibrary()
     {
         glfwSetErrorCallback([](int code, const char* description) { std::fprintf(stderr, "iblab: GLFW error %d: %s\n", code, description); });
-        if (!glfwInit()) throw std::runtime_error("no window system: glfwInit failed (is DISPLAY set?)");
+        if (!glfwInit()) throw WindowUnavailable("no window system: glfwInit failed (is DISPLAY set?)");
     }
     ~GlfwLibrary() { glfwTerminate(); }
 };
@@ -51,7 +51,7 @@ struct Window {
         glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
         glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, debug ? GLFW_TRUE : GLFW_FALSE);
         handle = glfwCreateWindow(width, height, "iblab", nullptr, nullptr);
-        if (!handle) throw std::runtime_error("cannot create a window with an OpenGL 4.5 core context");
+        if (!handle) throw WindowUnavailable("cannot create a window with an OpenGL 4.5 core context");
         glfwMakeContextCurrent(handle);
         glfwSwapInterval(1);
     }

@@ -1,4 +1,5 @@
 #pragma once
+#include <stdexcept>
 #include <string>
 
 #include "settings.hpp"
@@ -10,6 +11,12 @@ struct GuiOptions {
     int width = 1280;
     int height = 720;
     int quitAfterFrames = 0; // > 0: close after that many frames (scripted start-up timing)
+};
+
+// No window could be opened (no window system, or no 4.5 core context for a window): the
+// caller may render headless instead.
+struct WindowUnavailable : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 // True when a window system is reachable (glfwInit succeeds).
