@@ -174,10 +174,6 @@ TEST_F(Material, WhiteFurnaceSplitSumAndSampled)
             s.sampling.multiscatter = true;
             s.camera.distance = 0.0f;
             const FrameReadback frame = render(s, 64, 64);
-            if (std::getenv("IBLAB_DUMP")) {
-                for (int y = 28; y < 36; y += 2) std::printf("%g ", luminance(frame, 32, y));
-                std::printf("\n");
-            }
             // The centre pixel sees the sphere face-on (n.v = 1).
             const float centre = luminance(frame, 32, 32);
             // 2%: the LUT is 32^2 half floats baked with 256 samples, and the sampled method
