@@ -6,9 +6,14 @@ cd "$(dirname "$0")/.."
 build_dir=${IBLAB_BUILD_DIR:-build-asan}
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBLAB_SANITIZE=ON
 cmake --build "$build_dir" -j"$(nproc)"
-# Mesa's llvmpipe and LLVM keep process-lifetime allocations (JIT caches, the driver's
-# screen) that LeakSanitizer reports at exit: suppressed by library, never our code.
-export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" --timeout 900
+export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
+# CPU suites: every sanitizer, leaks included.
+ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1" \
+  ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" --timeout 900 -L cpu
+# GL and CLI suites: Mesa's driver is unloaded by eglTerminate before LeakSanitizer runs, so
+# its process-lifetime allocations show up as leaks from "<unknown module>" that no
+# suppression can name. Leak checking is off there; address and UB checks stay on, and
+# tests/gl/soak_gltest.cpp checks iblab's own GL objects and memory over 200 switches.
+ASAN_OPTIONS="detect_leaks=0:abort_on_error=1:strict_string_checks=1" \
+  ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" --timeout 900 -L gl

@@ -58,7 +58,13 @@ TEST_F(GlTest, TwoHundredSwitchesLeakNothing)
         EXPECT_EQ(gl::liveObjectCountTotal(), baselineObjects);
         // 32 MiB over 180 switches: far below one leaked environment or bake per switch
         // (each holds ~0.3 MiB here: 180 of them would be 54 MiB), above allocator noise.
+        // Not under AddressSanitizer, whose quarantine keeps freed memory resident on purpose
+        // (its own leak checker covers that build).
+#ifndef __SANITIZE_ADDRESS__
         EXPECT_LT(residentBytes(), baselineRss + (32u << 20)) << "baseline " << baselineRss;
+#else
+        (void)baselineRss;
+#endif
     }
     // With the renderer gone, everything it owned is gone.
     EXPECT_EQ(gl::liveObjectCountTotal(), 0);
