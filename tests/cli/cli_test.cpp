@@ -1,6 +1,9 @@
 // The command line as users and scripts drive it: exit codes, one-line errors naming the
 // file, the headless fallback of the bare `iblab`, and what lands on disk.
 #include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -182,6 +185,56 @@ TEST_F(Cli, BadModelFailsWithOneLine)
     EXPECT_NE(r.exitCode, 0);
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("broken.gltf"), std::string::npos) << r.err;
+}
+
+void writeImage(const fs::path& path, int width, int height, OIIO::TypeDesc type, const void* pixels)
+{
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(width, height, 3, type);
+    ASSERT_TRUE(out->open(path.string(), spec));
+    ASSERT_TRUE(out->write_image(type, pixels));
+    out->close();
+}
+
+TEST_F(Cli, HugeHeaderIsRefusedQuicklyWithoutAllocating)
+{
+    // A Radiance header claiming 65536 x 32768 (2^31 texels, 24 GiB as float RGB) and no data.
+    std::ofstream(dir / "huge.hdr") << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32768 +X 65536\n";
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = run("render --env huge.hdr --width 8 --height 8 -o out.png");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("huge.hdr"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, NanAndNegativeEnvironmentsRenderFinite)
+{
+    std::vector<float> nans(32 * 16 * 3, std::numeric_limits<float>::quiet_NaN());
+    std::vector<float> negatives(32 * 16 * 3, -5.0f);
+    writeImage(dir / "nan.exr", 32, 16, OIIO::TypeDesc::FLOAT, nans.data());
+    writeImage(dir / "negative.exr", 32, 16, OIIO::TypeDesc::FLOAT, negatives.data());
+    for (const char* name : {"nan.exr", "negative.exr"}) {
+        const Result r = run(std::string("render --env ") + name + " --width 16 --height 16 --json -o out.exr");
+        ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
+        EXPECT_NE(nlohmann::json::parse(r.out)["environment"].get<std::string>().find("repaired"), std::string::npos) << r.out;
+        auto input = OIIO::ImageInput::open((dir / "out.exr").string());
+        ASSERT_TRUE(input);
+        std::vector<float> pixels(std::size_t(16 * 16 * input->spec().nchannels));
+        ASSERT_TRUE(input->read_image(0, 0, 0, input->spec().nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+        for (float v : pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << name;
+    }
+}
+
+TEST_F(Cli, LdrEnvironmentLoadsWithAWarning)
+{
+    std::vector<unsigned char> pixels(64 * 32 * 3, 128);
+    writeImage(dir / "photo.png", 64, 32, OIIO::TypeDesc::UINT8, pixels.data());
+    const Result r = run("render --env photo.png --width 16 --height 16 --json -o out.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string environment = nlohmann::json::parse(r.out)["environment"];
+    EXPECT_NE(environment.find("dynamic range"), std::string::npos) << environment;
 }
 
 TEST_F(Cli, HelpListsEveryRenderOption)
