@@ -1,0 +1,33 @@
+// libFuzzer target: any bytes, as an .exr, .hdr or .png environment file. The loader must
+// either return a finite, non-negative 2:1 image or throw iblab::Error; anything else (a
+// crash, a sanitizer report, another exception, a hang) is a bug.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "environment/environment.hpp"
+#include "environment/error.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+    if (size == 0) return 0;
+    // The first byte picks the extension (OpenImageIO also sniffs the content).
+    static const char* const kExtensions[] = {".exr", ".hdr", ".png"};
+    const std::string path = "/tmp/iblab-fuzz-env-" + std::to_string(::getpid()) + kExtensions[data[0] % 3];
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
+    try {
+        iblab::EnvironmentLoadOptions options;
+        options.maxWidth = 512; // keep each run fast; the cap's downsampling is exercised too
+        const iblab::Environment environment = iblab::loadEnvironment(path, options);
+        if (environment.image.width != 2 * environment.image.height) __builtin_trap();
+        for (float v : environment.image.texels)
+            if (!std::isfinite(v) || v < 0.0f) __builtin_trap();
+    } catch (const iblab::Error&) {
+    }
+    std::remove(path.c_str());
+    return 0;
+}
