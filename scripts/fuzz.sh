@@ -7,6 +7,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
+if ! command -v clang++ >/dev/null || ! dpkg-query -W libclang-rt-14-dev >/dev/null 2>&1; then
+  echo "fuzz.sh: needs clang and libFuzzer: apt-get install clang-14 libclang-rt-14-dev" >&2
+  exit 2
+fi
 build_dir=${IBLAB_BUILD_DIR:-build-fuzz}
 cmake -S . -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBLAB_FUZZ=ON -DIBLAB_BUILD_TESTS=OFF
 cmake --build "$build_dir" -j"$(nproc)" --target environment_fuzz gltf_fuzz
