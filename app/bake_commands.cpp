@@ -19,13 +19,12 @@
 #include "bake/bake_files.hpp"
 #include "bake/bake_job.hpp"
 #include "bake/bake_passes.hpp"
+#include "command_support.hpp"
 #include "commands.hpp"
 #include "environment/environment.hpp"
 #include "environment/error.hpp"
 #include "gl/context_error.hpp"
 #include "gl/context_info.hpp"
-#include "gl/debug_output.hpp"
-#include "gl/headless_context.hpp"
 #include "gl/shader_library.hpp"
 
 namespace iblab::app {
@@ -33,32 +32,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using nlohmann::ordered_json;
-
-double millisecondsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-int fail(const char* command, const std::string& reason)
-{
-    std::fprintf(stderr, "iblab %s: %s\n", command, oneLine(reason).c_str());
-    return 1;
-}
-
-// A headless context whose GL errors are collected: a bake with a GL error is a failed bake.
-struct GlSession {
-    gl::HeadlessContext context{gl::HeadlessContextOptions{.debug = true}};
-    gl::DebugOutput debug;
-    GlSession()
-    {
-        if (gl::currentContextHasDebugOutput())
-            debug.install();
-    }
-    std::string firstError() const
-    {
-        for (const auto& m : debug.messages())
-            if (m.isError)
-                return m.text;
-        return {};
-    }
-};
 
 ordered_json shArray(const SH9Color& sh)
 {
@@ -224,7 +197,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
         const double loadMs = millisecondsSince(loadStart);
 
         const auto contextStart = Clock::now();
-        GlSession gl;
+        HeadlessGl gl(/*debugContext=*/true);
         const double contextMs = millisecondsSince(contextStart);
         gl::ShaderLibrary shaders(shaderDirectory());
         std::optional<bake::BakeCache> cache;
@@ -263,7 +236,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
                                       settings.lut.samples, term, true, false);
         }
         glFinish();
-        if (gl.debug.errorCount() > 0) return fail("bake", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.firstError());
+        if (gl.debug.errorCount() > 0) return failCommand("bake", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.debug.firstError());
 
         if (o.json) {
             ordered_json j;
@@ -305,7 +278,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
         }
         return 0;
     } catch (const std::exception& e) {
-        return fail("bake", e.what());
+        return failCommand("bake", e.what());
     }
 }
 
@@ -332,7 +305,7 @@ int runSh(const ShCommandOptions& o)
             radiance = projectEquirect(environment.image);
             ms = millisecondsSince(start);
         } else {
-            GlSession gl;
+            HeadlessGl gl(/*debugContext=*/true);
             gl::ShaderLibrary shaders(shaderDirectory());
             bake::BakePasses passes(shaders);
             passes.compileAll();
@@ -341,7 +314,7 @@ int runSh(const ShCommandOptions& o)
             const gl::Texture equirect = passes.uploadEquirect(environment.image);
             radiance = passes.projectSh9(equirect.id(), environment.image.width, environment.image.height);
             ms = millisecondsSince(start);
-            if (gl.debug.errorCount() > 0) return fail("sh", "GL error: " + gl.firstError());
+            if (gl.debug.errorCount() > 0) return failCommand("sh", "GL error: " + gl.debug.firstError());
         }
         const SH9Color irradiance = convolveWithCosineLobe(radiance);
         const double width = *window == ShWindow::None ? 0.0
@@ -372,7 +345,7 @@ int runSh(const ShCommandOptions& o)
         }
         return 0;
     } catch (const std::exception& e) {
-        return fail("sh", e.what());
+        return failCommand("sh", e.what());
     }
 }
 
@@ -390,7 +363,7 @@ int runLut(const LutCommandOptions& o)
     try {
         const auto term = bake::parseGeometryTerm(o.geometry);
         if (!term) throw Error("--geometry", "expected schlick or correlated, got \"" + o.geometry + "\"");
-        GlSession gl;
+        HeadlessGl gl(/*debugContext=*/true);
         gl::ShaderLibrary shaders(shaderDirectory());
         bake::BakePasses passes(shaders);
         passes.compileAll();
@@ -400,7 +373,7 @@ int runLut(const LutCommandOptions& o)
         glFinish();
         const double ms = millisecondsSince(start);
         bake::writeLutExr(o.output, bake::read2D(lut), o.samples, *term, o.multiscatter, false);
-        if (gl.debug.errorCount() > 0) return fail("lut", "GL error: " + gl.firstError());
+        if (gl.debug.errorCount() > 0) return failCommand("lut", "GL error: " + gl.debug.firstError());
         if (o.json) {
             ordered_json j;
             j["output"] = o.output;
@@ -416,7 +389,7 @@ int runLut(const LutCommandOptions& o)
         }
         return 0;
     } catch (const std::exception& e) {
-        return fail("lut", e.what());
+        return failCommand("lut", e.what());
     }
 }
 

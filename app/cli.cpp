@@ -122,6 +122,8 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
     addNamedOption(command, "--diffuse", "Diffuse source: sh9|irradiance-cube", settings.sampling.diffuse, parseDiffuseSource, diffuseSourceName);
     command.add_flag("--cosine-diffuse", settings.sampling.cosineSampledDiffuse, "Sampled method: diffuse from N cosine samples instead of SH9");
     command.add_flag("--multiscatter", settings.sampling.multiscatter, "Multiple-scattering energy compensation from the LUT");
+    command.add_flag("--normalize-accepted", settings.sampling.normalizeByAccepted,
+                     "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N");
     command.add_option("--metallic", settings.material.metallic, "Metallic, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
     command.add_option("--roughness", settings.material.roughness, "Perceptual roughness, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
     command.add_option("--ao", settings.material.ambientOcclusion, "Ambient occlusion, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));

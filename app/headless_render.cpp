@@ -11,9 +11,7 @@
 #include "asset_paths.hpp"
 #include "camera.hpp"
 #include "commands.hpp"
-#include "gl/context_error.hpp"
-#include "gl/debug_output.hpp"
-#include "gl/headless_context.hpp"
+#include "command_support.hpp"
 #include "gl/shader_library.hpp"
 #include "lab_session.hpp"
 #include "view_overlays.hpp"
@@ -23,13 +21,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double millisecondsSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-int fail(const std::string& reason)
-{
-    std::fprintf(stderr, "iblab render: %s\n", reason.c_str());
-    return 1;
-}
+int fail(const std::string& reason) { return failCommand("render", reason); }
 
 } // namespace
 
@@ -41,12 +33,7 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
     const bool debugContext = true;
 #endif
     try {
-        gl::HeadlessContext context({.debug = debugContext});
-        gl::DebugOutput debug;
-        if (debugContext && gl::currentContextHasDebugOutput()) {
-            debug.onMessage = [](const gl::DebugMessage& m) { std::fprintf(stderr, "iblab: %s\n", m.text.c_str()); };
-            debug.install();
-        }
+        HeadlessGl gl(debugContext, /*echoMessages=*/true);
         const double contextMs = millisecondsSince(processStart);
 
         Renderer renderer(shaderDirectory());
@@ -91,14 +78,14 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         }
         const ui::StatusLine written = session.capture(job.output, settings);
         if (written.isError) return fail(written.text);
-        if (debug.errorCount() > 0) return fail(std::to_string(debug.errorCount()) + " GL error(s) while rendering; see above");
+        if (gl.debug.errorCount() > 0) return fail(std::to_string(gl.debug.errorCount()) + " GL error(s) while rendering; see above");
 
         if (job.json) {
             nlohmann::ordered_json report;
             report["output"] = job.output;
             report["width"] = job.width;
             report["height"] = job.height;
-            report["renderer"] = context.description();
+            report["renderer"] = gl.context.description();
             report["environment"] = loaded.text;
             if (!sceneStatus.empty()) report["scene"] = sceneStatus;
             if (settings.view.mode == ViewMode::Furnace)
@@ -120,9 +107,8 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
             std::printf("%s\n", job.output.c_str());
         }
         return 0;
-    } catch (const gl::ContextError& e) {
-        return fail(e.what());
-    } catch (const gl::ShaderError& e) {
+    } catch (const std::exception& e) {
+        // No context, a shader that does not compile, a bake that cannot start: one line.
         return fail(e.what());
     }
 }

@@ -96,14 +96,8 @@ struct Renderer::Impl {
 
     explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory))
     {
+        shaders.setProgramInitializer(assignSamplerUnits);
         glNamedBufferStorage(hammersley.id(), kMaxSamples * sizeof(float) * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
-    }
-
-    const gl::ShaderProgram& program(const std::vector<std::string>& stages, const gl::ShaderDefines& defines = {})
-    {
-        const gl::ShaderProgram& p = shaders.program(stages, defines);
-        assignSamplerUnits(p);
-        return p;
     }
 
     void drawFullscreenTriangle() const
@@ -175,7 +169,7 @@ struct Renderer::Impl {
     void drawDebugView(const FrameSettings& settings, int width, int height)
     {
         const std::vector<DebugTile> tiles = debugTiles(settings.view.mode, active->prefiltered.levels, width, height);
-        const gl::ShaderProgram& p = program({"fullscreen.vert", "debug_views.frag"}, {{"VIEW", settings.view.mode == ViewMode::Lut ? "2" : "1"}});
+        const gl::ShaderProgram& p = shaders.program({"fullscreen.vert", "debug_views.frag"}, {{"VIEW", settings.view.mode == ViewMode::Lut ? "2" : "1"}});
         glUseProgram(p.id());
         bindIbl(p, settings);
         glBindTextureUnit(kUnitLutSchlick, active->lut(GeometryTerm::SchlickGGX).id());
@@ -191,7 +185,7 @@ struct Renderer::Impl {
     {
         const glm::mat4 viewRotation = glm::mat4(glm::mat3(cameraView(settings.camera)));
         const glm::mat4 inverseViewProjection = glm::inverse(cameraProjection(settings.camera, aspect) * viewRotation);
-        const gl::ShaderProgram& sky = program({"fullscreen.vert", "sky.frag"}, {{"AT_FAR_PLANE", "1"}});
+        const gl::ShaderProgram& sky = shaders.program({"fullscreen.vert", "sky.frag"}, {{"AT_FAR_PLANE", "1"}});
         glUseProgram(sky.id());
         bindIbl(sky, settings);
         sky.set("uInverseViewProjection", inverseViewProjection);
@@ -266,13 +260,13 @@ struct Renderer::Impl {
             for (const SceneDraw& draw : scene.draws) {
                 if ((draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
                 if (!p) {
-                    p = &program({"mesh.vert", "pbr.frag"}, {{"METHOD", sampled ? "1" : "0"}});
+                    p = &shaders.program({"mesh.vert", "pbr.frag"}, {{"METHOD", sampled ? "1" : "0"}});
                     glUseProgram(p->id());
                     bindIbl(*p, settings);
                     p->set("uViewProjection", viewProjection);
                     p->set("uCameraPosition", cameraPosition(settings.camera));
                     p->set("uSampleRotation", sampleRotation);
-                    p->set("uNormalizeByAccepted", 0);
+                    p->set("uNormalizeByAccepted", int(settings.sampling.normalizeByAccepted));
                     p->set("uCosineSampledDiffuse", int(settings.sampling.cosineSampledDiffuse));
                 }
                 p->set("uModel", draw.model);
@@ -398,7 +392,7 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
     if (options.accumulate) {
         r.accumulation.ensure(GL_RGBA32F, width, height);
         glBindFramebuffer(GL_FRAMEBUFFER, r.accumulation.framebuffer());
-        const gl::ShaderProgram& accumulate = r.program({"fullscreen.vert", "accumulate.frag"});
+        const gl::ShaderProgram& accumulate = r.shaders.program({"fullscreen.vert", "accumulate.frag"});
         glUseProgram(accumulate.id());
         glBindTextureUnit(kUnitHdrFrame, r.hdrFrame.texture());
         glEnable(GL_BLEND);
@@ -411,7 +405,7 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
     r.accumulatedFrames = options.accumulate ? r.accumulatedFrames + 1 : 1;
 
     glBindFramebuffer(GL_FRAMEBUFFER, r.displayFrame.framebuffer());
-    const gl::ShaderProgram& tonemap = r.program({"fullscreen.vert", "tonemap.frag"});
+    const gl::ShaderProgram& tonemap = r.shaders.program({"fullscreen.vert", "tonemap.frag"});
     glUseProgram(tonemap.id());
     // The LUT view shows data in [0, 1]: no exposure and no tone curve, just the display encoding.
     const bool lutView = debugView && settings.view.mode == ViewMode::Lut;

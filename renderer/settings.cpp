@@ -136,7 +136,8 @@ std::string toJsonText(const FrameSettings& s, int indent)
                      {"geometry", std::string(geometryTermShortName(s.sampling.geometry))},
                      {"diffuse", std::string(diffuseSourceName(s.sampling.diffuse))},
                      {"cosine_sampled_diffuse", s.sampling.cosineSampledDiffuse},
-                     {"multiscatter", s.sampling.multiscatter}};
+                     {"multiscatter", s.sampling.multiscatter},
+                     {"normalize_by_accepted", s.sampling.normalizeByAccepted}};
     j["scene"] = {{"kind", std::string(sceneKindName(s.scene.kind))}, {"model", s.scene.modelPath}, {"counting_spheres", s.scene.countingSpheres}};
     j["view"] = {{"mode", std::string(viewModeName(s.view.mode))},
                  {"background", std::string(backgroundModeName(s.view.background))},
@@ -196,6 +197,7 @@ FrameSettings frameSettingsFromJsonText(const std::string& text)
     sampling.readName("diffuse", kDiffuseSources, s.sampling.diffuse);
     sampling.read("cosine_sampled_diffuse", s.sampling.cosineSampledDiffuse);
     sampling.read("multiscatter", s.sampling.multiscatter);
+    sampling.read("normalize_by_accepted", s.sampling.normalizeByAccepted);
 
     const Reader scene = root.child("scene");
     scene.readName("kind", kSceneKinds, s.scene.kind);

@@ -57,6 +57,9 @@ struct SamplingSettings {
     DiffuseSource diffuse = DiffuseSource::Sh9;
     bool cosineSampledDiffuse = false; // sampled method: diffuse from N cosine samples instead of SH9
     bool multiscatter = false;         // Fdez-Aguera energy compensation from the LUT's third channel
+    // Sampled method: divide by the samples above the horizon, as LearnOpenGL's prefilter
+    // does, instead of by N (unbiased); for comparing the two.
+    bool normalizeByAccepted = false;
 };
 
 // Counting: sphere i uses N = i. Sweep: every sphere uses N = SamplingSettings::samples and

@@ -156,6 +156,8 @@ void drawSamplingPanel(SamplingSettings& settings)
         ImGui::Checkbox("PDF mip filtering", &settings.pdfMipFiltering);
         if (settings.pdfMipFiltering) ImGui::SliderFloat("Mip bias", &settings.mipBias, -1.0f, 3.0f, "%+.2f");
         ImGui::Checkbox("Cosine-sampled diffuse", &settings.cosineSampledDiffuse);
+        ImGui::Checkbox("Normalise by accepted samples", &settings.normalizeByAccepted);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("LearnOpenGL's normalisation; off divides by N (unbiased)");
     }
     bool automatic = settings.forcedMip < 0;
     if (ImGui::Checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;

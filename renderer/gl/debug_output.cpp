@@ -77,6 +77,13 @@ void DebugOutput::record(DebugMessage message)
     if (messages_.size() < 1000) messages_.push_back(std::move(message));
 }
 
+std::string DebugOutput::firstError() const
+{
+    for (const DebugMessage& m : messages_)
+        if (m.isError) return m.text;
+    return {};
+}
+
 void DebugOutput::clear()
 {
     errorCount_ = 0;

@@ -19,6 +19,8 @@ public:
     void install();
     int errorCount() const { return errorCount_; }
     const std::vector<DebugMessage>& messages() const { return messages_; }
+    // The text of the first message of type error, or "" when there was none.
+    std::string firstError() const;
     void clear();
     // Called for every message as well (the app prints them; tests collect them).
     std::function<void(const DebugMessage&)> onMessage;

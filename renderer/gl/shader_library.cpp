@@ -220,7 +220,9 @@ std::unique_ptr<ShaderProgram> ShaderLibrary::build(const std::vector<std::strin
         throw ShaderError("shader link failed: " + names + "\n" + std::string(log.c_str()));
     }
     for (const Shader& shader : shaders) glDetachShader(program.id(), shader.id());
-    return std::make_unique<ShaderProgram>(std::move(program), std::move(allFiles));
+    auto linked = std::make_unique<ShaderProgram>(std::move(program), std::move(allFiles));
+    if (initializer_) initializer_(*linked);
+    return linked;
 }
 
 std::filesystem::file_time_type ShaderLibrary::newestInput(const ShaderProgram& program) const

@@ -5,6 +5,7 @@
 // A failed compile names the file and line, with the driver's log; on hot reload the last
 // good program stays in use and the error is kept for the UI to show.
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -68,6 +69,10 @@ public:
     // use, then returns the cached program. Throws ShaderError with the mapped driver log.
     const ShaderProgram& program(const std::vector<std::string>& stages, const ShaderDefines& defines = {});
 
+    // Runs once on every program right after it links (also after a hot reload), for
+    // state that belongs to the program rather than to a draw, like sampler units.
+    void setProgramInitializer(std::function<void(const ShaderProgram&)> initializer) { initializer_ = std::move(initializer); }
+
     // Recompiles programs whose files changed on disk. Returns the errors of programs
     // that failed (those keep their last good version).
     std::vector<std::string> reloadChanged();
@@ -84,6 +89,7 @@ private:
     std::filesystem::file_time_type newestInput(const ShaderProgram& program) const;
 
     ShaderSearchPath roots_;
+    std::function<void(const ShaderProgram&)> initializer_;
     std::map<std::string, Entry> cache_;
 };
 

@@ -36,11 +36,11 @@ protected:
 
     // Runs iblab in the test's directory with DISPLAY unset, so that the run is headless
     // whatever the machine has, and with a bake cache of its own.
-    Result run(const std::string& arguments) const
+    Result run(const std::string& arguments, const std::string& extraEnvironment = "") const
     {
         const fs::path errFile = dir / "stderr.txt";
-        const std::string command = "cd '" + dir.string() + "' && env -u DISPLAY -u WAYLAND_DISPLAY IBLAB_CACHE_DIR='" + (dir / "cache").string() +
-                                    "' '" IBLAB_EXECUTABLE "' " + arguments +
+        const std::string command = "cd '" + dir.string() + "' && env -u DISPLAY -u WAYLAND_DISPLAY IBLAB_CACHE_DIR='" + (dir / "cache").string() + "' " +
+                                    extraEnvironment + " '" IBLAB_EXECUTABLE "' " + arguments +
                                     " 2> '" + errFile.string() + "'";
         Result result;
         FILE* pipe = popen(command.c_str(), "r");
@@ -235,6 +235,20 @@ TEST_F(Cli, LdrEnvironmentLoadsWithAWarning)
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string environment = nlohmann::json::parse(r.out)["environment"];
     EXPECT_NE(environment.find("dynamic range"), std::string::npos) << environment;
+}
+
+// A shader that does not compile (here: edited by a user, through IBLAB_ASSET_DIR) fails
+// the command with one line naming the shader file and line, never a multi-line log.
+TEST_F(Cli, BrokenShaderFailsWithOneLineNamingTheFile)
+{
+    const fs::path assets = dir / "assets";
+    fs::create_directories(assets);
+    fs::copy(IBLAB_SOURCE_DIR "/assets/shaders", assets / "shaders", fs::copy_options::recursive);
+    std::ofstream(assets / "shaders" / "tonemap.frag", std::ios::app) << "\nthis is not glsl;\n";
+    const Result r = run("render --env builtin:white --scene none --width 8 --height 8 -o out.png", "IBLAB_ASSET_DIR='" + assets.string() + "'");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("tonemap.frag:"), std::string::npos) << r.err;
 }
 
 TEST_F(Cli, HelpListsEveryRenderOption)

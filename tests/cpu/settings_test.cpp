@@ -23,6 +23,7 @@ TEST(Settings, EveryFieldSurvivesJson)
     s.sampling.diffuse = DiffuseSource::IrradianceCube;
     s.sampling.cosineSampledDiffuse = true;
     s.sampling.multiscatter = true;
+    s.sampling.normalizeByAccepted = true;
     s.scene = {SceneKind::Model, "a/b.glb", 5};
     s.view = {ViewMode::Lut, BackgroundMode::PrefilterMip, 3, glm::vec3(0.5f)};
 

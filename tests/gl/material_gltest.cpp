@@ -184,6 +184,31 @@ TEST_F(Material, WhiteFurnaceSplitSumAndSampled)
     }
 }
 
+// Dividing by the samples above the horizon instead of by N can only raise the estimate,
+// and at roughness 1, where many half-vectors reflect below the horizon near the
+// silhouette, it must raise it visibly.
+TEST_F(Material, NormalizingByAcceptedSamplesBrightensGrazingAngles)
+{
+    bake("builtin:white?width=64");
+    FrameSettings s;
+    s.scene.kind = SceneKind::Sphere;
+    s.material = {true, glm::vec3(1.0f), 1.0f, 1.0f, 1.0f, 0.5f};
+    s.sampling.method = ShadingMethod::Sampled;
+    s.sampling.samples = 64;
+    s.camera.distance = 0.0f;
+    const FrameReadback unbiased = render(s, 48, 48);
+    s.sampling.normalizeByAccepted = true;
+    const FrameReadback accepted = render(s, 48, 48);
+    double gain = 0.0;
+    for (std::size_t i = 0; i < unbiased.rgba.size(); i += 4) {
+        ASSERT_GE(accepted.rgba[i] + 1e-3f, unbiased.rgba[i]) << "pixel " << i / 4;
+        gain += double(accepted.rgba[i]) - double(unbiased.rgba[i]);
+    }
+    // More than 1% of the frame's pixels' worth of radiance: a switch that changed nothing
+    // (or only rounding) would fail here.
+    EXPECT_GT(gain, 0.01 * double(unbiased.rgba.size() / 4));
+}
+
 double meanAbsoluteDifference(const FrameReadback& a, const FrameReadback& b)
 {
     double sum = 0.0;

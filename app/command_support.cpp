@@ -1,0 +1,27 @@
+#include "command_support.hpp"
+
+#include <cstdio>
+
+#include "environment/error.hpp"
+
+namespace iblab::app {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start)
+{
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+int failCommand(const char* command, const std::string& reason)
+{
+    std::fprintf(stderr, "iblab %s: %s\n", command, oneLine(reason).c_str());
+    return 1;
+}
+
+HeadlessGl::HeadlessGl(bool debugContext, bool echoMessages) : context(gl::HeadlessContextOptions{.debug = debugContext})
+{
+    if (!debugContext || !gl::currentContextHasDebugOutput()) return;
+    if (echoMessages) debug.onMessage = [](const gl::DebugMessage& m) { std::fprintf(stderr, "iblab: %s\n", m.text.c_str()); };
+    debug.install();
+}
+
+} // namespace iblab::app

@@ -1,0 +1,26 @@
+#pragma once
+// What every headless sub-command shares: its GL context with KHR_debug, its clock, and
+// its one-line failure.
+#include <chrono>
+#include <string>
+
+#include "gl/debug_output.hpp"
+#include "gl/headless_context.hpp"
+
+namespace iblab::app {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start);
+
+// Prints "iblab COMMAND: reason" on stderr as ONE line (driver logs and nested errors are
+// folded) and returns the exit status 1.
+int failCommand(const char* command, const std::string& reason);
+
+// A headless context whose GL errors are collected (and echoed on stderr when asked), so
+// that a command can fail on them.
+struct HeadlessGl {
+    gl::HeadlessContext context;
+    gl::DebugOutput debug;
+    explicit HeadlessGl(bool debugContext, bool echoMessages = false);
+};
+
+} // namespace iblab::app
