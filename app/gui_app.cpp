@@ -266,10 +266,8 @@ int runGui(const GuiOptions& options)
         // A finished image needs no more frames: split-sum is deterministic, and the sampled
         // method stops refining after kMaxAccumulatedFrames.
         const std::string renderKey = toJsonText(settings, -1) + std::to_string(fbWidth) + "x" + std::to_string(fbHeight);
-        const bool sampledScene = settings.sampling.method == ShadingMethod::Sampled || settings.scene.kind == SceneKind::Counting ||
-                                  settings.scene.kind == SceneKind::Sweep;
         const bool converged = renderKey == lastRenderedKey && !interacting && !session.busy() && !requests.captureTo &&
-                               renderer.accumulatedFrames() >= (sampledScene ? kMaxAccumulatedFrames : 1);
+                               renderer.accumulatedFrames() >= (renderer.lastFrameWasSampled() ? kMaxAccumulatedFrames : 1);
         idle = converged && !ImGui::IsAnyItemHovered() && !io.WantTextInput;
         lastRenderedKey = renderKey;
         const auto renderStart = Clock::now();

@@ -92,6 +92,7 @@ struct Renderer::Impl {
     gl::RenderTarget accumulation; // RGBA32F running mean of hdrFrame over accumulated frames
     std::string accumulationKey;   // settings and size the running mean belongs to
     int accumulatedFrames = 0;
+    bool sampledDraws = false; // the last frame drew with the sampled method
     const gl::RenderTarget* resolved = &hdrFrame; // what the tone mapper read last
 
     explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory))
@@ -260,6 +261,7 @@ struct Renderer::Impl {
             for (const SceneDraw& draw : scene.draws) {
                 if ((draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
                 if (!p) {
+                    sampledDraws = sampledDraws || sampled;
                     p = &shaders.program({"mesh.vert", "pbr.frag"}, {{"METHOD", sampled ? "1" : "0"}});
                     glUseProgram(p->id());
                     bindIbl(*p, settings);
@@ -379,6 +381,7 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
     glViewport(0, 0, width, height);
     glClear(GL_DEPTH_BUFFER_BIT);
     r.active = settings.view.mode == ViewMode::Furnace ? r.furnaceBake.get() : r.bake.get();
+    r.sampledDraws = false;
     const bool debugView = r.active && (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut);
     if (debugView) {
         r.drawDebugView(settings, width, height);
@@ -420,6 +423,7 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
 }
 
 int Renderer::accumulatedFrames() const { return impl_->accumulatedFrames; }
+bool Renderer::lastFrameWasSampled() const { return impl_->sampledDraws; }
 
 unsigned int Renderer::displayTexture() const { return impl_->displayFrame.texture(); }
 

@@ -93,6 +93,9 @@ public:
     void renderFrame(const FrameSettings& settings, int width, int height) { renderFrame(settings, width, height, Options{}); }
     // Frames averaged into the current image (1 without accumulation).
     int accumulatedFrames() const;
+    // Whether the last frame drew anything with the sampled method (whose frames differ
+    // under accumulation); a frame without it is final after one render.
+    bool lastFrameWasSampled() const;
 
     SceneInfo sceneInfo(const FrameSettings& settings);
     int prefilterLevels() const; // 0 before the first bake
