@@ -1,6 +1,8 @@
 #include "lab_session.hpp"
 
+#include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "asset_paths.hpp"
 #include "environment/builtin_environments.hpp"
@@ -29,7 +31,12 @@ LabSession::~LabSession()
 
 void LabSession::requestEnvironment(const std::string& spec)
 {
-    if (pendingLoad_.valid()) pendingLoad_.wait(); // one load at a time; the newest request wins below
+    // One load at a time, and the UI thread never waits for one: a request made while a
+    // load runs is queued, and the newest queued request replaces older ones.
+    if (pendingLoad_.valid()) {
+        queuedSpec_ = spec;
+        return;
+    }
     pendingSpec_ = spec;
     pendingLoad_ = std::async(std::launch::async, [spec] { return iblab::loadEnvironment(spec); });
 }
@@ -50,7 +57,9 @@ ui::StatusLine LabSession::finishBake()
 {
     auto result = std::make_shared<bake::BakeResult>(job_->takeResult());
     job_.reset();
-    std::string text = "baked in " + std::to_string(int(result->totalMilliseconds + 0.5)) + " ms" + (result->fromCache ? " (from cache)" : "");
+    char gpuMemory[48];
+    std::snprintf(gpuMemory, sizeof gpuMemory, ", %.1f MiB of GPU memory", double(result->gpuBytes()) / (1024.0 * 1024.0));
+    std::string text = "baked in " + std::to_string(int(result->totalMilliseconds + 0.5)) + " ms" + (result->fromCache ? " (from cache)" : "") + gpuMemory;
     for (const auto& note : result->notes) text += "; " + note;
     bake_ = result;
     renderer_.setBake(bake_);
@@ -61,6 +70,12 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
 {
     Finished finished;
     if (pendingLoad_.valid() && pendingLoad_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        if (queuedSpec_) {
+            // The user has asked for another environment since: this result is stale.
+            pendingLoad_ = {};
+            requestEnvironment(*std::exchange(queuedSpec_, std::nullopt));
+            return finished;
+        }
         try {
             finished.environment = finishLoad(pendingLoad_.get(), settings);
         } catch (const Error& e) {
@@ -79,11 +94,11 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
     return finished;
 }
 
-bool LabSession::busy() const { return pendingLoad_.valid() || job_ != nullptr; }
+bool LabSession::busy() const { return pendingLoad_.valid() || queuedSpec_ || job_ != nullptr; }
 
 std::string LabSession::activity() const
 {
-    if (pendingLoad_.valid()) return "loading " + shortName(pendingSpec_);
+    if (pendingLoad_.valid()) return "loading " + shortName(queuedSpec_ ? *queuedSpec_ : pendingSpec_);
     if (job_) return "baking: " + job_->currentPhase();
     return {};
 }

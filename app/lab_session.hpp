@@ -25,8 +25,9 @@ public:
     explicit LabSession(Renderer& renderer, bake::BakeSettings bakeSettings = bake::defaultPreset());
     ~LabSession();
 
-    // Starts loading spec (a path or builtin:NAME) in the background. Until it succeeds the
-    // current environment and bake stay; a failure leaves them and reports one line.
+    // Starts loading spec (a path or builtin:NAME) in the background, or queues it behind the
+    // load that is running. Until it succeeds the current environment and bake stay; a
+    // failure leaves them and reports one line.
     void requestEnvironment(const std::string& spec);
     // Blocking form for scripts: loads, uploads and bakes to completion. On success
     // settings.environment.source is updated.
@@ -75,6 +76,7 @@ private:
     std::unique_ptr<bake::BakeJob> job_;
     std::vector<PbrMaterial> modelMaterials_; // of the loaded model, for export
     std::string pendingSpec_;
+    std::optional<std::string> queuedSpec_; // asked for while pendingLoad_ runs
     std::future<Environment> pendingLoad_;
 };
 

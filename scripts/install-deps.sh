@@ -5,7 +5,9 @@ set -euo pipefail
 packages=(
   cmake g++ make pkg-config git
   libimgui-dev libstb-dev libglfw3-dev libglm-dev libepoxy-dev
-  libopenimageio-dev libimath-dev libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libx11-dev
+  libopenimageio-dev libimath-dev libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libx11-dev zlib1g-dev
+  # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14.
+  clang-14 libclang-rt-14-dev
   # OpenGL through Mesa: EGL (headless) and GLX (windows), llvmpipe as the software driver.
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
 )

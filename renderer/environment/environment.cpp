@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <numeric>
+#include <mutex>
 #include <optional>
 #include <sstream>
 
 #include <OpenImageIO/imageio.h>
+#include <unistd.h>
 
 #include "ibl/equirect.hpp"
 
@@ -175,8 +179,100 @@ std::string oiioError(const OIIO::ImageInput* in, const char* fallback)
     return e.empty() ? std::string(fallback) : e;
 }
 
+// OpenEXR 3.1 allocates each header attribute at the size the file claims before reading it,
+// so a 41-byte file claiming a 1.8 GB string attribute makes it allocate 1.8 GB (found by
+// scripts/fuzz.sh; tests/fuzz/corpus/environment/exr-attribute-claims-gigabytes). Walk the
+// attribute list first (name, type, int32 size, payload; an empty name ends a header) and
+// refuse any size that the rest of the file cannot hold. Multi-part files list several
+// headers, each ended by an empty name, and the list by one more.
+void checkExrAttributeSizes(const std::string& path, std::uintmax_t fileSize)
+{
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    std::uint32_t version = 0;
+    if (!in.read(magic, 4) || std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0)
+        return; // not an EXR: nothing to check
+    if (!in.read(reinterpret_cast<char*>(&version), 4))
+        throw Error(path, "truncated EXR header");
+    const bool multiPart = (version & 0x1000u) != 0;
+    auto readName = [&](std::string& name) {
+        name.clear();
+        for (char c; in.get(c);) {
+            if (c == '\0') return true;
+            if (name.size() >= 255) throw Error(path, "corrupt EXR header: a name longer than 255 bytes");
+            name += c;
+        }
+        throw Error(path, "truncated EXR header");
+    };
+    for (std::string name, type;;) {
+        readName(name);
+        if (name.empty()) {
+            // The end of a header. A single-part file has one; a multi-part list ends with an
+            // empty header, i.e. a second empty name in a row.
+            if (!multiPart || in.peek() == '\0') return;
+            continue;
+        }
+        readName(type);
+        std::int32_t size = 0;
+        if (!in.read(reinterpret_cast<char*>(&size), 4))
+            throw Error(path, "truncated EXR header");
+        const std::uintmax_t position = std::uintmax_t(in.tellg());
+        if (size < 0 || std::uintmax_t(size) > fileSize - std::min(fileSize, position))
+            throw Error(path, "corrupt EXR header: attribute '" + name + "' claims " + std::to_string(size) + " bytes, more than the " +
+                                  std::to_string(fileSize - std::min(fileSize, position)) + " left in the file");
+        in.seekg(size, std::ios::cur);
+    }
+}
+
+// libpng prints "libpng error: ..." to stderr itself although OpenImageIO installs an error
+// handler: the handler returns, so libpng falls back to its default one, which prints before
+// it unwinds. OpenImageIO reports the same text through geterror(), which our one-line error
+// already carries, so the print only breaks the one-line contract. While a file is read,
+// stderr goes to a temporary file; afterwards every line except libpng's is written back, so
+// no one else's output is lost (only delayed). fd 2 is process-wide: one reader at a time.
+class LibpngStderrFilter {
+public:
+    LibpngStderrFilter() : lock_(processMutex())
+    {
+        std::fflush(stderr);
+        capture_ = std::tmpfile();
+        if (!capture_) return;
+        savedStderr_ = ::dup(STDERR_FILENO);
+        if (savedStderr_ < 0 || ::dup2(::fileno(capture_), STDERR_FILENO) < 0) {
+            if (savedStderr_ >= 0) ::close(savedStderr_);
+            std::fclose(capture_);
+            capture_ = nullptr;
+        }
+    }
+    ~LibpngStderrFilter()
+    {
+        if (!capture_) return;
+        std::fflush(stderr);
+        ::dup2(savedStderr_, STDERR_FILENO);
+        ::close(savedStderr_);
+        std::rewind(capture_);
+        char line[1024];
+        while (std::fgets(line, sizeof line, capture_))
+            if (std::strncmp(line, "libpng ", 7) != 0) std::fputs(line, stderr);
+        std::fclose(capture_);
+    }
+    LibpngStderrFilter(const LibpngStderrFilter&) = delete;
+    LibpngStderrFilter& operator=(const LibpngStderrFilter&) = delete;
+
+private:
+    static std::mutex& processMutex()
+    {
+        static std::mutex mutex;
+        return mutex;
+    }
+    std::lock_guard<std::mutex> lock_;
+    std::FILE* capture_ = nullptr;
+    int savedStderr_ = -1;
+};
+
 Environment loadFile(const std::string& path, const EnvironmentLoadOptions& options)
 {
+    const LibpngStderrFilter quietLibpng;
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
     if (!fs::exists(status))
@@ -186,6 +282,7 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0 && !ec)
         throw Error(path, "empty file (0 bytes)");
 
+    checkExrAttributeSizes(path, fs::file_size(path, ec));
     auto in = OIIO::ImageInput::open(path);
     if (!in)
         throw Error(path, "cannot read as an image: " + oiioError(nullptr, "unknown format"));
@@ -205,6 +302,11 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
         throw Error(path, std::to_string(spec.width) + "x" + std::to_string(spec.height) + " is " +
                               std::to_string(texels) + " texels, more than the limit of " +
                               std::to_string(kMaxEnvironmentTexels) + " (2^28)");
+    // Below this an "environment" is a handful of colours, and 1x1 passes the aspect check
+    // by rounding: refuse it rather than bake a cube of 1-texel faces.
+    if (spec.width < kMinEnvironmentWidth || spec.height < kMinEnvironmentWidth / 2)
+        throw Error(path, "too small for an environment: " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                              " (at least " + std::to_string(kMinEnvironmentWidth) + "x" + std::to_string(kMinEnvironmentWidth / 2) + ")");
     // Equirect maps are 2:1; allow one texel of rounding either way.
     if (std::abs(std::int64_t(spec.width) - 2 * std::int64_t(spec.height)) > 1)
         throw Error(path, "not equirectangular: " + aspectText(spec.width, spec.height) + ", expected 2:1");
@@ -365,7 +467,18 @@ Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOption
         throw Error("(no environment)", "empty file name");
     if (isBuiltinSpec(spec))
         return loadBuiltin(spec, options);
-    return loadFile(spec, options);
+    // The image libraries below OpenImageIO throw on their own (std::bad_alloc for a header
+    // that asks for more than the machine has, std::exception from OpenEXR): every way out
+    // of a file load is one Error naming the file.
+    try {
+        return loadFile(spec, options);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw Error(spec, "out of memory while reading (a corrupt header claiming a huge size?)");
+    } catch (const std::exception& e) {
+        throw Error(spec, std::string("cannot read: ") + e.what());
+    }
 }
 
 std::string defaultEnvironmentPath(const std::string& assetDir)

@@ -72,6 +72,8 @@ struct Environment {
 
 // Texel pixel-count limit checked against the file header before anything is allocated.
 inline constexpr std::uint64_t kMaxEnvironmentTexels = std::uint64_t(1) << 28;
+// The smallest file accepted as an environment: 8x4 (a cube of 2x2 faces).
+inline constexpr int kMinEnvironmentWidth = 8;
 
 // Loads a file (any format OpenImageIO reads: .exr including DWAB, .hdr, .png, .jpg, ...)
 // or a builtin. Files must be 2:1 (+-1 texel of rounding). Grey inputs are replicated to

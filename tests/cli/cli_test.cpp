@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 #include <OpenImageIO/imageio.h>
 
+#include "malformed_images.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -155,11 +157,11 @@ TEST_F(Cli, EveryViewAndSceneRendersWithoutGlErrors)
     const std::string common = " --env builtin:studio?width=128 --width 96 --height 64 --gl-debug -o out.png";
     for (const char* view : {"final", "prefilter-mips", "lut", "furnace", "irradiance"}) {
         const Result r = run(std::string("render --view ") + view + common);
-        EXPECT_EQ(r.exitCode, 0) << view << ": " << r.err;
+        EXPECT_EQ(r.exitCode, 0) << view << ": " << r.err << " (stdout: " << r.out << ")";
     }
     for (const char* scene : {"sphere", "grid", "counting", "sweep", "none", IBLAB_SOURCE_DIR "/assets/models/material_spheres.glb"}) {
         const Result r = run(std::string("render --method sampled --samples 4 --scene ") + scene + common);
-        EXPECT_EQ(r.exitCode, 0) << scene << ": " << r.err;
+        EXPECT_EQ(r.exitCode, 0) << scene << ": " << r.err << " (stdout: " << r.out << ")";
     }
 }
 
@@ -207,6 +209,21 @@ TEST_F(Cli, HugeHeaderIsRefusedQuicklyWithoutAllocating)
     EXPECT_NE(r.exitCode, 0);
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("huge.hdr"), std::string::npos) << r.err;
+}
+
+// Every malformed image of issue #6: a non-zero exit, one line on stderr naming the file and
+// the problem, nothing written, and no crash (a signal would make exitCode -1).
+TEST_F(Cli, MalformedImagesFailWithOneLineNamingFileAndProblem)
+{
+    for (const iblab::testing::MalformedImage& bad : iblab::testing::writeMalformedImages(dir)) {
+        SCOPED_TRACE(bad.fileName);
+        const Result r = run("render --env " + bad.fileName + " --width 8 --height 8 -o out.png");
+        EXPECT_GT(r.exitCode, 0);
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(bad.fileName + ": "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(bad.problem), std::string::npos) << "expected \"" << bad.problem << "\" in: " << r.err;
+        EXPECT_FALSE(fs::exists(dir / "out.png"));
+    }
 }
 
 TEST_F(Cli, NanAndNegativeEnvironmentsRenderFinite)

@@ -212,6 +212,17 @@ TEST(Environment, OneTexelOfAspectRoundingIsAccepted)
     errorOf([&] { loadEnvironment(tall); }, "tall.exr");
 }
 
+TEST(Environment, SmallestEnvironmentIs8x4)
+{
+    TempDir dir;
+    const std::string smallest = dir.file("smallest.exr");
+    writeImage(smallest, 8, 4, 3, std::vector<float>(8 * 4 * 3, 0.5f));
+    EXPECT_EQ(loadEnvironment(smallest).image.width, 8);
+    const std::string tiny = dir.file("tiny.exr");
+    writeImage(tiny, 6, 3, 3, std::vector<float>(6 * 3 * 3, 0.5f));
+    errorOf([&] { loadEnvironment(tiny); }, "tiny.exr: too small for an environment: 6x3 (at least 8x4)");
+}
+
 TEST(Environment, TruncatedExrIsAnErrorNotZeros)
 {
     TempDir dir;
