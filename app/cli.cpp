@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "environment/builtin_environments.hpp"
 #include "gui_app.hpp"
 #include "headless_render.hpp"
 #include "ibl/tonemap.hpp"
@@ -60,7 +61,9 @@ std::optional<glm::vec3> parseColour(const std::string& text)
 
 void addFrameOptions(CLI::App& command, FrameSettings& settings)
 {
-    command.add_option("--env", settings.environment.source, "Environment: an .exr/.hdr file or builtin:NAME (white, sky, sun, lights, studio, black)")
+    std::string builtins;
+    for (const std::string& name : builtinEnvironmentNames()) builtins += (builtins.empty() ? "" : ", ") + name;
+    command.add_option("--env", settings.environment.source, "Environment: an .exr/.hdr file or builtin:NAME (" + builtins + ")")
         ->default_str("the bundled courtyard.exr");
     command.add_option("--env-yaw", settings.environment.yawDegrees, "Environment rotation about +Y, degrees (+90 brings +X to the front)")
         ->capture_default_str();
@@ -164,6 +167,7 @@ int runCommandLine(int argc, char** argv)
     commands.push_back(addBakeCommand(app, processStart));
     commands.push_back(addShCommand(app, processStart));
     commands.push_back(addLutCommand(app, processStart));
+    commands.push_back(addStressCommand(app, processStart));
 
     try {
         app.parse(argc, argv);

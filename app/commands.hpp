@@ -24,5 +24,6 @@ Command addRenderCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addShCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addLutCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addStressCommand(CLI::App& app, ProcessClock::time_point processStart);
 
 } // namespace iblab::app

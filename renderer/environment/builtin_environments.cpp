@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -54,6 +55,27 @@ std::vector<BuiltinEnvironmentInfo> makeRegistry()
                  {widthParameter(),
                   {"intensity", 1, 0, 1e6, false, "scale applied to every light"},
                   {"background", 0.02, 0, kHuge, false, "radiance of the background"}}});
+    r.push_back({"texel",
+                 "one texel of radiance sky + `intensity` (the texel holding the direction), on a uniform sky",
+                 {widthParameter(),
+                  {"elevation", 10, -90, 90, false, "degrees above the horizon of a direction inside the lit texel"},
+                  {"azimuth", 44, -360, 360, false, "degrees from -Z towards +X (44: next to the -Z/+X cube edge)"},
+                  {"intensity", 1e4, 0, kHuge, false, "radiance added to the one texel"},
+                  {"sky", 0, 0, kHuge, false, "radiance of every texel"}}});
+    r.push_back({"slits",
+                 "`count` thin vertical slits of radiance `intensity`, evenly spaced in azimuth across the horizon, on black "
+                 "(narrower than a texel at the default width: aliasing and moire)",
+                 {widthParameter(),
+                  {"count", 48, 1, 1024, true, "number of slits"},
+                  {"size", 0.3, 0.001, 90, false, "width of each slit in degrees of azimuth"},
+                  {"height", 60, 0.01, 180, false, "extent in elevation in degrees, centred on the horizon"},
+                  {"intensity", 100, 0, kHuge, false, "radiance of each slit"}}});
+    r.push_back({"nan",
+                 "builtin:sky with `count` texels each of NaN, +Inf, -Inf and `negative` spread over the map (all three "
+                 "components); the loader repairs them to 0 and reports them",
+                 {widthParameter(),
+                  {"count", 16, 1, 4096, true, "texels of each invalid kind"},
+                  {"negative", -4, -kHuge, -1e-30, false, "value of the negative texels"}}});
     return r;
 }
 
@@ -232,6 +254,51 @@ ImageRGB32F makeSky(int w, double top, double ground)
         const float value = float(ground + (top - ground) * above);
         for (int x = 0; x < w; ++x)
             img.set(x, y, glm::vec3(value));
+    }
+    return img;
+}
+
+// One texel: the one whose footprint holds `direction` (texel (x, y) covers
+// [x/W, (x+1)/W) x [y/H, (y+1)/H) of the conventions' uv).
+ImageRGB32F makeTexel(int w, glm::dvec3 direction, double intensity, double sky)
+{
+    ImageRGB32F img(w, w / 2);
+    fill(img, glm::dvec3(sky));
+    const glm::vec2 uv = directionToEquirectUv(glm::vec3(direction));
+    const int x = std::clamp(int(std::floor(uv.x * float(img.width))), 0, img.width - 1);
+    const int y = std::clamp(int(std::floor(uv.y * float(img.height))), 0, img.height - 1);
+    addToTexel(img, x, y, glm::dvec3(intensity), 1.0);
+    return img;
+}
+
+ImageRGB32F makeSlits(int w, int count, double sizeDegrees, double heightDegrees, double intensity)
+{
+    ImageRGB32F img(w, w / 2);
+    for (int i = 0; i < count; ++i) {
+        // Half a spacing in from the seam, so the pattern is symmetric about the panorama's centre.
+        const double centre = -180.0 + 360.0 * (i + 0.5) / count;
+        addLatLongRect(img, centre - 0.5 * sizeDegrees, centre + 0.5 * sizeDegrees, -0.5 * heightDegrees, 0.5 * heightDegrees,
+                       glm::dvec3(intensity));
+    }
+    return img;
+}
+
+// builtin:sky with invalid texels. Kind k of texel i takes linear texel index
+// (4 i + k + 0.5) * texels / (4 count): spread evenly over the map, never two on one texel.
+ImageRGB32F makeInvalid(const std::string& canonicalSpec, int w, int count, double negative)
+{
+    ImageRGB32F img = makeSky(w, 1.0, 0.1);
+    const std::size_t texels = img.texelCount();
+    const std::size_t needed = std::size_t(4) * std::size_t(count);
+    if (needed > texels)
+        throw Error(canonicalSpec, "count=" + std::to_string(count) + " needs " + std::to_string(needed) + " texels, width=" +
+                                       std::to_string(w) + " has " + std::to_string(texels));
+    const float values[4] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                             -std::numeric_limits<float>::infinity(), float(negative)};
+    for (std::size_t k = 0; k < needed; ++k) {
+        const std::size_t texel = std::size_t((double(k) + 0.5) * double(texels) / double(needed));
+        for (int c = 0; c < 3; ++c)
+            img.texels[texel * 3 + std::size_t(c)] = values[k % 4];
     }
     return img;
 }
@@ -416,6 +483,13 @@ ImageRGB32F makeBuiltinEnvironment(const BuiltinSpec& spec)
     }
     if (n == "studio")
         return makeStudio(w, spec.get("intensity"), spec.get("background"));
+    if (n == "texel")
+        return makeTexel(w, directionFromElevationAzimuth(spec.get("elevation"), spec.get("azimuth")), spec.get("intensity"),
+                         spec.get("sky"));
+    if (n == "slits")
+        return makeSlits(w, int(spec.get("count")), spec.get("size"), spec.get("height"), spec.get("intensity"));
+    if (n == "nan")
+        return makeInvalid(spec.canonical(), w, int(spec.get("count")), spec.get("negative"));
     throw Error(spec.canonical(), "unknown builtin environment; valid: " + joinNames(builtinEnvironmentNames()));
 }
 

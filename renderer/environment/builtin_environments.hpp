@@ -51,7 +51,7 @@ struct BuiltinSpec {
     std::string canonical() const;
 };
 
-// All builtins, in a stable order (white, black, sky, sun, lights, studio).
+// All builtins, in a stable order (white, black, sky, sun, lights, studio, texel, slits, nan).
 const std::vector<BuiltinEnvironmentInfo>& builtinEnvironments();
 std::vector<std::string> builtinEnvironmentNames();
 // Throws iblab::Error listing the valid names when `name` is not one of them.

@@ -117,6 +117,14 @@ ShMinimum findMinimum(const SH9Color& coeffs)
     ShMinimum result;
     for (int ch = 0; ch < 3; ++ch) {
         auto f = [&](glm::dvec3 d) { return evaluate(coeffs, d)[ch]; };
+        // Rounding error of one evaluation: every basis function is at most 1.1 in
+        // magnitude. A "decrease" below it is noise, and accepting it let the search wander
+        // along a flat minimum at the smallest step for tens of seconds (a one-texel light's
+        // windowed irradiance, whose minimum is a double root, as the GPU projects it).
+        double magnitude = 0.0;
+        for (const glm::dvec3& c : coeffs.c)
+            magnitude += std::abs(c[ch]);
+        const double noise = 16.0 * std::numeric_limits<double>::epsilon() * 1.1 * magnitude;
         double best = std::numeric_limits<double>::infinity();
         glm::dvec3 bestDir(0.0, 1.0, 0.0);
         for (int y = 0; y < kGridH; ++y)
@@ -137,7 +145,7 @@ ShMinimum findMinimum(const SH9Color& coeffs)
                 const double a = 2.0 * kPi * k / 8.0;
                 const glm::dvec3 d = glm::normalize(bestDir + step * (std::cos(a) * frame.t + std::sin(a) * frame.b));
                 const double v = f(d);
-                if (v < best) {
+                if (v < best - noise) {
                     best = v;
                     bestDir = d;
                     improved = true;

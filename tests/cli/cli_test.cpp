@@ -1,5 +1,6 @@
 // The command line as users and scripts drive it: exit codes, one-line errors naming the
 // file, the headless fallback of the bare `iblab`, and what lands on disk.
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -8,7 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -276,6 +279,38 @@ TEST_F(Cli, HelpListsEveryRenderOption)
                                "--height", "--output", "--json", "--scene", "--method", "--samples", "--mip", "--metallic", "--roughness",
                                "--base-color", "--view"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
+}
+
+// `iblab stress --quick --json`: valid JSON on stdout naming every environment and
+// method, each (environment, method) pair measured, and the three files in --out.
+TEST_F(Cli, StressQuickJsonHasEveryEnvironmentAndMethod)
+{
+    const Result r = run("stress --quick --json --out report");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    std::vector<std::string> environments, methods;
+    for (const auto& e : j.at("environments")) environments.push_back(e.at("name"));
+    for (const auto& m : j.at("methods")) methods.push_back(m);
+    for (const char* name : {"sun-1e2", "sun-1e3", "sun-1e4", "sun-1e5", "sun-1e6", "texel", "slits", "white", "studio", "black", "nan"})
+        EXPECT_NE(std::find(environments.begin(), environments.end(), name), environments.end()) << name;
+    for (const char* name : {"splitsum", "splitsum-sh9", "splitsum-sh9-windowed", "splitsum-irradiance-cube", "sampled-n1", "sampled-n16",
+                             "sampled-n256", "sampled-n1-nopdf", "sampled-n16-nopdf", "sampled-n256-nopdf"})
+        EXPECT_NE(std::find(methods.begin(), methods.end(), name), methods.end()) << name;
+    std::set<std::pair<std::string, std::string>> measured;
+    for (const auto& render : j.at("renders"))
+        measured.insert({render.at("environment").get<std::string>(), render.at("method").get<std::string>()});
+    EXPECT_EQ(measured.size(), environments.size() * methods.size());
+    for (const auto& finding : j.at("findings")) {
+        const std::string verdict = finding.at("verdict");
+        EXPECT_TRUE(verdict == "pass" || verdict == "warn" || verdict == "fail") << verdict;
+    }
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "report" / "stress.json")), j);
+    std::ifstream markdown(dir / "report" / "stress.md");
+    const std::string text((std::istreambuf_iterator<char>(markdown)), {});
+    EXPECT_NE(text.find("## Where each method fails"), std::string::npos);
+    auto png = OIIO::ImageInput::open((dir / "report" / "stress.png").string());
+    ASSERT_TRUE(png);
+    EXPECT_GT(png->spec().width, png->spec().height) << "columns (method x roughness) outnumber rows (environments)";
 }
 
 } // namespace

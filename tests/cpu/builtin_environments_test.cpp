@@ -255,11 +255,86 @@ TEST(Builtin, ParsingIsTolerantAndCanonical)
 TEST(Builtin, NamesAndDescriptions)
 {
     const std::vector<std::string> names = builtinEnvironmentNames();
-    for (const char* n : {"white", "black", "sky", "sun", "lights", "studio"})
+    for (const char* n : {"white", "black", "sky", "sun", "lights", "studio", "texel", "slits", "nan"})
         EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
     for (const std::string& n : names) {
         EXPECT_FALSE(builtinEnvironmentDescription(n).empty());
         EXPECT_EQ(builtinEnvironmentInfo(n).parameters.front().name, "width");
     }
     EXPECT_THROW(builtinEnvironmentDescription("nope"), Error);
+}
+
+// The texel that holds (elevation, azimuth), recomputed from the convention (u = 0.5 + az /
+// 360, v = polar angle / 180), not taken from the code under test.
+std::pair<int, int> texelHolding(double elevationDegrees, double azimuthDegrees, int w)
+{
+    const double u = 0.5 + azimuthDegrees / 360.0;
+    const double v = (90.0 - elevationDegrees) / 180.0;
+    return {int(std::floor((u - std::floor(u)) * w)), int(std::floor(v * (w / 2)))};
+}
+
+TEST(Builtin, TexelLightsExactlyOneTexelWithKnownPower)
+{
+    for (const char* spec : {"builtin:texel", "builtin:texel?width=64&elevation=-60&azimuth=170&intensity=5e5",
+                             "builtin:texel?width=128&elevation=33.3&azimuth=-100.7&sky=0.25&intensity=7"}) {
+        const BuiltinSpec parsed = parseBuiltinSpec(spec);
+        const ImageRGB32F img = makeBuiltinEnvironment(parsed);
+        const auto [ex, ey] = texelHolding(parsed.get("elevation"), parsed.get("azimuth"), img.width);
+        const float sky = float(parsed.get("sky"));
+        int lit = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x)
+                if (img.at(x, y) != glm::vec3(sky)) {
+                    ++lit;
+                    EXPECT_EQ(x, ex) << spec;
+                    EXPECT_EQ(y, ey) << spec;
+                    EXPECT_EQ(img.at(x, y), glm::vec3(sky + float(parsed.get("intensity")))) << spec;
+                }
+        EXPECT_EQ(lit, 1) << spec;
+        // Its power is the intensity times that one texel's solid angle (float rounding only).
+        const double expected = parsed.get("intensity") * rowOmega(ey, img.width, img.height);
+        EXPECT_NEAR(integral(img, 0, sky), expected, 1e-5 * expected + 1e-6) << spec;
+    }
+}
+
+TEST(Builtin, SlitsHaveKnownPowerAndCount)
+{
+    // Each slit is a lat-long rectangle: solid angle (size / 360) 2 pi (2 sin(height / 2)),
+    // rasterised by exact coverage, so the power holds to float rounding whether or not a
+    // slit is narrower than a texel.
+    for (const char* spec : {"builtin:slits", "builtin:slits?width=256&count=7&size=4&height=90&intensity=3",
+                             "builtin:slits?width=64&count=100&size=0.05"}) {
+        const BuiltinSpec parsed = parseBuiltinSpec(spec);
+        const ImageRGB32F img = makeBuiltinEnvironment(parsed);
+        const double slit = parsed.get("size") / 360.0 * 2.0 * kPiD * 2.0 * std::sin(0.5 * parsed.get("height") * kDeg);
+        const double expected = parsed.get("count") * parsed.get("intensity") * slit;
+        EXPECT_NEAR(integral(img, 1), expected, 1e-4 * expected) << spec;
+        for (int y = 0; y < img.height; ++y) {
+            const double elevation = 90.0 - 180.0 * (y + 0.5) / img.height;
+            if (std::abs(elevation) > 0.5 * parsed.get("height") + 180.0 / img.height)
+                for (int x = 0; x < img.width; ++x)
+                    ASSERT_EQ(img.at(x, y), glm::vec3(0.0f)) << spec << ": light outside the slits' elevation range at row " << y;
+        }
+    }
+    // Separate slits where they are wider apart than a texel: one blob each.
+    EXPECT_EQ(countBlobs(makeBuiltinEnvironment("builtin:slits?width=512&count=12&size=1"), 0.0f), 12);
+}
+
+TEST(Builtin, NanHoldsEachInvalidKindCountTimes)
+{
+    const BuiltinSpec parsed = parseBuiltinSpec("builtin:nan?width=64&count=10&negative=-2.5");
+    const ImageRGB32F img = makeBuiltinEnvironment(parsed);
+    int nan = 0, positiveInf = 0, negativeInf = 0, negative = 0;
+    for (float v : img.texels) {
+        nan += std::isnan(v);
+        positiveInf += std::isinf(v) && v > 0;
+        negativeInf += std::isinf(v) && v < 0;
+        negative += v == -2.5f;
+    }
+    // All three components of each invalid texel.
+    EXPECT_EQ(nan, 30);
+    EXPECT_EQ(positiveInf, 30);
+    EXPECT_EQ(negativeInf, 30);
+    EXPECT_EQ(negative, 30);
+    EXPECT_THROW(makeBuiltinEnvironment("builtin:nan?width=8&count=9"), Error) << "36 invalid texels cannot fit in 8x4";
 }

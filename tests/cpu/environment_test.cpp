@@ -453,6 +453,23 @@ TEST(Environment, BuiltinSpecsLoadThroughTheSameEntryPoint)
     errorOf([&] { loadEnvironment("builtin:white?width=1024", options); }, "builtin:white");
 }
 
+TEST(Environment, BuiltinNanIsRepairedAndEveryInvalidTexelCounted)
+{
+    // builtin:nan puts `count` texels of each invalid kind (all three components) on
+    // builtin:sky; the loader must count every one and leave a clean map.
+    const Environment env = loadEnvironment("builtin:nan?width=128&count=25&negative=-3");
+    EXPECT_EQ(env.repair.nanComponents, 75u);
+    EXPECT_EQ(env.repair.positiveInfComponents, 75u);
+    EXPECT_EQ(env.repair.negativeInfComponents, 75u);
+    EXPECT_EQ(env.repair.negativeComponents, 75u);
+    EXPECT_EQ(env.repair.repairedTexels, 100u);
+    EXPECT_EQ(env.repair.mostNegative, -3.0);
+    for (float v : env.image.texels)
+        ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+    ASSERT_EQ(env.warnings.size(), 1u);
+    EXPECT_NE(env.warnings[0].find("75 NaN"), std::string::npos) << env.warnings[0];
+}
+
 TEST(Environment, ContentHashIsFnv1aOverSizeAndTexelBits)
 {
     // Independent byte-wise FNV-1a of the documented byte stream.
