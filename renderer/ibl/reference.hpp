@@ -51,7 +51,8 @@ ImageRGB32F downsampleEquirectToWidth(const ImageRGB32F& env, int maxWidth);
 // the reflection), so with at least four texels of 2 pi / width across it,
 //   alpha >= 1.5 * 2 pi / width,  roughness = sqrt(alpha).
 // Below it the reference itself is not converged, and differences it reports there are
-// partly its own.
+// partly its own. At it, a 64-wide map is within 2% of a 512-wide one even for lights one
+// texel wide and 100x their surroundings (tests/cpu/reference_test.cpp).
 double referenceMinResolvedRoughness(int width);
 
 } // namespace iblab

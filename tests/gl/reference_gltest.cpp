@@ -12,36 +12,21 @@
 #include "bake_test_support.hpp"
 #include "camera.hpp"
 #include "environment/environment.hpp"
-#include "gl_test_fixture.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/error_metrics.hpp"
 #include "ibl/reference.hpp"
 #include "ibl/tonemap.hpp"
-#include "renderer.hpp"
+#include "renderer_fixture.hpp"
 
 namespace iblab {
 namespace {
 
-using testing::GlTest;
-
 constexpr int kSize = 48; // frame width and height: a sphere of ~1000 surface pixels
 
-class Reference : public GlTest {
+class Reference : public testing::RendererTest {
 protected:
-    Renderer& renderer()
-    {
-        if (!renderer_) renderer_ = std::make_unique<Renderer>(shaderDirectory());
-        return *renderer_;
-    }
-    // Loads and bakes spec; returns the loaded map (the reference downsamples it itself).
-    ImageRGB32F load(const std::string& spec)
-    {
-        const Environment environment = loadEnvironment(spec);
-        renderer().setEnvironment(environment.image);
-        bake::BakeJob job(renderer().shaders(), environment, testing::smallBakeSettings());
-        renderer().setBake(std::make_shared<bake::BakeResult>(job.runToCompletion()));
-        return environment.image;
-    }
+    // The loaded map, at its own size: the reference downsamples it itself.
+    ImageRGB32F load(const std::string& spec) { return bakeEnvironment(spec, testing::smallBakeSettings()); }
     static FrameSettings sphere(glm::vec3 baseColor, float metallic, float roughness)
     {
         FrameSettings s;
@@ -57,9 +42,6 @@ protected:
         EXPECT_TRUE(status.complete);
         return renderer().readReferenceFrame();
     }
-
-private:
-    std::unique_ptr<Renderer> renderer_;
 };
 
 glm::vec4 pixelOf(const FrameReadback& f, int x, int y) { return glm::make_vec4(&f.rgba[(std::size_t(y) * std::size_t(f.width) + std::size_t(x)) * 4]); }
