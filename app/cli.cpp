@@ -57,6 +57,39 @@ std::optional<glm::vec3> parseColour(const std::string& text)
     return colour;
 }
 
+// The estimator's options. The split view's B side has the same set, prefixed --b-.
+void addSamplingOptions(CLI::App& command, SamplingSettings& sampling, const std::string& prefix, const std::string& helpPrefix)
+{
+    addNamedOption(command, prefix + "method", helpPrefix + "Shading: splitsum|sampled", sampling.method, parseShadingMethod, shadingMethodName);
+    command.add_option(prefix + "samples", sampling.samples, helpPrefix + "N, samples per pixel for the sampled method")->capture_default_str()->check(CLI::Range(1, 1024));
+    const std::string mipOption = prefix + "mip";
+    command
+        .add_option_function<std::string>(
+            mipOption,
+            [&sampling, mipOption](const std::string& value) {
+                if (value == "auto") {
+                    sampling.forcedMip = -1;
+                    return;
+                }
+                try {
+                    sampling.forcedMip = std::stoi(value);
+                } catch (const std::exception&) {
+                    throw CLI::ValidationError(mipOption, "expected a mip level or auto, got \"" + value + "\"");
+                }
+                if (sampling.forcedMip < 0) throw CLI::ValidationError(mipOption, "a mip level is >= 0");
+            },
+            helpPrefix + "Mip level to read (prefiltered mip for split-sum, source mip for sampled), or auto")
+        ->default_str("auto");
+    command.add_flag("!" + prefix + "no-pdf-filtering", sampling.pdfMipFiltering, helpPrefix + "Sampled method: read every sample from mip 0 instead of the PDF-chosen mip");
+    command.add_option(prefix + "mip-bias", sampling.mipBias, helpPrefix + "Bias added to the PDF-chosen mip (0 LearnOpenGL, 1 Filament)")->capture_default_str();
+    addNamedOption(command, prefix + "geometry", helpPrefix + "Geometry term: schlick|correlated", sampling.geometry, parseGeometryTerm, geometryTermShortName);
+    addNamedOption(command, prefix + "diffuse", helpPrefix + "Diffuse source: sh9|irradiance-cube", sampling.diffuse, parseDiffuseSource, diffuseSourceName);
+    command.add_flag(prefix + "cosine-diffuse", sampling.cosineSampledDiffuse, helpPrefix + "Sampled method: diffuse from N cosine samples instead of SH9");
+    command.add_flag(prefix + "multiscatter", sampling.multiscatter, helpPrefix + "Multiple-scattering energy compensation from the LUT");
+    command.add_flag(prefix + "normalize-accepted", sampling.normalizeByAccepted,
+                     helpPrefix + "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N");
+}
+
 } // namespace
 
 void addFrameOptions(CLI::App& command, FrameSettings& settings)
@@ -100,33 +133,7 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
     command.add_option("--counting-spheres", settings.scene.countingSpheres, "Spheres in the N = 1..k counting strip")
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
-    addNamedOption(command, "--method", "Shading: splitsum|sampled", settings.sampling.method, parseShadingMethod, shadingMethodName);
-    command.add_option("--samples", settings.sampling.samples, "N, samples per pixel for --method sampled")->capture_default_str()->check(CLI::Range(1, 1024));
-    command
-        .add_option_function<std::string>(
-            "--mip",
-            [&settings](const std::string& value) {
-                if (value == "auto") {
-                    settings.sampling.forcedMip = -1;
-                    return;
-                }
-                try {
-                    settings.sampling.forcedMip = std::stoi(value);
-                } catch (const std::exception&) {
-                    throw CLI::ValidationError("--mip", "expected a mip level or auto, got \"" + value + "\"");
-                }
-                if (settings.sampling.forcedMip < 0) throw CLI::ValidationError("--mip", "a mip level is >= 0");
-            },
-            "Mip level to read (prefiltered mip for split-sum, source mip for sampled), or auto")
-        ->default_str("auto");
-    command.add_flag("!--no-pdf-filtering", settings.sampling.pdfMipFiltering, "Sampled method: read every sample from mip 0 instead of the PDF-chosen mip");
-    command.add_option("--mip-bias", settings.sampling.mipBias, "Bias added to the PDF-chosen mip (0 LearnOpenGL, 1 Filament)")->capture_default_str();
-    addNamedOption(command, "--geometry", "Geometry term: schlick|correlated", settings.sampling.geometry, parseGeometryTerm, geometryTermShortName);
-    addNamedOption(command, "--diffuse", "Diffuse source: sh9|irradiance-cube", settings.sampling.diffuse, parseDiffuseSource, diffuseSourceName);
-    command.add_flag("--cosine-diffuse", settings.sampling.cosineSampledDiffuse, "Sampled method: diffuse from N cosine samples instead of SH9");
-    command.add_flag("--multiscatter", settings.sampling.multiscatter, "Multiple-scattering energy compensation from the LUT");
-    command.add_flag("--normalize-accepted", settings.sampling.normalizeByAccepted,
-                     "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N");
+    addSamplingOptions(command, settings.sampling, "--", "");
     command.add_option("--metallic", settings.material.metallic, "Metallic, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
     command.add_option("--roughness", settings.material.roughness, "Perceptual roughness, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
     command.add_option("--ao", settings.material.ambientOcclusion, "Ambient occlusion, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
@@ -141,11 +148,31 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
             },
             "Base colour: r,g,b (linear, 0..1) or #rrggbb (sRGB)");
     command.add_flag("!--model-material", settings.material.overrideModel, "Keep a glTF model's own material factors instead of the sliders'");
-    addNamedOption(command, "--view", "View: final|prefilter-mips|lut|furnace|irradiance", settings.view.mode, parseViewMode, viewModeName);
+    addNamedOption(command, "--view", "View: final|prefilter-mips|lut|furnace|irradiance|error", settings.view.mode, parseViewMode, viewModeName);
     addNamedOption(command, "--background", "Background: environment|irradiance|prefilter-mip|solid", settings.view.background, parseBackgroundMode,
                    backgroundModeName);
     command.add_option("--background-mip", settings.view.backgroundMip, "Prefiltered mip shown by --background prefilter-mip")->capture_default_str();
     command.add_option("--distance", settings.camera.distance, "Camera distance from its target")->default_str("0: frame the scene");
+    // Speed against accuracy: the error view against the reference, and the A/B split.
+    addNamedOption(command, "--error-space", "--view error compares: linear (HDR, before tone mapping)|display (after)", settings.view.errorSpace,
+                   parseErrorSpace, errorSpaceName);
+    command.add_option("--error-scale", settings.view.errorScale, "--view error: the relative error at the top of the colour bar")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    command.add_option("--reference-width", settings.view.referenceWidth,
+                       "Width of the environment the reference sums over (halved from the loaded map until it fits; height = width / 2)")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 4096));
+    command
+        .add_option_function<float>(
+            "--split",
+            [&settings](float position) {
+                settings.view.split = true;
+                settings.view.splitPosition = position;
+            },
+            "A/B split view: the divider's position, 0..1 from the left; A (the options above) left, B (--b-*) right")
+        ->check(CLI::Range(0.0f, 1.0f));
+    addSamplingOptions(command, settings.view.compare, "--b-", "Split view, right side: ");
 }
 
 int runCommandLine(int argc, char** argv)

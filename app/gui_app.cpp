@@ -145,6 +145,28 @@ struct OrbitInput {
     }
 };
 
+// The split view's divider follows the mouse when grabbed within a few pixels of it; while
+// it is held, the drag does not orbit the camera.
+struct SplitDividerInput {
+    bool held = false;
+    // Returns true while the divider is being dragged.
+    bool update(ViewSettings& view, const ImGuiIO& io, int viewX, int viewWidth)
+    {
+        if (!view.split || viewWidth <= 0) return held = false;
+        constexpr float kGrabPixels = 6.0f;
+        const float column = float(viewX + splitColumn(view, viewWidth));
+        const bool near = std::abs(io.MousePos.x - column) <= kGrabPixels && io.MousePos.x >= float(viewX);
+        if (near || held) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+        if (near && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) held = true;
+        if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) held = false;
+        if (held) view.splitPosition = std::clamp((io.MousePos.x - float(viewX)) / float(viewWidth), 0.0f, 1.0f);
+        return held;
+    }
+};
+
+// The error view's reference gets this much GPU time per frame while the view is idle.
+constexpr auto kReferenceBudgetPerFrame = std::chrono::milliseconds(30);
+
 // Progressive refinement stops here: 64 rotated sample sets of any N are plenty to judge.
 constexpr int kMaxAccumulatedFrames = 64;
 
@@ -197,6 +219,7 @@ int runGui(const GuiOptions& options)
     int framesShown = 0;
     auto previousFrame = Clock::now();
     OrbitInput orbit;
+    SplitDividerInput divider;
     std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
     float previousScale = 1.0f;
     bool idle = false;
@@ -235,7 +258,7 @@ int runGui(const GuiOptions& options)
         const ImGuiIO& io = ImGui::GetIO();
         if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && !io.WantTextInput) glfwSetWindowShouldClose(window.handle, 1);
         if (ImGui::IsKeyPressed(GLFW_KEY_F12)) requests.captureTo = std::string(panels.capture.path);
-        if (!io.WantCaptureMouse) orbit.update(settings.camera, io, requests);
+        if (!io.WantCaptureMouse && !divider.update(settings.view, io, viewX, fbWidth)) orbit.update(settings.camera, io, requests);
         ImGui::Render();
 
         for (const std::string& dropped : std::exchange(g_droppedFiles, {})) handleDrop(dropped, requests, panels);
@@ -263,12 +286,21 @@ int runGui(const GuiOptions& options)
             renderOptions.resolutionScale = std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(previousScale * previousScale))), 0.25f, 1.0f);
         renderOptions.accumulate = !interacting;
         previousScale = renderOptions.resolutionScale;
-        // A finished image needs no more frames: split-sum is deterministic, and the sampled
-        // method stops refining after kMaxAccumulatedFrames.
-        const std::string renderKey = toJsonText(settings, -1) + std::to_string(fbWidth) + "x" + std::to_string(fbHeight);
+        // The error view's reference, one budgeted slice of work per idle frame (a drag
+        // would restart it every frame; it resumes when the drag ends).
+        const bool errorView = settings.view.mode == ViewMode::Error;
+        if (errorView)
+            panels.compare.reference = interacting || session.busy() ? renderer.referenceStatus(settings, fbWidth, fbHeight)
+                                                                     : renderer.advanceReference(settings, fbWidth, fbHeight, kReferenceBudgetPerFrame);
+        // A finished image needs no more frames: split-sum is deterministic, the sampled
+        // method stops refining after kMaxAccumulatedFrames, and the error view waits for
+        // its reference (whose completion changes the image, hence its place in the key).
+        const bool referencePending = errorView && !panels.compare.reference.complete;
+        const std::string renderKey = toJsonText(settings, -1) + std::to_string(fbWidth) + "x" + std::to_string(fbHeight) +
+                                      (errorView && panels.compare.reference.complete ? " with reference" : "");
         const bool converged = renderKey == lastRenderedKey && !interacting && !session.busy() && !requests.captureTo &&
                                renderer.accumulatedFrames() >= (renderer.lastFrameWasSampled() ? kMaxAccumulatedFrames : 1);
-        idle = converged && !ImGui::IsAnyItemHovered() && !io.WantTextInput;
+        idle = converged && !referencePending && !ImGui::IsAnyItemHovered() && !io.WantTextInput;
         lastRenderedKey = renderKey;
         const auto renderStart = Clock::now();
         if (!converged) renderer.renderFrame(settings, fbWidth, fbHeight, renderOptions);
@@ -279,6 +311,7 @@ int runGui(const GuiOptions& options)
         stats.width = fbWidth;
         stats.height = fbHeight;
         furnaceReadings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
+        if (!converged) panels.compare.error = errorView ? renderer.measureError(settings) : ErrorReport{};
         if (requests.captureTo) panels.captureStatus = session.capture(*requests.captureTo, settings);
 
         glBindFramebuffer(GL_FRAMEBUFFER, 0);

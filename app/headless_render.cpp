@@ -23,6 +23,16 @@ using Clock = std::chrono::steady_clock;
 
 int fail(const std::string& reason) { return failCommand("render", reason); }
 
+nlohmann::ordered_json errorMetricsJson(const ErrorMetrics& m)
+{
+    return {{"pixels", m.pixels},
+            {"relative_rmse", m.relativeRmse},
+            {"mean_relative", m.meanRelative},
+            {"max_relative", m.maxRelative},
+            {"p99_relative", m.p99Relative},
+            {"fireflies", m.fireflies}};
+}
+
 } // namespace
 
 int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
@@ -53,6 +63,16 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         if (settings.camera.distance <= 0.0f) {
             const SceneInfo scene = renderer.sceneInfo(settings);
             frameBox(settings.camera, scene.centre, scene.halfExtents, float(job.width) / float(job.height));
+        }
+
+        // The error view needs the reference of this very frame: run it to completion first.
+        double referenceMs = 0.0;
+        ReferenceStatus reference;
+        if (settings.view.mode == ViewMode::Error) {
+            const auto referenceStart = Clock::now();
+            reference = renderer.advanceReference(settings, job.width, job.height, std::chrono::hours(24));
+            if (!reference.complete) return fail("the reference did not complete (no bake?)");
+            referenceMs = millisecondsSince(referenceStart);
         }
 
         renderer.renderFrame(settings, job.width, job.height);
@@ -93,6 +113,18 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
                     report["furnace"].push_back({{"metallic", r.metallic},
                                                  {"roughness", r.roughness},
                                                  {"reflected", {r.radiance.r, r.radiance.g, r.radiance.b}}});
+            if (reference.complete) {
+                const ErrorReport error = renderer.measureError(settings);
+                auto& out = report["error"];
+                out["space"] = errorSpaceName(settings.view.errorSpace);
+                out["reference_environment"] = {{"width", reference.environmentWidth},
+                                                {"height", reference.environmentHeight},
+                                                {"texel_degrees", reference.texelDegrees},
+                                                {"min_resolved_roughness", reference.minResolvedRoughness}};
+                out[settings.view.split ? "a" : "frame"] = errorMetricsJson(error.left);
+                if (error.right) out["b"] = errorMetricsJson(*error.right);
+                report["timings_ms"]["reference"] = referenceMs;
+            }
             report["timings_ms"]["start_to_context"] = contextMs;
             report["timings_ms"]["environment_load"] = loadMs;
             report["timings_ms"]["start_to_first_frame"] = firstFrameMs;

@@ -13,8 +13,16 @@ void drawViewOverlays(const Renderer& renderer, const FrameSettings& settings, i
                       const std::vector<SphereReading>& furnaceReadings, std::optional<glm::vec2> mouseInView)
 {
     if (!furnaceReadings.empty()) ui::drawSphereReadings(furnaceReadings, viewOrigin, float(height));
-    if (settings.view.mode == ViewMode::Final || settings.view.mode == ViewMode::Furnace)
+    const bool sceneView = settings.view.mode != ViewMode::PrefilterMips && settings.view.mode != ViewMode::Lut;
+    const glm::vec2 viewSize{float(width), float(height)};
+    if (settings.view.mode == ViewMode::Final || settings.view.mode == ViewMode::Furnace || settings.view.mode == ViewMode::Error)
         ui::drawSceneLabels(renderer.sceneLabels(settings, width, height), viewOrigin, float(height));
+    if (sceneView && settings.view.split) ui::drawSplitDivider(settings, splitColumn(settings.view, width), viewOrigin, viewSize);
+    if (settings.view.mode == ViewMode::Error) {
+        const ReferenceStatus reference = renderer.referenceStatus(settings, width, height);
+        if (reference.complete) ui::drawErrorLegend(settings.view, viewOrigin, viewSize);
+        else if (reference.current) ui::drawReferenceProgress(reference, viewOrigin, viewSize);
+    }
     if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
         const TexelProbe probe = mouseInView ? renderer.probe(settings, width, height, mouseInView->x, mouseInView->y) : TexelProbe{};
         ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), width, height), settings.view.mode == ViewMode::Lut,

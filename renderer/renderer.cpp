@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <span>
 
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
@@ -17,44 +18,14 @@
 #include "gl/shader_library.hpp"
 #include "gl/texture_upload.hpp"
 #include "gpu_scene.hpp"
+#include "ibl/reference.hpp"
 #include "ibl/sampling.hpp"
+#include "ibl/tonemap.hpp"
+#include "reference_integral.hpp"
+#include "texture_units.hpp"
 
 namespace iblab {
 namespace {
-
-// Every sampler uniform of every program has its own fixed unit, so that a cube and a 2D
-// sampler never share one (a draw-time GL error) and binding never depends on the program.
-enum TextureUnit : GLuint {
-    kUnitEquirect,
-    kUnitEnvironmentCube,
-    kUnitPrefiltered,
-    kUnitIrradianceCube,
-    kUnitBrdfLut,
-    kUnitBaseColor,
-    kUnitMetallicRoughness,
-    kUnitNormal,
-    kUnitOcclusion,
-    kUnitEmissive,
-    kUnitHdrFrame,
-    kUnitLutSchlick,
-    kUnitLutCorrelated,
-};
-
-constexpr std::pair<const char*, TextureUnit> kSamplerUnits[] = {
-    {"uEquirect", kUnitEquirect},
-    {"uEnvironmentCube", kUnitEnvironmentCube},
-    {"uPrefiltered", kUnitPrefiltered},
-    {"uIrradianceCube", kUnitIrradianceCube},
-    {"uBrdfLut", kUnitBrdfLut},
-    {"uBaseColorTexture", kUnitBaseColor},
-    {"uMetallicRoughnessTexture", kUnitMetallicRoughness},
-    {"uNormalTexture", kUnitNormal},
-    {"uOcclusionTexture", kUnitOcclusion},
-    {"uEmissiveTexture", kUnitEmissive},
-    {"uHdrFrame", kUnitHdrFrame},
-    {"uLutSchlick", kUnitLutSchlick},
-    {"uLutCorrelated", kUnitLutCorrelated},
-};
 
 // Cube-cross cell -> GL face, as debug_views.frag lays them out (row 0 at the bottom).
 int crossFace(int column, int row)
@@ -94,6 +65,22 @@ struct Renderer::Impl {
     int accumulatedFrames = 0;
     bool sampledDraws = false; // the last frame drew with the sampled method
     const gl::RenderTarget* resolved = &hdrFrame; // what the tone mapper read last
+    std::string frameKey; // referenceKey() of the last frame, to match it with the reference
+
+    // The reference renderer. Generations count the environments and models set, so that
+    // a reference never outlives what it was computed from.
+    ImageRGB32F environmentSource; // the loaded map, the reference environment's parent
+    int environmentGeneration = 0;
+    int sceneGeneration = 0;
+    ImageRGB32F referenceEnvironment;
+    std::pair<int, int> referenceEnvironmentFor{-1, -1}; // (generation, requested width)
+    GBuffer gbuffer;
+    ReferenceIntegral reference;
+    gl::RenderTarget referenceFrame; // RGBA32F + depth: the sky, then the resolved surfaces
+    std::string referenceKey;
+    ReferenceSlicing referenceSlicing;
+    GeometryTerm referenceGeometry = GeometryTerm::HeightCorrelatedSmith;
+    bool referenceResolved = false;
 
     explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory))
     {
@@ -246,7 +233,10 @@ struct Renderer::Impl {
         p.set("uEmissiveTexCoordSet", material.emissiveTexture.texCoord);
     }
 
-    void drawScene(const FrameSettings& settings, float aspect, glm::vec2 sampleRotation)
+    // What the mesh pass writes: shaded radiance, or the reference renderer's G-buffer.
+    enum class MeshOutput { Shaded, GBuffer };
+
+    void drawScene(const FrameSettings& settings, float aspect, glm::vec2 sampleRotation, MeshOutput output = MeshOutput::Shaded)
     {
         if (!active) return;
         ensureScene(settings.scene);
@@ -255,14 +245,17 @@ struct Renderer::Impl {
         glDepthFunc(GL_LESS);
         glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
         glBindBufferBase(GL_UNIFORM_BUFFER, 0, hammersley.id());
-        // Per program: the IBL and camera state once; per draw only what differs.
+        const bool gbufferPass = output == MeshOutput::GBuffer;
+        // Per program: the IBL and camera state once; per draw only what differs. The
+        // G-buffer has one program for every draw (the first round takes them all).
         for (const bool sampled : {false, true}) {
             const gl::ShaderProgram* p = nullptr;
             for (const SceneDraw& draw : scene.draws) {
-                if ((draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
+                if (gbufferPass && sampled) break;
+                if (!gbufferPass && (draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
                 if (!p) {
-                    sampledDraws = sampledDraws || sampled;
-                    p = &shaders.program({"mesh.vert", "pbr.frag"}, {{"METHOD", sampled ? "1" : "0"}});
+                    sampledDraws = sampledDraws || (sampled && !gbufferPass);
+                    p = &shaders.program({"mesh.vert", "pbr.frag"}, {{"METHOD", gbufferPass ? "2" : sampled ? "1" : "0"}});
                     glUseProgram(p->id());
                     bindIbl(*p, settings);
                     p->set("uViewProjection", viewProjection);
@@ -274,7 +267,7 @@ struct Renderer::Impl {
                 p->set("uModel", draw.model);
                 p->set("uNormalMatrix", glm::transpose(glm::inverse(glm::mat3(draw.model))));
                 bindMaterial(*p, draw, settings);
-                if (sampled) {
+                if (sampled && !gbufferPass) {
                     const int n = std::clamp(draw.sampleCount > 0 ? draw.sampleCount : settings.sampling.samples, 1, kMaxSamples);
                     ensureHammersley(n);
                     p->set("uSampleCount", n);
@@ -284,13 +277,125 @@ struct Renderer::Impl {
         }
         glDisable(GL_DEPTH_TEST);
     }
+
+    // Everything the reference image depends on: not the tone map, the view's error and
+    // split controls, nor the estimators' sampling (only the BRDF's geometry term and the
+    // energy compensation are part of the shading model it shares).
+    std::string referenceKeyFor(const FrameSettings& settings, int width, int height) const
+    {
+        FrameSettings s = settings;
+        s.toneMap = {};
+        SamplingSettings model;
+        model.geometry = settings.sampling.geometry;
+        model.multiscatter = settings.sampling.multiscatter;
+        s.sampling = model;
+        s.view.mode = ViewMode::Error;
+        s.view.errorSpace = {};
+        s.view.errorScale = {};
+        s.view.split = false;
+        s.view.splitPosition = {};
+        s.view.compare = {};
+        return toJsonText(s, -1) + "@" + std::to_string(width) + "x" + std::to_string(height) + "#" + std::to_string(environmentGeneration) + "." +
+               std::to_string(sceneGeneration);
+    }
+
+    const ImageRGB32F& referenceEnvironmentOfWidth(int width)
+    {
+        const std::pair<int, int> wanted{environmentGeneration, width};
+        if (referenceEnvironmentFor != wanted) {
+            referenceEnvironment = downsampleEquirectToWidth(environmentSource, std::max(width, 2));
+            referenceEnvironmentFor = wanted;
+        }
+        return referenceEnvironment;
+    }
+
+    FrameReadback readTexture(GLuint texture, int width, int height) const
+    {
+        FrameReadback result{width, height, {}};
+        result.rgba.resize(std::size_t(width) * std::size_t(height) * 4);
+        glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(result.rgba.size() * sizeof(float)), result.rgba.data());
+        return result;
+    }
+
+    std::vector<std::uint8_t> readCoverage() const
+    {
+        const FrameReadback normal = readTexture(gbuffer.texture(ReferenceLayer::Normal), gbuffer.width(), gbuffer.height());
+        std::vector<std::uint8_t> coverage(normal.rgba.size() / 4);
+        for (std::size_t i = 0; i < coverage.size(); ++i) coverage[i] = normal.rgba[i * 4 + 3] != 0.0f;
+        return coverage;
+    }
+
+    // The mesh pass into the G-buffer, then a fresh integral over the environment.
+    void startReference(const FrameSettings& settings, int width, int height, const ReferenceSlicing& slicing, std::string key)
+    {
+        gbuffer.ensure(width, height);
+        gbuffer.bindCleared();
+        glDisable(GL_BLEND);
+        glDisable(GL_SCISSOR_TEST);
+        drawScene(settings, float(width) / float(height), glm::vec2(0.0f), MeshOutput::GBuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        reference.start(referenceEnvironmentOfWidth(settings.view.referenceWidth), width, height, readCoverage(), slicing);
+        referenceKey = std::move(key);
+        referenceSlicing = slicing;
+        referenceGeometry = settings.sampling.geometry;
+        referenceResolved = false;
+    }
+
+    // The environment behind, through the frame's own sky pass; the surfaces from the sums.
+    void resolveReference(const FrameSettings& settings)
+    {
+        const int width = gbuffer.width(), height = gbuffer.height();
+        referenceFrame.ensure(GL_RGBA32F, width, height, /*withDepth=*/true);
+        glBindFramebuffer(GL_FRAMEBUFFER, referenceFrame.framebuffer());
+        glViewport(0, 0, width, height);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glDisable(GL_BLEND);
+        glDisable(GL_SCISSOR_TEST);
+        drawSky(settings, float(width) / float(height));
+        const gl::ShaderProgram& p = shaders.program({"fullscreen.vert", "reference_resolve.frag"});
+        glUseProgram(p.id());
+        bindIbl(p, settings);
+        for (int layer = 0; layer < int(ReferenceLayer::Count); ++layer)
+            glBindTextureUnit(kUnitGNormal + GLuint(layer), gbuffer.texture(ReferenceLayer(layer)));
+        glBindTextureUnit(kUnitSpecularSum, reference.specularSum());
+        glBindTextureUnit(kUnitIrradianceSum, reference.irradianceSum());
+        drawFullscreenTriangle();
+        glUseProgram(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        referenceResolved = true;
+    }
+
+    bool referenceReadyFor(const std::string& key) const { return referenceResolved && key == referenceKey; }
+
+    // ViewMode::Error's last pass, in place of the tone mapper.
+    void drawErrorView(const FrameSettings& settings)
+    {
+        const gl::ShaderProgram& p = shaders.program({"fullscreen.vert", "error_view.frag"});
+        glUseProgram(p.id());
+        p.set("uExposureEv", settings.toneMap.exposureEv);
+        p.set("uToneMapOperator", int(settings.toneMap.op));
+        p.set("uDisplaySpace", int(settings.view.errorSpace == ErrorSpace::Display));
+        p.set("uErrorScale", std::max(settings.view.errorScale, 1e-6f));
+        glBindTextureUnit(kUnitHdrFrame, resolved->texture());
+        glBindTextureUnit(kUnitReferenceFrame, referenceFrame.texture());
+        glBindTextureUnit(kUnitGNormal, gbuffer.texture(ReferenceLayer::Normal));
+        drawFullscreenTriangle();
+    }
 };
+
+// The divider is a pixel column; positions are clamped so that both sides can be empty.
+int splitColumn(const ViewSettings& view, int width)
+{
+    return std::clamp(int(std::lround(double(view.splitPosition) * double(width))), 0, width);
+}
 
 Renderer::Renderer(std::filesystem::path shaderDirectory) : impl_(std::make_unique<Impl>(std::move(shaderDirectory))) {}
 Renderer::~Renderer() = default;
 
 void Renderer::setEnvironment(const ImageRGB32F& image)
 {
+    impl_->environmentSource = image;
+    ++impl_->environmentGeneration;
     // Repeat in u (longitude wraps), clamp in v (the poles do not).
     impl_->equirect = gl::createMipmappedTexture2D(
         {GL_RGB32F, image.width, image.height, GL_RGB, GL_FLOAT, image.texels.data(), 4, GL_REPEAT, GL_CLAMP_TO_EDGE});
@@ -338,6 +443,7 @@ bool Renderer::hasBake() const { return bool(impl_->bake); }
 void Renderer::setModel(const ModelData& model, const std::string& path)
 {
     impl_->scene = buildModelScene(model, path);
+    ++impl_->sceneGeneration;
     impl_->sceneBuilt = true;
     impl_->builtFor.kind = SceneKind::Model;
 }
@@ -389,7 +495,21 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
         // Meshes first, then the sky behind them: llvmpipe shades only the uncovered pixels.
         r.drawScene(settings, aspect, rotation);
         r.drawSky(settings, aspect);
+        if (settings.view.split) {
+            // B over the right part: the same passes with the other sampling settings,
+            // confined by the scissor (which the depth clear respects too).
+            FrameSettings b = settings;
+            b.sampling = settings.view.compare;
+            const int x0 = splitColumn(settings.view, width);
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(x0, 0, width - x0, height);
+            glClear(GL_DEPTH_BUFFER_BIT);
+            r.drawScene(b, aspect, rotation);
+            r.drawSky(b, aspect);
+            glDisable(GL_SCISSOR_TEST);
+        }
     }
+    r.frameKey = r.referenceKeyFor(settings, width, height);
 
     r.resolved = &r.hdrFrame;
     if (options.accumulate) {
@@ -408,6 +528,13 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
     r.accumulatedFrames = options.accumulate ? r.accumulatedFrames + 1 : 1;
 
     glBindFramebuffer(GL_FRAMEBUFFER, r.displayFrame.framebuffer());
+    if (settings.view.mode == ViewMode::Error && r.referenceReadyFor(r.frameKey)) {
+        r.drawErrorView(settings);
+        glUseProgram(0);
+        glBindVertexArray(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        return;
+    }
     const gl::ShaderProgram& tonemap = r.shaders.program({"fullscreen.vert", "tonemap.frag"});
     glUseProgram(tonemap.id());
     // The LUT view shows data in [0, 1]: no exposure and no tone curve, just the display encoding.
@@ -420,6 +547,80 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
     glUseProgram(0);
     glBindVertexArray(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+ReferenceStatus Renderer::advanceReference(const FrameSettings& settings, int width, int height, std::chrono::steady_clock::duration budget,
+                                           const ReferenceSlicing& slicing)
+{
+    Impl& r = *impl_;
+    if (!r.bake || r.environmentSource.empty()) return {};
+    r.active = r.bake.get();
+    std::string key = r.referenceKeyFor(settings, width, height);
+    if (key != r.referenceKey || !(slicing == r.referenceSlicing)) r.startReference(settings, width, height, slicing, std::move(key));
+    const auto start = std::chrono::steady_clock::now();
+    while (!r.reference.complete() && std::chrono::steady_clock::now() - start < budget) {
+        r.reference.runSlice(r.shaders, r.gbuffer, r.referenceGeometry);
+        glFinish();
+    }
+    if (r.reference.complete() && !r.referenceResolved) r.resolveReference(settings);
+    return referenceStatus(settings, width, height);
+}
+
+ReferenceStatus Renderer::referenceStatus(const FrameSettings& settings, int width, int height) const
+{
+    const Impl& r = *impl_;
+    ReferenceStatus status;
+    status.current = !r.referenceKey.empty() && r.referenceKey == r.referenceKeyFor(settings, width, height);
+    if (!status.current) return status;
+    status.complete = r.referenceResolved;
+    status.progress = r.reference.progress();
+    status.environmentWidth = r.reference.environmentWidth();
+    status.environmentHeight = r.reference.environmentHeight();
+    status.texelDegrees = 360.0 / double(std::max(status.environmentWidth, 1));
+    status.minResolvedRoughness = referenceMinResolvedRoughness(status.environmentWidth);
+    return status;
+}
+
+FrameReadback Renderer::readReferenceFrame() const
+{
+    const Impl& r = *impl_;
+    if (!r.referenceResolved) return {};
+    return r.readTexture(r.referenceFrame.texture(), r.referenceFrame.width(), r.referenceFrame.height());
+}
+
+FrameReadback Renderer::readReferenceLayer(ReferenceLayer layer) const
+{
+    const Impl& r = *impl_;
+    if (r.gbuffer.width() == 0) return {};
+    return r.readTexture(r.gbuffer.texture(layer), r.gbuffer.width(), r.gbuffer.height());
+}
+
+ErrorReport Renderer::measureError(const FrameSettings& settings) const
+{
+    const Impl& r = *impl_;
+    ErrorReport report;
+    if (!r.referenceReadyFor(r.frameKey)) return report;
+    FrameReadback frame = readHdrFrame();
+    FrameReadback reference = readReferenceFrame();
+    if (settings.view.errorSpace == ErrorSpace::Display) {
+        for (FrameReadback* image : {&frame, &reference})
+            for (std::size_t i = 0; i < image->rgba.size(); i += 4) {
+                const glm::vec3 shown = displayEncode(glm::vec3(image->rgba[i], image->rgba[i + 1], image->rgba[i + 2]), settings.toneMap.exposureEv,
+                                                      settings.toneMap.op);
+                for (int c = 0; c < 3; ++c) image->rgba[i + std::size_t(c)] = shown[c];
+            }
+    }
+    const std::vector<std::uint8_t> coverage = r.readCoverage();
+    const int x0 = settings.view.split ? splitColumn(settings.view, frame.width) : frame.width;
+    auto side = [&](bool right) {
+        std::vector<std::uint8_t> include = coverage;
+        for (std::size_t i = 0; i < include.size(); ++i) include[i] = include[i] && ((int(i % std::size_t(frame.width)) >= x0) == right);
+        return computeErrorMetrics(frame.rgba, reference.rgba, include);
+    };
+    report.valid = true;
+    report.left = side(false);
+    if (settings.view.split) report.right = side(true);
+    return report;
 }
 
 int Renderer::accumulatedFrames() const { return impl_->accumulatedFrames; }

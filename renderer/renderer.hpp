@@ -2,12 +2,15 @@
 // The frame renderer: environment, bake and scene in, tone-mapped frame out. Its public
 // interface hides GL so that the UI and the app never issue GL calls; it needs a current
 // 4.5 context.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "ibl/error_metrics.hpp"
 #include "ibl/image.hpp"
 #include "settings.hpp"
 
@@ -60,6 +63,48 @@ struct ScreenLabel {
     bool title = false;
 };
 
+// The reference renderer's G-buffer layers (what the mesh pass leaves for the integral),
+// for read-back: N and V are in the environment's frame (its yaw undone).
+enum class ReferenceLayer {
+    Normal,    // N, coverage (1 on surfaces, 0 on the background)
+    View,      // V, perceptual roughness
+    Specular,  // F0, metallic
+    BaseColor, // base colour, occlusion
+    Emissive,
+    Count
+};
+
+// How the reference integral is cut into slices: one slice sums the rows of one band of
+// the environment for one tileSize x tileSize tile of pixels. rowsPerSlice 0 sizes the band
+// so that a slice is about 2^21 texel evaluations. The result does not depend on either.
+struct ReferenceSlicing {
+    int tileSize = 32;
+    int rowsPerSlice = 0;
+    bool operator==(const ReferenceSlicing&) const = default;
+};
+
+struct ReferenceStatus {
+    bool current = false;  // a reference of these settings and size is under way or done
+    bool complete = false;
+    float progress = 0.0f; // fraction of the slices done
+    int environmentWidth = 0; // of the environment it sums over (after downsampling)
+    int environmentHeight = 0;
+    double texelDegrees = 0.0;         // angular width of one of its texels at the equator
+    double minResolvedRoughness = 0.0; // referenceMinResolvedRoughness: below it, it is not converged
+};
+
+// The error of the last frame against the reference, over surface pixels. With the split
+// view, `left` covers the pixels left of the divider (settings A) and `right` the others
+// (settings B); without it, `left` covers the whole frame.
+struct ErrorReport {
+    bool valid = false; // false until a complete reference of the frame's settings and size exists
+    ErrorMetrics left;
+    std::optional<ErrorMetrics> right;
+};
+
+// The first pixel column that shows settings B in the split view of a frame width wide.
+int splitColumn(const ViewSettings& view, int width);
+
 class Renderer {
 public:
     explicit Renderer(std::filesystem::path shaderDirectory);
@@ -81,7 +126,10 @@ public:
     // A loaded glTF model for SceneKind::Model (uploads meshes and textures).
     void setModel(const ModelData& model, const std::string& path);
 
-    // Renders the HDR frame and its tone-mapped display image at the given size.
+    // Renders the HDR frame and its tone-mapped display image at the given size. With the
+    // split view, pixels from splitColumn on are rendered with view.compare as sampling.
+    // ViewMode::Error shows the frame's error in false colour once advanceReference has
+    // completed the reference of these settings and size, and the plain frame until then.
     // resolutionScale < 1 renders fewer pixels (the view is scaled up when presented), for
     // interaction with expensive settings; accumulate averages successive frames of the
     // same settings with rotated sample sets (progressive refinement of the sampled method).
@@ -96,6 +144,21 @@ public:
     // Whether the last frame drew anything with the sampled method (whose frames differ
     // under accumulation); a frame without it is final after one render.
     bool lastFrameWasSampled() const;
+
+    // The reference renderer: the frame of these settings at this size with the full
+    // integral over the (downsampled) environment's texels, no split sum and no N = V = R.
+    // Starts it when the settings, size, slicing, environment or model changed (the mesh
+    // pass fills a G-buffer at once), then runs slices until `budget` is spent (glFinish
+    // after each, so the budget is GPU time) or it is complete; a complete reference is
+    // resolved into an RGBA32F frame. Needs a bake, like any lit frame.
+    ReferenceStatus advanceReference(const FrameSettings& settings, int width, int height, std::chrono::steady_clock::duration budget,
+                                     const ReferenceSlicing& slicing = {});
+    ReferenceStatus referenceStatus(const FrameSettings& settings, int width, int height) const;
+    FrameReadback readReferenceFrame() const; // of the last complete reference
+    FrameReadback readReferenceLayer(ReferenceLayer layer) const;
+    // Compares the last rendered frame with the reference (ViewSettings::errorSpace decides
+    // linear HDR or display values); invalid unless the reference of that frame is complete.
+    ErrorReport measureError(const FrameSettings& settings) const;
 
     SceneInfo sceneInfo(const FrameSettings& settings);
     int prefilterLevels() const; // 0 before the first bake

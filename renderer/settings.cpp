@@ -20,11 +20,12 @@ constexpr NameTable<SceneKind, 6> kSceneKinds{{{SceneKind::Sphere, "sphere"},
                                                {SceneKind::Counting, "counting"},
                                                {SceneKind::Sweep, "sweep"},
                                                {SceneKind::Model, "model"}}};
-constexpr NameTable<ViewMode, 5> kViewModes{{{ViewMode::Final, "final"},
+constexpr NameTable<ViewMode, 6> kViewModes{{{ViewMode::Final, "final"},
                                              {ViewMode::PrefilterMips, "prefilter-mips"},
                                              {ViewMode::Lut, "lut"},
                                              {ViewMode::Furnace, "furnace"},
-                                             {ViewMode::Irradiance, "irradiance"}}};
+                                             {ViewMode::Irradiance, "irradiance"},
+                                             {ViewMode::Error, "error"}}};
 constexpr NameTable<BackgroundMode, 4> kBackgroundModes{{{BackgroundMode::Environment, "environment"},
                                                          {BackgroundMode::Irradiance, "irradiance"},
                                                          {BackgroundMode::PrefilterMip, "prefilter-mip"},
@@ -32,6 +33,7 @@ constexpr NameTable<BackgroundMode, 4> kBackgroundModes{{{BackgroundMode::Enviro
 constexpr NameTable<DiffuseSource, 2> kDiffuseSources{{{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
 constexpr NameTable<GeometryTerm, 2> kGeometryTerms{
     {{GeometryTerm::SchlickGGX, "schlick"}, {GeometryTerm::HeightCorrelatedSmith, "correlated"}}};
+constexpr NameTable<ErrorSpace, 2> kErrorSpaces{{{ErrorSpace::Linear, "linear"}, {ErrorSpace::Display, "display"}}};
 
 template <typename Enum, std::size_t N>
 std::string_view nameOf(const NameTable<Enum, N>& table, Enum value)
@@ -111,6 +113,41 @@ std::string_view diffuseSourceName(DiffuseSource s) { return nameOf(kDiffuseSour
 bool parseDiffuseSource(std::string_view n, DiffuseSource& s) { return parseName(kDiffuseSources, n, s); }
 std::string_view geometryTermShortName(GeometryTerm t) { return nameOf(kGeometryTerms, t); }
 bool parseGeometryTerm(std::string_view n, GeometryTerm& t) { return parseName(kGeometryTerms, n, t); }
+std::string_view errorSpaceName(ErrorSpace s) { return nameOf(kErrorSpaces, s); }
+bool parseErrorSpace(std::string_view n, ErrorSpace& s) { return parseName(kErrorSpaces, n, s); }
+
+namespace {
+
+// The sampling block is written twice: the frame's own and the split view's comparison.
+Json samplingJson(const SamplingSettings& s)
+{
+    return {{"method", std::string(shadingMethodName(s.method))},
+            {"samples", s.samples},
+            {"forced_mip", s.forcedMip},
+            {"pdf_mip_filtering", s.pdfMipFiltering},
+            {"mip_bias", s.mipBias},
+            {"geometry", std::string(geometryTermShortName(s.geometry))},
+            {"diffuse", std::string(diffuseSourceName(s.diffuse))},
+            {"cosine_sampled_diffuse", s.cosineSampledDiffuse},
+            {"multiscatter", s.multiscatter},
+            {"normalize_by_accepted", s.normalizeByAccepted}};
+}
+
+void readSampling(const Reader& sampling, SamplingSettings& s)
+{
+    sampling.readName("method", kShadingMethods, s.method);
+    sampling.read("samples", s.samples);
+    sampling.read("forced_mip", s.forcedMip);
+    sampling.read("pdf_mip_filtering", s.pdfMipFiltering);
+    sampling.read("mip_bias", s.mipBias);
+    sampling.readName("geometry", kGeometryTerms, s.geometry);
+    sampling.readName("diffuse", kDiffuseSources, s.diffuse);
+    sampling.read("cosine_sampled_diffuse", s.cosineSampledDiffuse);
+    sampling.read("multiscatter", s.multiscatter);
+    sampling.read("normalize_by_accepted", s.normalizeByAccepted);
+}
+
+} // namespace
 
 std::string toJsonText(const FrameSettings& s, int indent)
 {
@@ -128,21 +165,18 @@ std::string toJsonText(const FrameSettings& s, int indent)
                      {"roughness", s.material.roughness},
                      {"ambient_occlusion", s.material.ambientOcclusion},
                      {"specular", s.material.specular}};
-    j["sampling"] = {{"method", std::string(shadingMethodName(s.sampling.method))},
-                     {"samples", s.sampling.samples},
-                     {"forced_mip", s.sampling.forcedMip},
-                     {"pdf_mip_filtering", s.sampling.pdfMipFiltering},
-                     {"mip_bias", s.sampling.mipBias},
-                     {"geometry", std::string(geometryTermShortName(s.sampling.geometry))},
-                     {"diffuse", std::string(diffuseSourceName(s.sampling.diffuse))},
-                     {"cosine_sampled_diffuse", s.sampling.cosineSampledDiffuse},
-                     {"multiscatter", s.sampling.multiscatter},
-                     {"normalize_by_accepted", s.sampling.normalizeByAccepted}};
+    j["sampling"] = samplingJson(s.sampling);
     j["scene"] = {{"kind", std::string(sceneKindName(s.scene.kind))}, {"model", s.scene.modelPath}, {"counting_spheres", s.scene.countingSpheres}};
     j["view"] = {{"mode", std::string(viewModeName(s.view.mode))},
                  {"background", std::string(backgroundModeName(s.view.background))},
                  {"background_mip", s.view.backgroundMip},
-                 {"solid_colour", vec3Json(s.view.solidColour)}};
+                 {"solid_colour", vec3Json(s.view.solidColour)},
+                 {"error_space", std::string(errorSpaceName(s.view.errorSpace))},
+                 {"error_scale", s.view.errorScale},
+                 {"reference_width", s.view.referenceWidth},
+                 {"split", s.view.split},
+                 {"split_position", s.view.splitPosition},
+                 {"compare", samplingJson(s.view.compare)}};
     return j.dump(indent);
 }
 
@@ -187,17 +221,7 @@ FrameSettings frameSettingsFromJsonText(const std::string& text)
     material.read("ambient_occlusion", s.material.ambientOcclusion);
     material.read("specular", s.material.specular);
 
-    const Reader sampling = root.child("sampling");
-    sampling.readName("method", kShadingMethods, s.sampling.method);
-    sampling.read("samples", s.sampling.samples);
-    sampling.read("forced_mip", s.sampling.forcedMip);
-    sampling.read("pdf_mip_filtering", s.sampling.pdfMipFiltering);
-    sampling.read("mip_bias", s.sampling.mipBias);
-    sampling.readName("geometry", kGeometryTerms, s.sampling.geometry);
-    sampling.readName("diffuse", kDiffuseSources, s.sampling.diffuse);
-    sampling.read("cosine_sampled_diffuse", s.sampling.cosineSampledDiffuse);
-    sampling.read("multiscatter", s.sampling.multiscatter);
-    sampling.read("normalize_by_accepted", s.sampling.normalizeByAccepted);
+    readSampling(root.child("sampling"), s.sampling);
 
     const Reader scene = root.child("scene");
     scene.readName("kind", kSceneKinds, s.scene.kind);
@@ -209,6 +233,12 @@ FrameSettings frameSettingsFromJsonText(const std::string& text)
     view.readName("background", kBackgroundModes, s.view.background);
     view.read("background_mip", s.view.backgroundMip);
     view.read("solid_colour", s.view.solidColour);
+    view.readName("error_space", kErrorSpaces, s.view.errorSpace);
+    view.read("error_scale", s.view.errorScale);
+    view.read("reference_width", s.view.referenceWidth);
+    view.read("split", s.view.split);
+    view.read("split_position", s.view.splitPosition);
+    readSampling(view.child("compare"), s.view.compare);
     return s;
 }
 

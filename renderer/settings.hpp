@@ -73,14 +73,29 @@ struct SceneSettings {
     int countingSpheres = 8; // spheres in the counting strip and the roughness sweep
 };
 
-enum class ViewMode { Final, PrefilterMips, Lut, Furnace, Irradiance };
+// Error: the frame's per-pixel relative error against the reference renderer (the full
+// integral over the environment's texels), in false colour.
+enum class ViewMode { Final, PrefilterMips, Lut, Furnace, Irradiance, Error };
 enum class BackgroundMode { Environment, Irradiance, PrefilterMip, SolidColour };
+// Where ViewMode::Error compares: the linear HDR radiance before exposure and tone mapping,
+// or the display values after them (what the eye is shown).
+enum class ErrorSpace { Linear, Display };
 
 struct ViewSettings {
     ViewMode mode = ViewMode::Final;
     BackgroundMode background = BackgroundMode::Environment;
     int backgroundMip = 2;
     glm::vec3 solidColour{0.18f};
+    ErrorSpace errorSpace = ErrorSpace::Linear;
+    float errorScale = 0.25f; // the relative error at the top of the colour bar
+    // Width of the environment the reference sums over (height = width / 2), reached by
+    // solid-angle-preserving 2x downsampling of the loaded map. 256 x 128 texels are 1.4
+    // degrees wide: lobes of roughness >= 0.3 span several texels (see referenceMidpointNote).
+    int referenceWidth = 256;
+    // A/B split: the frame shows `sampling` left of the divider and `compare` right of it.
+    bool split = false;
+    float splitPosition = 0.5f; // divider, as a fraction of the width from the left
+    SamplingSettings compare;
 };
 
 struct FrameSettings {
@@ -106,6 +121,8 @@ bool parseBackgroundMode(std::string_view name, BackgroundMode& mode);
 std::string_view diffuseSourceName(DiffuseSource source);
 bool parseDiffuseSource(std::string_view name, DiffuseSource& source);
 std::string_view geometryTermShortName(GeometryTerm term); // "schlick" | "correlated"
+std::string_view errorSpaceName(ErrorSpace space); // "linear" | "display"
+bool parseErrorSpace(std::string_view name, ErrorSpace& space);
 bool parseGeometryTerm(std::string_view name, GeometryTerm& term);
 
 // JSON text of the settings (screenshot metadata and sidecars, lab presets).

@@ -8,6 +8,7 @@
 
 #include <imgui.h>
 
+#include "ibl/error_metrics.hpp"
 #include "ibl/tonemap.hpp"
 
 namespace iblab::ui {
@@ -147,9 +148,11 @@ void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene)
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Dielectric F0 = 0.16 specular^2: 0.5 gives 4%%");
 }
 
-void drawSamplingPanel(SamplingSettings& settings)
+namespace {
+
+// The estimator's controls; the frame's own (A) and the split view's B use the same.
+void drawSamplingControls(SamplingSettings& settings)
 {
-    if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
     enumCombo("Method", settings.method, std::array{ShadingMethod::SplitSum, ShadingMethod::Sampled}, shadingMethodName);
     if (settings.method == ShadingMethod::Sampled) {
         ImGui::SliderInt("N samples", &settings.samples, 1, 1024, "%d", ImGuiSliderFlags_Logarithmic);
@@ -169,6 +172,87 @@ void drawSamplingPanel(SamplingSettings& settings)
     enumCombo("Geometry term", settings.geometry, std::array{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith}, geometryTermShortName);
     enumCombo("Diffuse", settings.diffuse, std::array{DiffuseSource::Sh9, DiffuseSource::IrradianceCube}, diffuseSourceName);
     ImGui::Checkbox("Multiple-scattering compensation", &settings.multiscatter);
+}
+
+// "sampled N=16" or "splitsum", the divider's labels.
+std::string samplingSummary(const SamplingSettings& s)
+{
+    std::string text(shadingMethodName(s.method));
+    if (s.method == ShadingMethod::Sampled) text += " N=" + std::to_string(s.samples) + (s.pdfMipFiltering ? "" : " mip0");
+    if (s.forcedMip >= 0) text += " mip " + std::to_string(s.forcedMip);
+    text += ", " + std::string(geometryTermShortName(s.geometry));
+    if (s.multiscatter) text += ", ms";
+    return text;
+}
+
+void drawMetricsTable(const char* id, const ErrorMetrics& m)
+{
+    if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_SizingStretchProp)) return;
+    auto row = [](const char* name, const char* format, double value) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(name);
+        ImGui::TableNextColumn();
+        ImGui::Text(format, value);
+    };
+    row("relative RMSE", "%.4f", m.relativeRmse);
+    row("mean relative error", "%.4f", m.meanRelative);
+    row("99th percentile", "%.4f", m.p99Relative);
+    row("max", "%.4f", m.maxRelative);
+    row("fireflies (> 3x)", "%.0f", double(m.fireflies));
+    row("surface pixels", "%.0f", double(m.pixels));
+    ImGui::EndTable();
+}
+
+} // namespace
+
+void drawSamplingPanel(SamplingSettings& settings)
+{
+    if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    drawSamplingControls(settings);
+}
+
+void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state)
+{
+    if (!ImGui::CollapsingHeader("Compare")) return;
+    bool errorView = view.mode == ViewMode::Error;
+    if (ImGui::Checkbox("Error against the reference", &errorView)) view.mode = errorView ? ViewMode::Error : ViewMode::Final;
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The full integral over the environment's texels: no split sum, no N = V = R");
+    if (errorView) {
+        enumCombo("Compare", view.errorSpace, std::array{ErrorSpace::Linear, ErrorSpace::Display}, errorSpaceName);
+        ImGui::SliderFloat("Colour bar top", &view.errorScale, 0.01f, 4.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+        const std::array widths{32, 64, 128, 256, 512};
+        if (ImGui::BeginCombo("Reference map", (std::to_string(view.referenceWidth) + " x " + std::to_string(view.referenceWidth / 2)).c_str())) {
+            for (int w : widths)
+                if (ImGui::Selectable((std::to_string(w) + " x " + std::to_string(w / 2)).c_str(), w == view.referenceWidth)) view.referenceWidth = w;
+            ImGui::EndCombo();
+        }
+        const ReferenceStatus& r = state.reference;
+        if (r.current) {
+            char text[96];
+            std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d)", 100.0 * r.progress, r.environmentWidth, r.environmentHeight);
+            ImGui::ProgressBar(r.progress, ImVec2(-1.0f, 0.0f), text);
+            ImGui::TextDisabled("texel %.2f deg: converged for roughness >= %.2f", r.texelDegrees, r.minResolvedRoughness);
+        }
+        if (state.error.valid) {
+            ImGui::TextUnformatted(view.split ? "A (left)" : "Frame");
+            drawMetricsTable("##errorA", state.error.left);
+            if (state.error.right) {
+                ImGui::TextUnformatted("B (right)");
+                drawMetricsTable("##errorB", *state.error.right);
+            }
+        }
+    }
+    ImGui::Separator();
+    ImGui::Checkbox("A/B split", &view.split);
+    if (!view.split) return;
+    ImGui::SliderFloat("Divider", &view.splitPosition, 0.0f, 1.0f, "%.2f");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Or drag the line in the view");
+    if (ImGui::Button("Copy A's sampling to B")) view.compare = frameSampling;
+    ImGui::TextDisabled("B, right of the divider:");
+    ImGui::PushID("B");
+    drawSamplingControls(view.compare);
+    ImGui::PopID();
 }
 
 void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests)
@@ -197,7 +281,7 @@ void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requ
 void drawViewPanel(ViewSettings& settings)
 {
     if (!ImGui::CollapsingHeader("View")) return;
-    const std::array modes{ViewMode::Final, ViewMode::PrefilterMips, ViewMode::Lut, ViewMode::Furnace, ViewMode::Irradiance};
+    const std::array modes{ViewMode::Final, ViewMode::PrefilterMips, ViewMode::Lut, ViewMode::Furnace, ViewMode::Irradiance, ViewMode::Error};
     enumCombo("View", settings.mode, modes, viewModeName);
     const std::array backgrounds{BackgroundMode::Environment, BackgroundMode::Irradiance, BackgroundMode::PrefilterMip, BackgroundMode::SolidColour};
     enumCombo("Background", settings.background, backgrounds, backgroundModeName);
@@ -289,6 +373,63 @@ void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 vi
     }
 }
 
+void drawErrorLegend(const ViewSettings& view, glm::vec2 viewOrigin, glm::vec2 viewSize)
+{
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    constexpr float kBarWidth = 220.0f, kBarHeight = 14.0f, kMargin = 16.0f;
+    constexpr int kSteps = 64;
+    const ImVec2 origin(viewOrigin.x + viewSize.x - kBarWidth - kMargin - 12.0f, viewOrigin.y + viewSize.y - kBarHeight - kMargin - 22.0f);
+    draw->AddRectFilled(ImVec2(origin.x - 10.0f, origin.y - 22.0f), ImVec2(origin.x + kBarWidth + 14.0f, origin.y + kBarHeight + 22.0f),
+                        IM_COL32(0, 0, 0, 170), 4.0f);
+    for (int i = 0; i < kSteps; ++i) {
+        // The very map the error view's shader draws (error_metrics.glsl, compiled as C++).
+        const glm::vec3 c = falseColour((float(i) + 0.5f) / float(kSteps));
+        const float x0 = origin.x + kBarWidth * float(i) / float(kSteps), x1 = origin.x + kBarWidth * float(i + 1) / float(kSteps);
+        draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1, origin.y + kBarHeight), ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+    }
+    const ImU32 text = IM_COL32(235, 235, 235, 255);
+    for (int i = 0; i <= 4; ++i) {
+        const float t = float(i) / 4.0f;
+        char label[16];
+        std::snprintf(label, sizeof label, "%.3g", double(t * view.errorScale));
+        const float x = origin.x + t * kBarWidth;
+        draw->AddLine(ImVec2(x, origin.y + kBarHeight), ImVec2(x, origin.y + kBarHeight + 4.0f), text);
+        draw->AddText(ImVec2(x - ImGui::CalcTextSize(label).x * 0.5f, origin.y + kBarHeight + 4.0f), text, label);
+    }
+    const std::string title = std::string("relative error, ") + (view.errorSpace == ErrorSpace::Linear ? "linear HDR" : "display");
+    draw->AddText(ImVec2(origin.x, origin.y - 18.0f), text, title.c_str());
+}
+
+void drawReferenceProgress(const ReferenceStatus& status, glm::vec2 viewOrigin, glm::vec2 viewSize)
+{
+    char text[128];
+    std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d texels): showing the frame until it completes", 100.0 * status.progress,
+                  status.environmentWidth, status.environmentHeight);
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    const ImVec2 at(viewOrigin.x + (viewSize.x - size.x) * 0.5f, viewOrigin.y + 12.0f);
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    draw->AddRectFilled(ImVec2(at.x - 6, at.y - 3), ImVec2(at.x + size.x + 6, at.y + size.y + 3), IM_COL32(0, 0, 0, 170), 4.0f);
+    draw->AddText(at, IM_COL32(255, 220, 120, 255), text);
+}
+
+void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewOrigin, glm::vec2 viewSize)
+{
+    ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    const float x = viewOrigin.x + float(column);
+    draw->AddLine(ImVec2(x, viewOrigin.y), ImVec2(x, viewOrigin.y + viewSize.y), IM_COL32(0, 0, 0, 200), 3.0f);
+    draw->AddLine(ImVec2(x, viewOrigin.y), ImVec2(x, viewOrigin.y + viewSize.y), IM_COL32(255, 255, 255, 230), 1.0f);
+    const std::string a = "A: " + samplingSummary(settings.sampling);
+    const std::string b = "B: " + samplingSummary(settings.view.compare);
+    const ImU32 background = IM_COL32(0, 0, 0, 170), text = IM_COL32(255, 255, 255, 255);
+    const ImVec2 aSize = ImGui::CalcTextSize(a.c_str());
+    const ImVec2 aAt(x - aSize.x - 10.0f, viewOrigin.y + 36.0f), bAt(x + 10.0f, viewOrigin.y + 36.0f);
+    draw->AddRectFilled(ImVec2(aAt.x - 4, aAt.y - 2), ImVec2(aAt.x + aSize.x + 4, aAt.y + aSize.y + 2), background, 3.0f);
+    draw->AddText(aAt, text, a.c_str());
+    const ImVec2 bSize = ImGui::CalcTextSize(b.c_str());
+    draw->AddRectFilled(ImVec2(bAt.x - 4, bAt.y - 2), ImVec2(bAt.x + bSize.x + 4, bAt.y + bSize.y + 2), background, 3.0f);
+    draw->AddText(bAt, text, b.c_str());
+}
+
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests)
 {
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab)) && !ImGui::GetIO().WantTextInput) state.showPanels = !state.showPanels;
@@ -306,6 +447,7 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     drawSamplingPanel(settings.sampling);
     drawToneMapPanel(settings.toneMap);
     drawViewPanel(settings.view);
+    drawComparePanel(settings.view, settings.sampling, state.compare);
     drawCameraPanel(settings.camera, requests);
     drawCapturePanel(state, requests);
     drawPresetPanel(state, requests);

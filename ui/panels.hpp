@@ -53,6 +53,12 @@ struct Activity {
     float progress = 0.0f;
 };
 
+// The reference and the numbers of the error view, as the app last measured them.
+struct CompareState {
+    ReferenceStatus reference;
+    ErrorReport error;
+};
+
 struct PanelState {
     EnvironmentCatalog catalog;
     StatusLine environmentStatus;
@@ -62,6 +68,7 @@ struct PanelState {
     StatusLine presetStatus;
     CaptureSettings capture;
     Activity activity;
+    CompareState compare;
     char environmentPath[512] = "";
     char modelPath[512] = "";
     char presetPath[512] = "iblab-preset.json";
@@ -75,6 +82,8 @@ void drawToneMapPanel(ToneMapSettings& settings);
 void drawCameraPanel(CameraSettings& settings, UiRequests& requests);
 void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene);
 void drawSamplingPanel(SamplingSettings& settings);
+// The error view's and the split view's controls, the reference's progress and the numbers.
+void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state);
 void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests);
 void drawViewPanel(ViewSettings& settings);
 void drawPresetPanel(PanelState& state, UiRequests& requests);
@@ -90,6 +99,13 @@ void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigi
 
 // The furnace view's numbers: reflected radiance (1 = all energy) over each sphere.
 void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 viewOrigin, float viewHeight);
+
+// The error view's colour bar with its numeric scale, at the bottom right of the view.
+void drawErrorLegend(const ViewSettings& view, glm::vec2 viewOrigin, glm::vec2 viewSize);
+// The reference's progress while the error view waits for it, at the top of the view.
+void drawReferenceProgress(const ReferenceStatus& status, glm::vec2 viewOrigin, glm::vec2 viewSize);
+// The split view's divider at pixel column `column` and what each side shows.
+void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewOrigin, glm::vec2 viewSize);
 
 // The full control window with all of the above, docked at the left.
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests);

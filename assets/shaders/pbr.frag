@@ -1,6 +1,7 @@
 // glTF metallic-roughness material under image-based lighting. METHOD selects the
-// estimator at compile time (0 split sum, 1 runtime importance sampling); everything else
-// is a uniform so that sliders never trigger a recompile.
+// estimator at compile time (0 split sum, 1 runtime importance sampling, 2 no estimate:
+// the G-buffer the reference renderer integrates over); everything else is a uniform so
+// that sliders never trigger a recompile.
 #include "common/ibl_lighting.glsl"
 
 in vec3 vWorldPosition;
@@ -8,7 +9,17 @@ in vec3 vNormal;
 in vec4 vTangent;
 in vec2 vUv0;
 in vec2 vUv1;
+#if METHOD == 2
+// The surface in the environment's own frame (the reference sums over its texels) and
+// every input of combineLobes; coverage 0 (the clear value) marks the background.
+layout(location = 0) out vec4 gNormal;    // N, coverage 1
+layout(location = 1) out vec4 gView;      // V, perceptual roughness
+layout(location = 2) out vec4 gSpecular;  // F0, metallic
+layout(location = 3) out vec4 gBaseColor; // base colour, occlusion
+layout(location = 4) out vec4 gEmissive;
+#else
 out vec4 fragColor;
+#endif
 
 uniform vec3 uCameraPosition;
 
@@ -48,7 +59,7 @@ vec3 shadingNormal()
     return normalize(mat3(t, b, n) * m);
 }
 
-void main()
+SurfacePoint surfacePoint()
 {
     SurfacePoint s;
     s.N = shadingNormal();
@@ -68,13 +79,28 @@ void main()
     s.occlusion = uAmbientOcclusion;
     if (uHasOcclusionTexture) s.occlusion *= mix(1.0, texture(uOcclusionTexture, uvSet(uTexCoordSets.w)).r, uOcclusionStrength);
     s.F0 = mix(vec3(0.16 * uSpecular * uSpecular), s.baseColor, s.metallic);
+    return s;
+}
 
-#if METHOD == 0
-    vec3 radiance = shadeSplitSum(s);
-#else
-    vec3 radiance = shadeSampled(s);
-#endif
+vec3 emission()
+{
     vec3 emissive = uEmissiveFactor;
     if (uHasEmissiveTexture) emissive *= texture(uEmissiveTexture, uvSet(uEmissiveTexCoordSet)).rgb;
-    fragColor = vec4(radiance + emissive, 1.0);
+    return emissive;
+}
+
+void main()
+{
+    SurfacePoint s = surfacePoint();
+#if METHOD == 0
+    fragColor = vec4(shadeSplitSum(s) + emission(), 1.0);
+#elif METHOD == 1
+    fragColor = vec4(shadeSampled(s) + emission(), 1.0);
+#else
+    gNormal = vec4(toEnvironment(s.N), 1.0);
+    gView = vec4(toEnvironment(s.V), s.roughness);
+    gSpecular = vec4(s.F0, s.metallic);
+    gBaseColor = vec4(s.baseColor, s.occlusion);
+    gEmissive = vec4(emission(), 1.0);
+#endif
 }

@@ -168,6 +168,7 @@ GLint ShaderProgram::uniformLocation(const std::string& name) const
 
 void ShaderProgram::set(const std::string& name, int value) const { glProgramUniform1i(id(), uniformLocation(name), value); }
 void ShaderProgram::set(const std::string& name, float value) const { glProgramUniform1f(id(), uniformLocation(name), value); }
+void ShaderProgram::set(const std::string& name, const glm::ivec2& v) const { glProgramUniform2iv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }
 void ShaderProgram::set(const std::string& name, const glm::vec2& v) const { glProgramUniform2fv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }
 void ShaderProgram::set(const std::string& name, const glm::vec3& v) const { glProgramUniform3fv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }
 void ShaderProgram::set(const std::string& name, const glm::vec4& v) const { glProgramUniform4fv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }

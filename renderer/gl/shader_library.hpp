@@ -47,6 +47,7 @@ public:
     GLint uniformLocation(const std::string& name) const;
     void set(const std::string& name, int value) const;
     void set(const std::string& name, float value) const;
+    void set(const std::string& name, const glm::ivec2& value) const;
     void set(const std::string& name, const glm::vec2& value) const;
     void set(const std::string& name, const glm::vec3& value) const;
     void set(const std::string& name, const glm::vec4& value) const;

@@ -1,6 +1,7 @@
 #include "ibl/reference.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -151,6 +152,18 @@ ImageRGB32F downsampleEquirect2x(const ImageRGB32F& env)
         }
     }
     return out;
+}
+
+ImageRGB32F downsampleEquirectToWidth(const ImageRGB32F& env, int maxWidth)
+{
+    ImageRGB32F out = env;
+    while (out.width > maxWidth && out.width % 2 == 0 && out.height % 2 == 0) out = downsampleEquirect2x(out);
+    return out;
+}
+
+double referenceMinResolvedRoughness(int width)
+{
+    return std::sqrt(1.5 * 2.0 * kPi / double(std::max(width, 1)));
 }
 
 } // namespace iblab

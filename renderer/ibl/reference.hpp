@@ -40,4 +40,19 @@ glm::dvec3 referenceSpecular(const ImageRGB32F& env, glm::dvec3 n, glm::dvec3 v,
 // power. So integrals of L against slowly varying weights are preserved.
 ImageRGB32F downsampleEquirect2x(const ImageRGB32F& env);
 
+// Halves env with downsampleEquirect2x until it is at most maxWidth wide (or its
+// dimensions stop being even): the environment a reference over many pixels sums over.
+ImageRGB32F downsampleEquirectToWidth(const ImageRGB32F& env, int maxWidth);
+
+// The smallest perceptual roughness whose specular lobe a sum over a width-texel-wide
+// equirect resolves. The midpoint rule's error inside a texel grows with the integrand's
+// curvature across it; the reflected GGX lobe's full width at half maximum is about 2.6
+// alpha radians (from D's half-maximum at tan^2(theta_h) = (sqrt 2 - 1) alpha^2, doubled by
+// the reflection), so with at least four texels of 2 pi / width across it,
+//   alpha >= 1.5 * 2 pi / width,  roughness = sqrt(alpha).
+// Below it the reference itself is not converged, and differences it reports there are
+// partly its own. At it, a 64-wide map is within 2% of a 512-wide one even for lights one
+// texel wide and 100x their surroundings (tests/cpu/reference_test.cpp).
+double referenceMinResolvedRoughness(int width);
+
 } // namespace iblab

@@ -158,7 +158,7 @@ TEST_F(Cli, UnwritableOutputFailsWithOneLine)
 TEST_F(Cli, EveryViewAndSceneRendersWithoutGlErrors)
 {
     const std::string common = " --env builtin:studio?width=128 --width 96 --height 64 --gl-debug -o out.png";
-    for (const char* view : {"final", "prefilter-mips", "lut", "furnace", "irradiance"}) {
+    for (const char* view : {"final", "prefilter-mips", "lut", "furnace", "irradiance", "error --reference-width 32"}) {
         const Result r = run(std::string("render --view ") + view + common);
         EXPECT_EQ(r.exitCode, 0) << view << ": " << r.err << " (stdout: " << r.out << ")";
     }
@@ -277,7 +277,8 @@ TEST_F(Cli, HelpListsEveryRenderOption)
     EXPECT_EQ(r.exitCode, 0);
     for (const char* option : {"--env", "--env-yaw", "--env-intensity", "--exposure", "--tonemap", "--yaw", "--pitch", "--fov", "--width",
                                "--height", "--output", "--json", "--scene", "--method", "--samples", "--mip", "--metallic", "--roughness",
-                               "--base-color", "--view"})
+                               "--base-color", "--view", "--error-space", "--error-scale", "--reference-width", "--split", "--b-method",
+                               "--b-samples", "--b-geometry", "--b-multiscatter"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }
 
@@ -311,6 +312,62 @@ TEST_F(Cli, StressQuickJsonHasEveryEnvironmentAndMethod)
     auto png = OIIO::ImageInput::open((dir / "report" / "stress.png").string());
     ASSERT_TRUE(png);
     EXPECT_GT(png->spec().width, png->spec().height) << "columns (method x roughness) outnumber rows (environments)";
+}
+
+// The error view's numbers in the JSON report: one block for the frame, or one per side of
+// the split; the reference's environment size and the roughness it resolves with it.
+TEST_F(Cli, ErrorViewReportsMetricsAsJson)
+{
+    const std::string common = " --env builtin:studio?width=128 --reference-width 64 --width 40 --height 40 --gl-debug --json";
+    const Result r = run("render --view error --error-space display" + common + " -o error.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "error.png"));
+    const auto report = nlohmann::json::parse(r.out);
+    const auto& error = report["error"];
+    EXPECT_EQ(error["space"], "display");
+    EXPECT_EQ(error["reference_environment"]["width"], 64);
+    EXPECT_EQ(error["reference_environment"]["height"], 32);
+    EXPECT_GT(error["frame"]["pixels"].get<int>(), 200);
+    const double rmse = error["frame"]["relative_rmse"].get<double>();
+    EXPECT_TRUE(std::isfinite(rmse) && rmse > 0.0) << rmse;
+    EXPECT_GE(error["frame"]["max_relative"].get<double>(), error["frame"]["p99_relative"].get<double>());
+
+    const Result split = run("render --view error --split 0.5 --b-method sampled --b-samples 1" + common + " -o split.png");
+    ASSERT_EQ(split.exitCode, 0) << split.err;
+    const auto sides = nlohmann::json::parse(split.out)["error"];
+    EXPECT_GT(sides["a"]["pixels"].get<int>(), 100);
+    EXPECT_GT(sides["b"]["pixels"].get<int>(), 100);
+}
+
+std::vector<float> readExr(const fs::path& path, int& width)
+{
+    auto input = OIIO::ImageInput::open(path.string());
+    if (!input) return {};
+    width = input->spec().width;
+    std::vector<float> pixels(std::size_t(input->spec().width * input->spec().height * 4));
+    input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data());
+    return pixels;
+}
+
+// --split shows A (the frame's options) left of the divider and B (--b-*) from it on.
+TEST_F(Cli, SplitViewShowsAOnTheLeftAndBOnTheRight)
+{
+    const std::string common = " --env builtin:studio?width=128 --width 40 --height 40 --roughness 0.4 --gl-debug";
+    ASSERT_EQ(run("render --method splitsum" + common + " -o a.exr").exitCode, 0);
+    ASSERT_EQ(run("render --method sampled --samples 1" + common + " -o b.exr").exitCode, 0);
+    const Result r = run("render --method splitsum --split 0.25 --b-method sampled --b-samples 1" + common + " -o split.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    int width = 0;
+    const std::vector<float> a = readExr(dir / "a.exr", width), b = readExr(dir / "b.exr", width), both = readExr(dir / "split.exr", width);
+    ASSERT_EQ(width, 40);
+    ASSERT_EQ(both.size(), a.size());
+    int differing = 0;
+    for (std::size_t i = 0; i < both.size(); ++i) {
+        const int x = int(i / 4 % std::size_t(width));
+        ASSERT_EQ(both[i], x < 10 ? a[i] : b[i]) << "pixel column " << x;
+        differing += x >= 10 && std::abs(a[i] - b[i]) > 1e-3f;
+    }
+    EXPECT_GT(differing, 50) << "A and B must differ right of the divider for this to prove anything";
 }
 
 } // namespace

@@ -26,6 +26,16 @@ TEST(Settings, EveryFieldSurvivesJson)
     s.sampling.normalizeByAccepted = true;
     s.scene = {SceneKind::Model, "a/b.glb", 5};
     s.view = {ViewMode::Lut, BackgroundMode::PrefilterMip, 3, glm::vec3(0.5f)};
+    s.view.mode = ViewMode::Error;
+    s.view.errorSpace = ErrorSpace::Display;
+    s.view.errorScale = 0.05f;
+    s.view.referenceWidth = 64;
+    s.view.split = true;
+    s.view.splitPosition = 0.3f;
+    s.view.compare.method = ShadingMethod::Sampled;
+    s.view.compare.samples = 3;
+    s.view.compare.geometry = GeometryTerm::SchlickGGX;
+    s.view.compare.multiscatter = true;
 
     const FrameSettings r = frameSettingsFromJsonText(toJsonText(s));
     EXPECT_EQ(toJsonText(r), toJsonText(s));
@@ -33,6 +43,10 @@ TEST(Settings, EveryFieldSurvivesJson)
     EXPECT_EQ(r.scene.modelPath, "a/b.glb");
     EXPECT_EQ(r.camera.target, glm::vec3(0.1f, 0.2f, 0.3f));
     EXPECT_EQ(r.material.baseColor, glm::vec3(0.2f, 0.4f, 0.6f));
+    EXPECT_EQ(r.view.errorSpace, ErrorSpace::Display);
+    EXPECT_EQ(r.view.compare.samples, 3);
+    EXPECT_EQ(r.view.compare.geometry, GeometryTerm::SchlickGGX);
+    EXPECT_FLOAT_EQ(r.view.splitPosition, 0.3f);
 }
 
 TEST(Settings, MissingKeysKeepDefaults)
@@ -56,6 +70,8 @@ TEST(Settings, BadValuesNameTheKey)
     EXPECT_NE(messageOf(R"({"material": {"roughness": "high"}})").find("settings.material.roughness"), std::string::npos);
     EXPECT_NE(messageOf(R"({"material": {"base_color": [1, 2]}})").find("settings.material.base_color"), std::string::npos);
     EXPECT_NE(messageOf(R"({"tone_map": {"operator": "filmic"}})").find("settings.tone_map.operator"), std::string::npos);
+    EXPECT_NE(messageOf(R"({"view": {"compare": {"method": "magic"}}})").find("settings.view.compare.method"), std::string::npos);
+    EXPECT_NE(messageOf(R"({"view": {"error_space": "log"}})").find("settings.view.error_space"), std::string::npos);
     EXPECT_NE(messageOf("{not json").find("not JSON"), std::string::npos);
     EXPECT_NE(messageOf("[1, 2]").find("object"), std::string::npos);
 }

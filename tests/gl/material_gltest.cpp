@@ -11,13 +11,10 @@
 #include "camera.hpp"
 #include "environment/environment.hpp"
 #include "bake_test_support.hpp"
-#include "gl_test_fixture.hpp"
-#include "renderer.hpp"
+#include "renderer_fixture.hpp"
 
 namespace iblab {
 namespace {
-
-using testing::GlTest;
 
 // The bake tests' small settings, with the default preset's LUT: the furnace's answer is
 // the LUT's A + B, which a 16^2 LUT would only give to a few percent.
@@ -29,20 +26,9 @@ bake::BakeSettings smallBake()
     return s;
 }
 
-class Material : public GlTest {
+class Material : public testing::RendererTest {
 protected:
-    Renderer& renderer()
-    {
-        if (!renderer_) renderer_ = std::make_unique<Renderer>(shaderDirectory());
-        return *renderer_;
-    }
-    void bake(const std::string& spec)
-    {
-        const Environment environment = loadEnvironment(spec);
-        renderer().setEnvironment(environment.image);
-        bake::BakeJob job(renderer().shaders(), environment, smallBake());
-        renderer().setBake(std::make_shared<bake::BakeResult>(job.runToCompletion()));
-    }
+    void bake(const std::string& spec) { bakeEnvironment(spec, smallBake()); }
     FrameReadback render(FrameSettings& settings, int width, int height)
     {
         if (settings.camera.distance <= 0.0f) {
@@ -52,9 +38,6 @@ protected:
         renderer().renderFrame(settings, width, height);
         return renderer().readHdrFrame();
     }
-
-private:
-    std::unique_ptr<Renderer> renderer_;
 };
 
 float luminance(const FrameReadback& f, int x, int y)

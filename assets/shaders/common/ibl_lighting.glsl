@@ -46,6 +46,18 @@ vec3 energyCompensation(vec3 F0, float singleScatterAlbedo)
     return uMultiscatter ? vec3(1.0) + F0 * (1.0 / max(singleScatterAlbedo, 1e-4) - 1.0) : vec3(1.0);
 }
 
+// The shading model every estimator shares (split sum, sampled, and the reference): a
+// Lambertian layer under the specular one. The roughness-aware Fresnel at n.v leaves
+// kD = (1 - F)(1 - metallic) of the light to the diffuse layer (metals have none).
+// irradianceOverPi is E / pi and specular the reflected radiance, both with the
+// environment's intensity applied.
+vec3 combineLobes(SurfacePoint s, float NdotV, vec3 irradianceOverPi, vec3 specular)
+{
+    vec3 F = fresnelSchlickRoughness(NdotV, s.F0, s.roughness);
+    vec3 kD = (vec3(1.0) - F) * (1.0 - s.metallic);
+    return (kD * s.baseColor * irradianceOverPi + specular) * s.occlusion;
+}
+
 // Split sum (Karis 2013): the specular integral as (prefiltered radiance at R) times
 // (F0 A + B), with A and B from the LUT. LearnOpenGL multiplies the LUT by the
 // roughness-aware Fresnel instead of F0; that counts Fresnel twice (it is already inside A
@@ -58,10 +70,7 @@ vec3 shadeSplitSum(SurfacePoint s)
     vec3 prefiltered = textureLod(uPrefiltered, toEnvironment(R), lod).rgb * uEnvironmentIntensity;
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
     vec3 specular = prefiltered * (s.F0 * lut.r + lut.g) * energyCompensation(s.F0, lut.b);
-    vec3 F = fresnelSchlickRoughness(NdotV, s.F0, s.roughness);
-    vec3 kD = (vec3(1.0) - F) * (1.0 - s.metallic);
-    vec3 diffuse = kD * s.baseColor * (1.0 / IBL_PI) * diffuseIrradiance(s.N);
-    return (diffuse + specular) * s.occlusion;
+    return combineLobes(s, NdotV, diffuseIrradiance(s.N) * (1.0 / IBL_PI), specular);
 }
 
 // The first 1024 Hammersley points for the current N, two per vec4, uploaded once per N.
@@ -124,9 +133,7 @@ vec3 shadeSampled(SurfacePoint s)
     float denominator = uNormalizeByAccepted ? float(max(accepted, 1)) : float(uSampleCount);
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
     specular *= energyCompensation(s.F0, lut.b) * uEnvironmentIntensity / denominator;
-    vec3 F = fresnelSchlickRoughness(NdotV, s.F0, s.roughness);
-    vec3 kD = (vec3(1.0) - F) * (1.0 - s.metallic);
     vec3 irradianceOverPi = uCosineSampledDiffuse ? diffuseSum * uEnvironmentIntensity / float(uSampleCount)
                                                   : diffuseIrradiance(s.N) * (1.0 / IBL_PI);
-    return (kD * s.baseColor * irradianceOverPi + specular) * s.occlusion;
+    return combineLobes(s, NdotV, irradianceOverPi, specular);
 }
