@@ -311,9 +311,10 @@ TEST(Builtin, SlitsHaveKnownPowerAndCount)
         EXPECT_NEAR(integral(img, 1), expected, 1e-4 * expected) << spec;
         for (int y = 0; y < img.height; ++y) {
             const double elevation = 90.0 - 180.0 * (y + 0.5) / img.height;
-            if (std::abs(elevation) > 0.5 * parsed.get("height") + 180.0 / img.height)
+            if (std::abs(elevation) > 0.5 * parsed.get("height") + 180.0 / img.height) {
                 for (int x = 0; x < img.width; ++x)
                     ASSERT_EQ(img.at(x, y), glm::vec3(0.0f)) << spec << ": light outside the slits' elevation range at row " << y;
+            }
         }
     }
     // Separate slits where they are wider apart than a texel: one blob each.

@@ -73,8 +73,9 @@ TEST_F(Stress, WhiteFurnaceIsOneWithMultiscatterAtEveryRoughness)
     EXPECT_EQ(checked, 3 * 4) << "three methods x four roughnesses";
     // Without compensation the rough metal loses energy: the measurement sees it.
     for (const RenderMeasurement& m : report().renders) {
-        if (m.environment == "white" && !m.multiscatter && m.method == "splitsum" && m.roughness == 1.0f)
+        if (m.environment == "white" && !m.multiscatter && m.method == "splitsum" && m.roughness == 1.0f) {
             EXPECT_LT(m.view(ViewBin::Normal).renderMean, 0.9);
+        }
     }
 }
 
