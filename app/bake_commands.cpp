@@ -61,6 +61,7 @@ struct BakeOverrides {
     std::optional<float> importanceMipBias;
     std::optional<int> prefilterSize;
     std::optional<int> prefilterLevels;
+    std::optional<std::string> prefilterLayout;
     std::optional<int> prefilterSamples;
     std::optional<float> prefilterSampleGrowth;
     std::optional<bool> prefilterMipFilter;
@@ -125,6 +126,11 @@ bake::BakeSettings resolveSettings(const BakeCommandOptions& o)
     apply(v.importanceMipBias, s.importance.mipBias);
     apply(v.prefilterSize, s.prefilter.faceSize);
     apply(v.prefilterLevels, s.prefilter.levels);
+    if (v.prefilterLayout) {
+        const auto layout = bake::parseRoughnessLayout(*v.prefilterLayout);
+        if (!layout) throw Error("--prefilter-layout", "expected linear or quadratic, got \"" + *v.prefilterLayout + "\"");
+        s.prefilter.layout = *layout;
+    }
     apply(v.prefilterSamples, s.prefilter.samples);
     apply(v.prefilterSampleGrowth, s.prefilter.sampleGrowth);
     apply(v.prefilterMipFilter, s.prefilter.mipFiltering);
@@ -162,8 +168,9 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
 {
     std::printf("%s: %dx%d, preset %s%s\n", r.source.c_str(), r.sourceWidth, r.sourceHeight, r.settings.preset.c_str(),
                 r.fromCache ? " (loaded from the cache)" : "");
-    std::printf("environment cube %d (%d mips), prefiltered %d x %d mips, GPU memory %.2f MiB\n", r.environmentCube.size,
-                r.environmentCube.levels, r.prefiltered.size, r.prefiltered.levels, double(r.gpuBytes()) / (1024.0 * 1024.0));
+    std::printf("environment cube %d (%d mips), prefiltered %d x %d mips (%s layout), GPU memory %.2f MiB\n", r.environmentCube.size,
+                r.environmentCube.levels, r.prefiltered.size, r.prefiltered.levels,
+                std::string(bake::roughnessLayoutName(r.settings.prefilter.layout)).c_str(), double(r.gpuBytes()) / (1024.0 * 1024.0));
     std::printf("timings (steady clock around glFinish):\n");
     for (const auto& t : r.timings)
         std::printf("  %-22s %10.1f ms\n", t.phase.c_str(), t.milliseconds);
@@ -172,6 +179,9 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
         std::printf("errors against the exact references:\n");
         for (const auto& e : errors->prefilter)
             std::printf("  prefilter mip %d (roughness %.2f): relative RMSE %.4f\n", e.level, e.roughness, e.relativeRmse);
+        for (const auto& e : errors->prefilterShaded)
+            std::printf("  as shaded, roughness %.3f (lod %.2f): relative RMSE %.4f\n", e.roughness, e.lod, e.relativeRmse);
+        std::printf("  as shaded, RMS over roughness:       %.4f\n", errors->prefilterShadedRms);
         std::printf("  irradiance SH9:           mean %.4f max %.4f\n", errors->shIrradiance.mean, errors->shIrradiance.max);
         std::printf("  irradiance SH9 windowed:  mean %.4f max %.4f\n", errors->shIrradianceWindowed.mean,
                     errors->shIrradianceWindowed.max);
@@ -223,7 +233,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
 
         std::optional<bake::BakeErrors> errors;
         const bake::AccuracyOptions accuracy;
-        if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, accuracy);
+        if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, shaders, accuracy);
 
         if (!o.out.empty()) {
             const std::filesystem::path dir(o.out);
@@ -428,7 +438,9 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_option("--importance-mip-filter", v.importanceMipFilter, "PDF-based source-mip selection for irradiance (on/off)");
     c->add_option("--importance-mip-bias", v.importanceMipBias, "Bias added to the irradiance source lod");
     c->add_option("--prefilter-size", v.prefilterSize, "Prefiltered cube face size (power of two)");
-    c->add_option("--prefilter-levels", v.prefilterLevels, "Prefiltered mips; mip m has roughness m / (levels - 1)");
+    c->add_option("--prefilter-levels", v.prefilterLevels, "Prefiltered mips, roughness 0 at mip 0 to 1 at the last");
+    c->add_option("--prefilter-layout", v.prefilterLayout,
+                  "Roughness per mip: linear (m / (levels - 1), LearnOpenGL) or quadratic (Filament: 1 - sqrt(1 - m / (levels - 1)))");
     c->add_option("--prefilter-samples", v.prefilterSamples, "GGX samples per prefiltered texel at mip 1");
     c->add_option("--prefilter-sample-growth", v.prefilterSampleGrowth, "Mip m takes samples * growth^(m-1)");
     c->add_option("--prefilter-mip-filter", v.prefilterMipFilter, "PDF-based source-mip selection for the prefilter (on/off)");

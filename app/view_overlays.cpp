@@ -25,7 +25,7 @@ void drawViewOverlays(const Renderer& renderer, const FrameSettings& settings, i
     }
     if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
         const TexelProbe probe = mouseInView ? renderer.probe(settings, width, height, mouseInView->x, mouseInView->y) : TexelProbe{};
-        ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterLevels(), width, height), settings.view.mode == ViewMode::Lut,
+        ui::drawDebugOverlay(debugTiles(settings.view.mode, renderer.prefilterMipRoughness(), width, height), settings.view.mode == ViewMode::Lut,
                              viewOrigin, float(height), probe.text);
     }
 }

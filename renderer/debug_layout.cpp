@@ -47,16 +47,16 @@ std::vector<glm::vec4> grid(int n, float aspect, int width, int height)
 
 } // namespace
 
-std::vector<DebugTile> debugTiles(ViewMode mode, int prefilterLevels, int width, int height)
+std::vector<DebugTile> debugTiles(ViewMode mode, const std::vector<float>& mipRoughness, int width, int height)
 {
     std::vector<DebugTile> tiles;
     if (mode == ViewMode::PrefilterMips) {
-        const int levels = std::clamp(prefilterLevels, 1, 16);
+        const int levels = std::clamp(int(mipRoughness.size()), 1, 16);
         const auto rects = grid(levels, 4.0f / 3.0f, width, height);
         for (int m = 0; m < levels; ++m) {
             char label[64];
-            // prefilter_lod.glsl: roughness = mip / (levels - 1).
-            std::snprintf(label, sizeof label, "mip %d: roughness %.2f", m, levels > 1 ? float(m) / float(levels - 1) : 0.0f);
+            const float roughness = std::size_t(m) < mipRoughness.size() ? mipRoughness[std::size_t(m)] : 0.0f;
+            std::snprintf(label, sizeof label, "mip %d: roughness %.2f", m, roughness);
             tiles.push_back({rects[std::size_t(m)], label, m});
         }
     } else if (mode == ViewMode::Lut) {

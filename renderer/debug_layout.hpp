@@ -16,9 +16,10 @@ struct DebugTile {
     int index = 0;        // the mip, or the LUT variant (GeometryTerm)
 };
 
-// Tiles for ViewMode::PrefilterMips (one 4:3 cube cross per mip, `levels` of them) and
-// ViewMode::Lut (two squares); empty for the other views.
-std::vector<DebugTile> debugTiles(ViewMode mode, int prefilterLevels, int width, int height);
+// Tiles for ViewMode::PrefilterMips (one 4:3 cube cross per mip; mipRoughness holds each
+// mip's roughness, as the bake's layout put it) and ViewMode::Lut (two squares); empty for
+// the other views.
+std::vector<DebugTile> debugTiles(ViewMode mode, const std::vector<float>& mipRoughness, int width, int height);
 
 // The tile under pixel (x, y) (y up), or -1.
 int debugTileAt(const std::vector<DebugTile>& tiles, float x, float y);

@@ -44,6 +44,14 @@ void assignSamplerUnits(const gl::ShaderProgram& program)
 
 constexpr int kMaxSamples = 1024;
 
+std::vector<float> mipRoughnessOf(const bake::BakeResult& bake)
+{
+    std::vector<float> roughness;
+    for (int level = 0; level < bake.prefiltered.levels; ++level)
+        roughness.push_back(bake::prefilterMipRoughness(bake.settings.prefilter, level));
+    return roughness;
+}
+
 } // namespace
 
 struct Renderer::Impl {
@@ -143,6 +151,7 @@ struct Renderer::Impl {
         for (std::size_t i = 0; i < 9; ++i) sh[i] = glm::vec3(b.sh.irradianceWindowed.c[i]);
         glProgramUniform3fv(p.id(), p.uniformLocation("uShIrradiance"), 9, glm::value_ptr(sh[0]));
         p.set("uPrefilteredLevels", float(b.prefiltered.levels));
+        p.set("uPrefilteredLayout", int(b.settings.prefilter.layout));
         p.set("uEnvironmentFaceSize", float(b.environmentCube.size));
         p.set("uEnvironmentLevels", float(b.environmentCube.levels));
         p.set("uGeometry", int(settings.sampling.geometry));
@@ -156,7 +165,7 @@ struct Renderer::Impl {
 
     void drawDebugView(const FrameSettings& settings, int width, int height)
     {
-        const std::vector<DebugTile> tiles = debugTiles(settings.view.mode, active->prefiltered.levels, width, height);
+        const std::vector<DebugTile> tiles = debugTiles(settings.view.mode, mipRoughnessOf(*active), width, height);
         const gl::ShaderProgram& p = shaders.program({"fullscreen.vert", "debug_views.frag"}, {{"VIEW", settings.view.mode == ViewMode::Lut ? "2" : "1"}});
         glUseProgram(p.id());
         bindIbl(p, settings);
@@ -672,13 +681,13 @@ std::vector<ScreenLabel> Renderer::sceneLabels(const FrameSettings& settings, in
     return labels;
 }
 
-int Renderer::prefilterLevels() const { return impl_->bake ? impl_->bake->prefiltered.levels : 0; }
+std::vector<float> Renderer::prefilterMipRoughness() const { return impl_->bake ? mipRoughnessOf(*impl_->bake) : std::vector<float>{}; }
 
 TexelProbe Renderer::probe(const FrameSettings& settings, int width, int height, float x, float y) const
 {
     const Impl& r = *impl_;
     if (!r.bake) return {};
-    const std::vector<DebugTile> tiles = debugTiles(settings.view.mode, r.bake->prefiltered.levels, width, height);
+    const std::vector<DebugTile> tiles = debugTiles(settings.view.mode, mipRoughnessOf(*r.bake), width, height);
     const int t = debugTileAt(tiles, x, y);
     if (t < 0) return {};
     const DebugTile& tile = tiles[std::size_t(t)];

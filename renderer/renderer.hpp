@@ -161,7 +161,7 @@ public:
     ErrorReport measureError(const FrameSettings& settings) const;
 
     SceneInfo sceneInfo(const FrameSettings& settings);
-    int prefilterLevels() const; // 0 before the first bake
+    std::vector<float> prefilterMipRoughness() const; // the roughness of each prefiltered mip; empty before the first bake
     // The scene's text anchors (grid axes) projected for a width x height frame.
     std::vector<ScreenLabel> sceneLabels(const FrameSettings& settings, int width, int height) const;
 

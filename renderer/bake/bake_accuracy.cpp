@@ -7,8 +7,10 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "bake/bake_passes.hpp"
 #include "bake/prefilter_lod.hpp"
 #include "ibl/brdf_lut.hpp"
+#include "ibl/conventions.hpp"
 #include "ibl/reference.hpp"
 
 namespace iblab::bake {
@@ -65,7 +67,20 @@ std::vector<CubeTexelRef> cubeTexelGrid(int size, int grid)
     return texels;
 }
 
-BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& environment, const AccuracyOptions& options)
+std::vector<glm::dvec3> fibonacciSphere(int n)
+{
+    std::vector<glm::dvec3> directions;
+    const double goldenAngle = kPi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < n; ++i) {
+        const double y = 1.0 - (2.0 * i + 1.0) / n;
+        const double r = std::sqrt(std::max(0.0, 1.0 - y * y));
+        directions.emplace_back(r * std::cos(goldenAngle * i), y, r * std::sin(goldenAngle * i));
+    }
+    return directions;
+}
+
+BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& environment, gl::ShaderLibrary& shaders,
+                             const AccuracyOptions& options)
 {
     const auto start = std::chrono::steady_clock::now();
     BakeErrors errors;
@@ -74,7 +89,7 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     const BakedTexture& pre = result.prefiltered;
     for (int level = 0; level < pre.levels; ++level) {
         const CubeImage image = readCubeLevel(pre, level);
-        const float roughness = prefilterRoughnessFromMip(float(level), float(pre.levels));
+        const float roughness = prefilterMipRoughness(result.settings.prefilter, level);
         const ImageRGB32F& env = roughness >= 0.5f ? reduced : environment;
         double sumErr2 = 0.0;
         double sumRef2 = 0.0;
@@ -89,6 +104,35 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
         errors.prefilter.push_back({level, roughness, sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2),
                                     int(texels.size()), env.width});
     }
+
+    const std::vector<glm::dvec3> shadedDirections = fibonacciSphere(options.shadedDirections);
+    std::vector<float> shadedRoughness;
+    for (int i = 0; i <= options.shadedRoughnessSteps; ++i)
+        shadedRoughness.push_back(float(i) / float(std::max(options.shadedRoughnessSteps, 1)));
+    std::vector<glm::vec4> queries;
+    for (float roughness : shadedRoughness)
+        for (const glm::dvec3& d : shadedDirections)
+            queries.emplace_back(glm::vec3(d), roughness);
+    const std::vector<glm::vec3> shaded = BakePasses(shaders).samplePrefiltered(pre, result.settings.prefilter.layout, queries);
+    double sumSquares = 0.0;
+    for (std::size_t r = 0; r < shadedRoughness.size(); ++r) {
+        const float roughness = shadedRoughness[r];
+        const ImageRGB32F& env = roughness >= 0.5f ? reduced : environment;
+        double sumErr2 = 0.0;
+        double sumRef2 = 0.0;
+        for (std::size_t i = 0; i < shadedDirections.size(); ++i) {
+            const glm::dvec3 ref = referencePrefilteredRadiance(env, shadedDirections[i], roughness);
+            const glm::dvec3 d = glm::dvec3(shaded[r * shadedDirections.size() + i]) - ref;
+            sumErr2 += glm::dot(d, d);
+            sumRef2 += glm::dot(ref, ref);
+        }
+        const double rmse = sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2);
+        errors.prefilterShaded.push_back({roughness, prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout)),
+                                          rmse, int(shadedDirections.size()), env.width});
+        sumSquares += rmse * rmse;
+    }
+    if (!errors.prefilterShaded.empty())
+        errors.prefilterShadedRms = std::sqrt(sumSquares / double(errors.prefilterShaded.size()));
 
     // Irradiance: the SH and every cube at the same directions, the grid texels of a
     // cube of the irradiance size (32 by default).
@@ -147,6 +191,15 @@ std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& opti
                        {"directions", e.directions},
                        {"reference_width", e.referenceWidth}});
     j["prefilter"] = pre;
+    nlohmann::ordered_json shaded = nlohmann::ordered_json::array();
+    for (const ShadedRoughnessError& e : errors.prefilterShaded)
+        shaded.push_back({{"roughness", e.roughness},
+                          {"lod", e.lod},
+                          {"relative_rmse", e.relativeRmse},
+                          {"directions", e.directions},
+                          {"reference_width", e.referenceWidth}});
+    j["prefilter_shaded"] = shaded;
+    j["prefilter_shaded_rms"] = errors.prefilterShadedRms;
     nlohmann::ordered_json irr;
     irr["sh"] = statsJson(errors.shIrradiance);
     irr["sh_windowed"] = statsJson(errors.shIrradianceWindowed);
@@ -164,6 +217,10 @@ std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& opti
     j["method"] = "exact references of renderer/ibl (sums over every texel) at the texel centres of a " +
                   std::to_string(options.texelsPerFaceEdge) + "x" + std::to_string(options.texelsPerFaceEdge) +
                   " texel grid per cube face; prefilter: relative RMSE = sqrt(sum|baked-ref|^2 / sum|ref|^2); "
+                  "prefilter_shaded: the same for what split-sum shading reads (textureLod at the layout's lod, seamless "
+                  "trilinear) at " + std::to_string(options.shadedDirections) + " Fibonacci-lattice directions at roughness 0 to 1 in steps of 1/" +
+                  std::to_string(options.shadedRoughnessSteps) + ", "
+                  "prefilter_shaded_rms their root mean square; "
                   "irradiance: per-direction |baked-ref|/|ref|; references for roughness >= 0.5 and irradiance on the "
                   "environment halved to at most " +
                   std::to_string(options.maxReferenceWidthForWideLobes) + " wide; LUT: max abs error on a " +

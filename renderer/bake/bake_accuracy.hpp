@@ -1,15 +1,23 @@
 #pragma once
 // How far a bake is from the exact integrals of renderer/ibl/reference.hpp (each summed over
-// every texel of the equirect), at a fixed set of directions: the texel centres of a
-// regular grid of texels on each face of the baked cube (so the comparison reads texels,
-// with no interpolation error of its own). Used by `iblab bake --json` and docs/bake.md.
+// every texel of the equirect), two ways:
+//  - per texture level at the texel centres of a regular grid of texels on each face (the
+//    comparison reads texels, with no interpolation error of its own): is each mip right?
+//  - the prefiltered cube "as shaded": what the split-sum shading reads (textureLod at the
+//    layout's lod, seamless trilinear) at directions off the texel grid and at roughness
+//    values between the mips, against the reference at that roughness. This is the number
+//    that compares chains of different sizes and layouts on equal terms.
+// Used by `iblab bake --json` and docs/bake.md.
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "bake/bake_result.hpp"
+#include "gl/shader_library.hpp"
 #include "ibl/image.hpp"
 
 namespace iblab::bake {
@@ -22,6 +30,12 @@ struct AccuracyOptions {
     // degrees, hundreds of texels of the halved map, so halving changes those integrals by
     // far less than the errors being measured. Sharper mips always use the full map.
     int maxReferenceWidthForWideLobes = 512;
+    // As shaded: this many directions spread evenly over the sphere (a Fibonacci lattice,
+    // which lines up with no cube's texel grid) at shadedRoughnessSteps + 1 roughness values
+    // 0, 1/steps, ..., 1: finer than any chain's mip spacing, so that no layout is favoured by
+    // having its mips where the measurement looks.
+    int shadedDirections = 96;
+    int shadedRoughnessSteps = 10;
     int lutGrid = 8;                       // 8 x 8 LUT texels
     std::uint32_t lutReferenceSamples = 16384;
 };
@@ -41,8 +55,19 @@ struct PrefilterLevelError {
     int referenceWidth = 0; // of the equirect the reference summed over
 };
 
+struct ShadedRoughnessError {
+    float roughness = 0.0f;
+    float lod = 0.0f;          // where the layout reads it
+    double relativeRmse = 0.0; // as PrefilterLevelError
+    int directions = 0;
+    int referenceWidth = 0;
+};
+
 struct BakeErrors {
     std::vector<PrefilterLevelError> prefilter;
+    std::vector<ShadedRoughnessError> prefilterShaded;
+    // Root mean square of prefilterShaded's relative RMSEs: one number per bake.
+    double prefilterShadedRms = 0.0;
     // Per direction |baked - reference| / |reference| (RGB vector norms).
     ErrorStats shIrradiance;
     ErrorStats shIrradianceWindowed;
@@ -54,8 +79,12 @@ struct BakeErrors {
     double milliseconds = 0.0;
 };
 
-// Reads the result's textures back (needs its context current).
-BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& environment, const AccuracyOptions& options = {});
+// Reads the result's textures back and samples them (needs its context current).
+BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& environment, gl::ShaderLibrary& shaders,
+                             const AccuracyOptions& options = {});
+
+// n directions spread evenly over the unit sphere (spherical Fibonacci lattice).
+std::vector<glm::dvec3> fibonacciSphere(int n);
 
 // The texel-centre directions of a grid x grid texel subset of each face of a size^2 cube
 // level (all texels when size <= grid), with their (face, x, row).

@@ -165,7 +165,7 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
     meta["prefiltered"] = textureJson(result.prefiltered);
     ordered_json roughness = ordered_json::array();
     for (int level = 0; level < result.prefiltered.levels; ++level)
-        roughness.push_back(level / double(std::max(result.prefiltered.levels - 1, 1)));
+        roughness.push_back(prefilterMipRoughness(result.settings.prefilter, level));
     meta["prefiltered"]["roughness_per_mip"] = roughness;
     meta["cube_layout"] = "one EXR per level: width = face size, height = 6 x face size, faces +X,-X,+Y,-Y,+Z,-Z top to "
                           "bottom, each face's t = 0 row first";

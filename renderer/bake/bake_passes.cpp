@@ -20,6 +20,7 @@ constexpr const char* kIrradianceImportance = "bake/irradiance_importance.comp";
 constexpr const char* kPrefilter = "bake/prefilter_ggx.comp";
 constexpr const char* kBrdfLut = "bake/brdf_lut.comp";
 constexpr const char* kDownsample = "bake/downsample.comp";
+constexpr const char* kSamplePrefiltered = "bake/sample_prefiltered.comp";
 
 const char* imageFormatName(GLenum internalFormat) { return internalFormat == GL_RGBA16F ? "rgba16f" : "rgba32f"; }
 
@@ -234,7 +235,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
 {
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kPrefilter);
-    program.set("uRoughness", prefilterRoughnessFromMip(float(slice.level), float(out.levels)));
+    program.set("uRoughness", prefilterMipRoughness(settings, slice.level));
     program.set("uMirrorCopy", settings.mirrorCopy ? 1 : 0);
     program.set("uSampleCount", prefilterSamples(settings, slice.level));
     bindSource(program, environment, settings.mipFiltering, settings.mipBias, exactTexelSolidAngle);
@@ -242,6 +243,34 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
     program.set("uCopyLod", std::clamp(copyLod, 0.0f, float(environment.levels - 1)));
     dispatchCube(program, out, slice);
+}
+
+std::vector<glm::vec3> BakePasses::samplePrefiltered(const BakedTexture& prefiltered, RoughnessLayout layout,
+                                                     const std::vector<glm::vec4>& queries)
+{
+    if (queries.empty()) return {};
+    SeamlessCubeScope seamless;
+    const gl::ShaderProgram& program = shaders_.program({kSamplePrefiltered});
+    gl::Buffer in = gl::createBuffer();
+    gl::Buffer out = gl::createBuffer();
+    const auto bytes = GLsizeiptr(queries.size() * sizeof(glm::vec4));
+    glNamedBufferStorage(in.id(), bytes, queries.data(), 0);
+    glNamedBufferStorage(out.id(), bytes, nullptr, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+    program.set("uCount", int(queries.size()));
+    program.set("uPrefiltered", 1);
+    program.set("uLevels", float(prefiltered.levels));
+    program.set("uLayout", int(layout));
+    glBindTextureUnit(1, prefiltered.id());
+    glUseProgram(program.id());
+    glDispatchCompute(GLuint((queries.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> texels(queries.size());
+    glGetNamedBufferSubData(out.id(), 0, bytes, texels.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    clearPassBindings();
+    return {texels.begin(), texels.end()};
 }
 
 void BakePasses::brdfLut(const BakedTexture& out, int firstRow, int rowCount, int samples, GeometryTerm term)

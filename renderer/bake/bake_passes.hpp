@@ -4,6 +4,10 @@
 // sets the GL state it needs (program, texture and image units, seamless cube filtering)
 // and leaves those bindings as it found them (seamless filtering) or cleared (units).
 #include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "bake/bake_settings.hpp"
 #include "bake/baked_texture.hpp"
@@ -49,6 +53,9 @@ public:
                               const ImportanceIrradianceSettings& settings, bool exactTexelSolidAngle);
     void prefilter(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice, const PrefilterSettings& settings,
                    bool exactTexelSolidAngle);
+    // What shading reads for each query (xyz = direction, w = roughness): textureLod at the
+    // layout's lod, seamless trilinear (sample_prefiltered.comp). For accuracy checks.
+    std::vector<glm::vec3> samplePrefiltered(const BakedTexture& prefiltered, RoughnessLayout layout, const std::vector<glm::vec4>& queries);
     // Rows [firstRow, firstRow + rowCount) of the LUT.
     void brdfLut(const BakedTexture& out, int firstRow, int rowCount, int samples, GeometryTerm term);
 

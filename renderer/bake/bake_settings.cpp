@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/prefilter_lod.hpp"
 #include "environment/error.hpp"
 
 namespace iblab::bake {
@@ -35,6 +36,7 @@ BakeSettings tutorialPreset()
     // LearnOpenGL's prefilter samples every mip, the mirror level included (below).
     s.prefilter = {.faceSize = 128,
                    .levels = 5,
+                   .layout = RoughnessLayout::Linear,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
                    .mipFiltering = false,
@@ -137,7 +139,10 @@ std::string toJsonText(const BakeSettings& s, int indent)
                       {"mip_filtering", s.prefilter.mipFiltering},
                       {"mip_bias", s.prefilter.mipBias},
                       {"mirror_copy", s.prefilter.mirrorCopy},
-                      {"roughness_per_mip", "mip / (levels - 1)"}};
+                      {"layout", roughnessLayoutName(s.prefilter.layout)},
+                      {"roughness_per_mip", s.prefilter.layout == RoughnessLayout::Quadratic
+                                                ? "1 - sqrt(1 - mip / (levels - 1))"
+                                                : "mip / (levels - 1)"}};
     j["lut"] = {{"size", s.lut.size},
                 {"samples", s.lut.samples},
                 {"schlick_ggx", s.lut.schlickGgx},
@@ -169,6 +174,22 @@ std::string_view shWindowName(ShWindow w)
     case ShWindow::Lanczos: return "lanczos";
     }
     return "none";
+}
+
+std::string_view roughnessLayoutName(RoughnessLayout layout) { return layout == RoughnessLayout::Quadratic ? "quadratic" : "linear"; }
+
+std::optional<RoughnessLayout> parseRoughnessLayout(std::string_view name)
+{
+    if (name == "linear") return RoughnessLayout::Linear;
+    if (name == "quadratic") return RoughnessLayout::Quadratic;
+    return std::nullopt;
+}
+
+static_assert(int(RoughnessLayout::Linear) == PREFILTER_LAYOUT_LINEAR && int(RoughnessLayout::Quadratic) == PREFILTER_LAYOUT_QUADRATIC);
+
+float prefilterMipRoughness(const PrefilterSettings& settings, int level)
+{
+    return prefilterRoughnessFromMip(float(level), float(settings.levels), int(settings.layout));
 }
 
 std::optional<Precision> parsePrecision(std::string_view name)

@@ -5,8 +5,8 @@
 // Conventions every consumer of a bake relies on (docs/bake.md has the long form):
 //  - cube faces in GL order +X, -X, +Y, -Y, +Z, -Z, texel (x, row) at face-local
 //    ((x + 0.5) / size, (row + 0.5) / size) of conventions.glsl;
-//  - prefiltered mip m holds perceptual roughness prefilterRoughnessFromMip(m, levels)
-//    (prefilter_lod.hpp: linear, m / (levels - 1));
+//  - prefiltered mip m holds perceptual roughness prefilterRoughnessFromMip(m, levels, layout)
+//    (prefilter_lod.glsl: linear m / (levels - 1), or Filament's quadratic layout);
 //  - irradiance cubes and SH irradiance hold E (a white environment of radiance 1 gives pi);
 //    Lambertian outgoing radiance is albedo / pi * E;
 //  - BRDF LUT texel (x, y): n.v = (x + 0.5) / size, roughness = (y + 0.5) / size, row 0 =
@@ -29,6 +29,10 @@ namespace iblab::bake {
 enum class Precision { Half, Float };
 
 enum class ShDevice { Cpu, Gpu };
+
+// How roughness is spread over the prefiltered mips (prefilter_lod.glsl has the formulas and
+// the reasons); the values are the GLSL's PREFILTER_LAYOUT_* constants.
+enum class RoughnessLayout { Linear = 0, Quadratic = 1 };
 
 struct EnvironmentCubeSettings {
     // 0: from the source, the largest power of two f with 6 f^2 <= width * height, so the
@@ -70,13 +74,22 @@ struct ImportanceIrradianceSettings {
 };
 
 struct PrefilterSettings {
-    int faceSize = 128;
-    int levels = 5;  // mip m has roughness m / (levels - 1); levels <= log2(faceSize) + 1
-    int samples = 64; // GGX samples per texel at mip 1 (mip 0, roughness 0, is a copy)
+    // The defaults were chosen by the error of what split-sum shading reads at roughness 0 to
+    // 1 in steps of 0.1 (bake_accuracy.hpp, "as shaded"; docs/bake.md has the table). With 5
+    // linear levels (LearnOpenGL) a roughness between two mips blends lobes 0.25 apart, and
+    // that blend, not the sampling, is the largest error (12% at roughness 0.1 on
+    // courtyard.exr). Filament's quadratic layout over 6 levels of a 256 face puts mips at
+    // roughness 0, 0.11, 0.23, 0.37, 0.55, 1 and halves the largest error on both bundled test
+    // maps; roughness 1 lands on the 8^2 face, where many samples per texel cost little.
+    int faceSize = 256;
+    int levels = 6;  // levels <= log2(faceSize) + 1
+    RoughnessLayout layout = RoughnessLayout::Quadratic; // mip m holds prefilterRoughnessFromMip(m, levels, layout)
+    int samples = 8; // GGX samples per texel at mip 1 (mip 0, roughness 0, is a copy)
     // Mip m >= 1 takes samples * sampleGrowth^(m - 1) (prefilterSamples()). Each mip has a
-    // quarter of the texels of the one above and a wider lobe, so growth 2 halves the work of
-    // each further mip while giving the wide lobes, which need them most, more samples.
-    float sampleGrowth = 2.0f;
+    // quarter of the texels of the one above and a wider lobe, so growth 3 lowers the work of
+    // each further mip while giving the wide lobes, which need them most, more samples
+    // (8, 24, 72, 216, 648 for mips 1-5).
+    float sampleGrowth = 3.0f;
     bool mipFiltering = true;
     // Added to 0.5 log2(Omega_s / Omega_p): 0 = LearnOpenGL's anchor, 1 = Filament's.
     float mipBias = 0.0f;
@@ -124,10 +137,10 @@ inline constexpr std::array<GeometryTerm, 2> kGeometryTerms{GeometryTerm::Schlic
 // (Schlick-GGX only, as the tutorial). SH9 is computed as well (it costs milliseconds).
 BakeSettings tutorialPreset();
 // The fast and accurate choice (docs/bake.md has the measurements): cube sized from the
-// source, SH9 for diffuse plus a 16^2 irradiance cube by cosine importance sampling (1024
-// samples, PDF source-mip filtering), prefilter 128 x 5 mips with PDF source-mip filtering
-// (bias 0), 64 samples at mip 1 doubling per mip, LUTs 128^2 x 2048 for both geometry terms
-// (cached: they depend on no environment).
+// source, SH9 for diffuse plus an 8^2 irradiance cube by cosine importance sampling (8192
+// samples, PDF source-mip filtering), prefilter 256 x 6 mips in Filament's quadratic layout
+// with PDF source-mip filtering (bias 0), 8 samples at mip 1 tripling per mip, LUTs 128^2 x
+// 2048 for both geometry terms (cached: they depend on no environment).
 BakeSettings defaultPreset();
 std::vector<std::string> presetNames();
 // Throws iblab::Error naming the preset and the valid ones.
@@ -148,6 +161,10 @@ std::string lutJsonText(int size, int samples, GeometryTerm term, bool multiscat
 std::string_view precisionName(Precision precision);
 std::string_view shDeviceName(ShDevice device);
 std::string_view shWindowName(ShWindow window);
+std::string_view roughnessLayoutName(RoughnessLayout layout); // "linear" | "quadratic"
+std::optional<RoughnessLayout> parseRoughnessLayout(std::string_view name);
+// The roughness prefiltered mip `level` holds, and its inverse, for these settings.
+float prefilterMipRoughness(const PrefilterSettings& settings, int level);
 std::optional<Precision> parsePrecision(std::string_view name);
 std::optional<ShDevice> parseShDevice(std::string_view name);
 std::optional<ShWindow> parseShWindow(std::string_view name);

@@ -671,7 +671,7 @@ StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
             seam.environment = env.name;
             seam.texture = "prefiltered";
             seam.level = level;
-            seam.roughness = bake::prefilterRoughnessFromMip(float(level), float(result->prefiltered.levels));
+            seam.roughness = bake::prefilterMipRoughness(result->settings.prefilter, level);
             addFinding(report.findings, {"seams", env.name, "splitsum", "prefiltered mip " + std::to_string(level), seam.ratio, "", Verdict::Pass},
                        kSeamWarn, kSeamFail, "jump across cube edges / step inside faces");
             report.seams.push_back(seam);

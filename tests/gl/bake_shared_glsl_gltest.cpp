@@ -153,7 +153,8 @@ TEST_F(GlTest, PrefilterLodIsTheSameSourceOnBothSides)
         expectClose(gpu[i].y, bake::sourceLodFromPdfAt(d, 0.37f, 64.0f, faceSize, 0.5f), 1e-5, "sourceLodFromPdfAt");
         expectClose(gpu[i].z, bake::sourceLodFromPdf(0.37f, 64.0f, faceSize, 0.5f), 1e-5, "sourceLodFromPdf");
         // Mip 2 of 5 is roughness 2 / 4; roughness 0.3 of 5 levels is lod 0.3 * 4.
-        EXPECT_FLOAT_EQ(gpu[i].w, 0.5f + 1.2f);
+        // Quadratic mip 2 of 5: 1 - sqrt(1 - 0.5); linear 0.3 of 5: 1.2; quadratic 0.3 of 6: 5 x 0.51.
+        EXPECT_NEAR(gpu[i].w, (1.0 - std::sqrt(0.5)) + 1.2 + 2.55, 1e-5);
     }
     // The anchor: a sample standing for exactly one average texel reads mip 0 (+ bias), and
     // four times that share reads mip 1.

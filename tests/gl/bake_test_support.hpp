@@ -19,7 +19,13 @@ inline bake::BakeSettings smallBakeSettings()
     bake::BakeSettings s = bake::defaultPreset();
     s.riemann = {.enabled = true, .faceSize = 8, .sampleDelta = 0.05f, .mipFiltering = false, .mipBias = 0.0f};
     s.importance = {.enabled = true, .faceSize = 8, .samples = 256, .mipFiltering = true, .mipBias = 0.0f};
-    s.prefilter = {.faceSize = 16, .levels = 5, .samples = 64, .sampleGrowth = 2.0f, .mipFiltering = true, .mipBias = 0.0f};
+    s.prefilter = {.faceSize = 16,
+                   .levels = 5,
+                   .layout = bake::RoughnessLayout::Linear,
+                   .samples = 64,
+                   .sampleGrowth = 2.0f,
+                   .mipFiltering = true,
+                   .mipBias = 0.0f};
     s.lut = {.size = 16, .samples = 256, .schlickGgx = true, .heightCorrelatedSmith = true};
     return s;
 }

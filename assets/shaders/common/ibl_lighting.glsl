@@ -8,11 +8,12 @@
 #include "common/sh9.glsl"
 
 uniform samplerCube uEnvironmentCube; // radiance with a box-filtered mip chain (PDF mip filtering source)
-uniform samplerCube uPrefiltered;     // mip m = roughness prefilterRoughnessFromMip(m, levels)
+uniform samplerCube uPrefiltered;     // mip m = roughness prefilterRoughnessFromMip(m, levels, layout)
 uniform samplerCube uIrradianceCube;  // E (white environment -> pi)
 uniform sampler2D uBrdfLut;           // x = n.v, y = roughness; R = A, G = B, B = A + B
 uniform vec3 uShIrradiance[9];        // E_lm, windowed
 uniform float uPrefilteredLevels;
+uniform int uPrefilteredLayout;  // PREFILTER_LAYOUT_* of prefilter_lod.glsl, as the bake used
 uniform float uEnvironmentFaceSize;
 uniform float uEnvironmentLevels;
 uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
@@ -66,7 +67,7 @@ vec3 shadeSplitSum(SurfacePoint s)
 {
     float NdotV = max(dot(s.N, s.V), 1e-4);
     vec3 R = reflect(-s.V, s.N);
-    float lod = uForcedMip >= 0.0 ? uForcedMip : prefilterMipFromRoughness(s.roughness, uPrefilteredLevels);
+    float lod = uForcedMip >= 0.0 ? uForcedMip : prefilterMipFromRoughness(s.roughness, uPrefilteredLevels, uPrefilteredLayout);
     vec3 prefiltered = textureLod(uPrefiltered, toEnvironment(R), lod).rgb * uEnvironmentIntensity;
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
     vec3 specular = prefiltered * (s.F0 * lut.r + lut.g) * energyCompensation(s.F0, lut.b);

@@ -4,21 +4,33 @@
 // (renderer/bake/prefilter_lod.hpp), so the bake and whoever samples its output cannot
 // disagree. Same dialect rules as conventions.glsl: common subset, f suffixes, IBL_FN.
 
-// Roughness per mip: linear in the mip index, as LearnOpenGL does,
-//   perceptual roughness = mip / (levelCount - 1),
-// so mip 0 is the mirror (roughness 0) and the last mip is roughness 1. Linear is not the
-// most even use of the mips (the lobe narrows fastest near roughness 0, and Filament uses a
-// quadratic map there), but it is the tutorial's, and keeping it lets its output be read by
-// its shading. A single-level chain holds roughness 0 only.
-IBL_FN float prefilterRoughnessFromMip(float mip, float levelCount)
+// Roughness per mip, one of two layouts (a bake records which; shading reads it back):
+//  - PREFILTER_LAYOUT_LINEAR, LearnOpenGL's and the glTF sample viewer's:
+//      lod / (levelCount - 1) = roughness;
+//  - PREFILTER_LAYOUT_QUADRATIC, Filament's (cmgen and its shading):
+//      lod / (levelCount - 1) = roughness (2 - roughness),
+//    a fit of log2(roughness) that spends the mips where the lobe narrows fastest: with 6
+//    levels, mips 1-3 hold roughness 0.11, 0.23, 0.37 where linear has 0.2, 0.4, 0.6. Blending
+//    two adjacent mips approximates the lobe in between far better when they are that close,
+//    and roughness 1 lands on a small face that many samples per texel make cheap.
+// Either way mip 0 is the mirror (roughness 0) and the last mip roughness 1. A single-level
+// chain holds roughness 0 only.
+#define PREFILTER_LAYOUT_LINEAR 0
+#define PREFILTER_LAYOUT_QUADRATIC 1
+
+IBL_FN float prefilterRoughnessFromMip(float mip, float levelCount, int roughnessLayout)
 {
-    return levelCount > 1.0f ? mip / (levelCount - 1.0f) : 0.0f;
+    if (levelCount <= 1.0f) return 0.0f;
+    float t = clamp(mip / (levelCount - 1.0f), 0.0f, 1.0f);
+    return roughnessLayout == PREFILTER_LAYOUT_QUADRATIC ? 1.0f - sqrt(1.0f - t) : t;
 }
 
 // The inverse: the (fractional) lod a shader passes to textureLod for a roughness.
-IBL_FN float prefilterMipFromRoughness(float roughness, float levelCount)
+IBL_FN float prefilterMipFromRoughness(float roughness, float levelCount, int roughnessLayout)
 {
-    return roughness * max(levelCount - 1.0f, 0.0f);
+    float r = clamp(roughness, 0.0f, 1.0f);
+    float t = roughnessLayout == PREFILTER_LAYOUT_QUADRATIC ? r * (2.0f - r) : r;
+    return t * max(levelCount - 1.0f, 0.0f);
 }
 
 // Solid angle of the source cube's mip-0 texel that direction d (unit length) falls in. On a

@@ -8,7 +8,8 @@
 // MODE 4: (normal, -) -> tangentFrame(normal) * (0.3, -0.5, 0.81)
 // MODE 5: (direction, -) -> sh9Evaluate(uCoefficients, direction)
 // MODE 6: (direction, faceSize) -> (cubeTexelSolidAngle, sourceLodFromPdfAt(0.37, 64, faceSize, 0.5),
-//         sourceLodFromPdf(0.37, 64, faceSize, 0.5), prefilterRoughnessFromMip(2, 5) + prefilterMipFromRoughness(0.3, 5))
+//         sourceLodFromPdf(0.37, 64, faceSize, 0.5), prefilterRoughnessFromMip(2, 5, quadratic) + prefilterMipFromRoughness(0.3, 5, linear)
+//         + prefilterMipFromRoughness(0.3, 6, quadratic))
 #include "probe_layout.glsl"
 #include "common/brdf.glsl"
 #include "common/sampling.glsl"
@@ -41,6 +42,8 @@ void main()
 #else
     vec3 d = normalize(v.xyz);
     outputs[i] = vec4(cubeTexelSolidAngle(d, v.w), sourceLodFromPdfAt(d, 0.37, 64.0, v.w, 0.5), sourceLodFromPdf(0.37, 64.0, v.w, 0.5),
-                      prefilterRoughnessFromMip(2.0, 5.0) + prefilterMipFromRoughness(0.3, 5.0));
+                      prefilterRoughnessFromMip(2.0, 5.0, PREFILTER_LAYOUT_QUADRATIC) +
+                          prefilterMipFromRoughness(0.3, 5.0, PREFILTER_LAYOUT_LINEAR) +
+                          prefilterMipFromRoughness(0.3, 6.0, PREFILTER_LAYOUT_QUADRATIC));
 #endif
 }
