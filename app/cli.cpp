@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "conventions.hpp"
 #include "environment/builtin_environments.hpp"
 #include "gui_app.hpp"
 #include "headless_render.hpp"
@@ -86,11 +87,21 @@ void addSamplingOptions(CLI::App& command, SamplingSettings& sampling, const std
     addNamedOption(command, prefix + "diffuse", helpPrefix + "Diffuse source: sh9|irradiance-cube", sampling.diffuse, parseDiffuseSource, diffuseSourceName);
     command.add_flag(prefix + "cosine-diffuse", sampling.cosineSampledDiffuse, helpPrefix + "Sampled method: diffuse from N cosine samples instead of SH9");
     command.add_flag(prefix + "multiscatter", sampling.multiscatter, helpPrefix + "Multiple-scattering energy compensation from the LUT");
+    command.add_flag(prefix + "rough-fresnel-lut", sampling.roughFresnelOnLut,
+                     helpPrefix + "Split sum as LearnOpenGL: F_roughness(n.v) * A + B instead of F0 * A + B");
     command.add_flag(prefix + "normalize-accepted", sampling.normalizeByAccepted,
                      helpPrefix + "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N");
 }
 
 } // namespace
+
+void addConventionOption(CLI::App& command, std::string& convention)
+{
+    command.add_option("--convention", convention, "Bake and shade as " + conventionNames() + " do (split sum)")
+        ->check([](const std::string& name) {
+            return findConvention(name) ? std::string() : "unknown convention \"" + name + "\"; expected one of " + conventionNames();
+        });
+}
 
 void addFrameOptions(CLI::App& command, FrameSettings& settings)
 {
@@ -185,6 +196,7 @@ int runCommandLine(int argc, char** argv)
     GuiOptions gui;
     gui.settings.camera.distance = 0.0f; // frame whatever scene is shown, unless --distance says otherwise
     addFrameOptions(app, gui.settings);
+    addConventionOption(app, gui.convention);
     bool forceHeadless = false;
     app.add_flag("--headless", forceHeadless, "Render the default view to a PNG even when a display exists");
     app.add_option("--quit-after-frames", gui.quitAfterFrames, "Close the window after N frames (scripted start-up timing)");
@@ -195,6 +207,7 @@ int runCommandLine(int argc, char** argv)
     commands.push_back(addShCommand(app, processStart));
     commands.push_back(addLutCommand(app, processStart));
     commands.push_back(addStressCommand(app, processStart));
+    commands.push_back(addConventionsCommand(app, processStart));
 
     try {
         app.parse(argc, argv);
@@ -229,6 +242,7 @@ int runCommandLine(int argc, char** argv)
     }
     RenderJob fallback;
     fallback.settings = gui.settings;
+    fallback.convention = gui.convention;
     fallback.output = std::filesystem::absolute("iblab-default.png").string();
     return runHeadlessRender(fallback, processStart);
 }

@@ -24,4 +24,14 @@ HeadlessGl::HeadlessGl(bool debugContext, bool echoMessages) : context(gl::Headl
     debug.install();
 }
 
+nlohmann::ordered_json errorMetricsJson(const ErrorMetrics& m)
+{
+    return {{"pixels", m.pixels},
+            {"relative_rmse", m.relativeRmse},
+            {"mean_relative", m.meanRelative},
+            {"max_relative", m.maxRelative},
+            {"p99_relative", m.p99Relative},
+            {"fireflies", m.fireflies}};
+}
+
 } // namespace iblab::app

@@ -4,7 +4,10 @@
 #include <chrono>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "gl/debug_output.hpp"
+#include "ibl/error_metrics.hpp"
 #include "gl/headless_context.hpp"
 
 namespace iblab::app {
@@ -22,5 +25,8 @@ struct HeadlessGl {
     gl::DebugOutput debug;
     explicit HeadlessGl(bool debugContext, bool echoMessages = false);
 };
+
+// {"pixels", "relative_rmse", "mean_relative", "max_relative", "p99_relative", "fireflies"}
+nlohmann::ordered_json errorMetricsJson(const ErrorMetrics& metrics);
 
 } // namespace iblab::app

@@ -19,11 +19,15 @@ struct Command {
 
 // The view options shared by the GUI and `render`: what a frame looks like.
 void addFrameOptions(CLI::App& command, FrameSettings& settings);
+// --convention NAME (conventions.hpp): how LearnOpenGL, Filament or the glTF Sample Viewer
+// bake and shade; checked against the list at parse time.
+void addConventionOption(CLI::App& command, std::string& convention);
 
 Command addRenderCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addShCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addLutCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addStressCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addConventionsCommand(CLI::App& app, ProcessClock::time_point processStart);
 
 } // namespace iblab::app

@@ -20,6 +20,7 @@
 
 #include "asset_paths.hpp"
 #include "camera.hpp"
+#include "conventions.hpp"
 #include "view_overlays.hpp"
 #include "environment/atomic_file.hpp"
 #include "environment/error.hpp"
@@ -204,8 +205,14 @@ int runGui(const GuiOptions& options)
 
     FrameSettings settings = options.settings;
     Renderer renderer(shaderDirectory());
-    LabSession session(renderer);
+    bake::BakeSettings bakeSettings = bake::defaultPreset();
     ui::PanelState panels;
+    if (const ConventionPreset* convention = findConvention(options.convention)) {
+        bakeSettings = conventionBakeSettings(*convention);
+        applyConvention(*convention, settings.sampling);
+        panels.convention = convention->name;
+    }
+    LabSession session(renderer, bakeSettings);
     panels.catalog = session.catalog();
     // The environment loads on a worker thread and bakes in slices: the window is up at once.
     session.requestEnvironment(settings.environment.source);
@@ -270,6 +277,13 @@ int runGui(const GuiOptions& options)
         if (requests.loadPreset) panels.presetStatus = loadPreset(*requests.loadPreset, settings, session);
         if (requests.savePreset) panels.presetStatus = savePreset(*requests.savePreset, settings);
         if (requests.exportModel) panels.sceneStatus = session.exportModel(*requests.exportModel, settings);
+        if (requests.applyConvention)
+            if (const ConventionPreset* convention = findConvention(*requests.applyConvention)) {
+                session.setBakeSettings(conventionBakeSettings(*convention));
+                applyConvention(*convention, settings.sampling);
+                panels.convention = convention->name;
+                panels.bakeStatus = {"convention " + std::string(convention->title) + ": baking its preset \"" + std::string(convention->bakePreset) + "\"", false};
+            }
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
             const SceneInfo scene = renderer.sceneInfo(settings);
             frameBox(settings.camera, scene.centre, scene.halfExtents, float(fbWidth) / float(fbHeight));

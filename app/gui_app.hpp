@@ -8,6 +8,7 @@ namespace iblab::app {
 
 struct GuiOptions {
     FrameSettings settings;
+    std::string convention; // conventions.hpp; empty: the default bake and the settings as given
     int width = 1280;
     int height = 720;
     int quitAfterFrames = 0; // > 0: close after that many frames (scripted start-up timing)

@@ -11,6 +11,7 @@
 #include "asset_paths.hpp"
 #include "camera.hpp"
 #include "commands.hpp"
+#include "conventions.hpp"
 #include "command_support.hpp"
 #include "gl/shader_library.hpp"
 #include "lab_session.hpp"
@@ -22,16 +23,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 int fail(const std::string& reason) { return failCommand("render", reason); }
-
-nlohmann::ordered_json errorMetricsJson(const ErrorMetrics& m)
-{
-    return {{"pixels", m.pixels},
-            {"relative_rmse", m.relativeRmse},
-            {"mean_relative", m.meanRelative},
-            {"max_relative", m.maxRelative},
-            {"p99_relative", m.p99Relative},
-            {"fireflies", m.fireflies}};
-}
 
 } // namespace
 
@@ -47,8 +38,13 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         const double contextMs = millisecondsSince(processStart);
 
         Renderer renderer(shaderDirectory());
-        LabSession session(renderer);
         FrameSettings settings = job.settings;
+        bake::BakeSettings bakeSettings = bake::defaultPreset();
+        if (const ConventionPreset* convention = findConvention(job.convention)) {
+            bakeSettings = conventionBakeSettings(*convention);
+            applyConvention(*convention, settings.sampling);
+        }
+        LabSession session(renderer, bakeSettings);
         const auto loadStart = Clock::now();
         const ui::StatusLine loaded = session.loadEnvironment(settings.environment.source, settings);
         if (loaded.isError) return fail(loaded.text);
@@ -151,6 +147,7 @@ Command addRenderCommand(CLI::App& app, ProcessClock::time_point processStart)
     job->settings.camera.distance = 0.0f; // frame the scene unless --distance says otherwise
     CLI::App* command = app.add_subcommand("render", "Render one frame headless (EGL, no display) to a PNG or EXR");
     addFrameOptions(*command, job->settings);
+    addConventionOption(*command, job->convention);
     command->add_option("--width", job->width, "Image width")->capture_default_str()->check(CLI::Range(1, 16384));
     command->add_option("--height", job->height, "Image height")->capture_default_str()->check(CLI::Range(1, 16384));
     command->add_option("-o,--output", job->output, "Output: FILE.png (tone-mapped 8-bit sRGB) or FILE.exr (linear HDR)")

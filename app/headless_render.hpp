@@ -8,6 +8,7 @@ namespace iblab::app {
 
 struct RenderJob {
     FrameSettings settings;
+    std::string convention; // conventions.hpp; empty: the default bake and the settings as given
     int width = 1280;
     int height = 720;
     std::string output;   // .png or .exr

@@ -120,6 +120,14 @@ ui::StatusLine LabSession::loadEnvironment(const std::string& spec, FrameSetting
     return status;
 }
 
+void LabSession::setBakeSettings(const bake::BakeSettings& settings)
+{
+    bakeSettings_ = settings;
+    // The furnace bake reads the LUT of the session's settings: make it again on next use.
+    renderer_.setFurnaceBake(nullptr);
+    if (environment_) job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), *environment_, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
+}
+
 void LabSession::ensureFurnaceBake()
 {
     if (renderer_.hasFurnaceBake()) return;

@@ -46,6 +46,11 @@ public:
     std::string activity() const;
     float progress() const;
 
+    // Bakes the loaded environment again with these settings (a convention preset's, say), in
+    // slices like any bake; the current bake stays on screen until the new one is done. The
+    // next environment loads with them too.
+    void setBakeSettings(const bake::BakeSettings& settings);
+
     // The furnace view's bake of builtin:white (small and quick; made once, on first use).
     void ensureFurnaceBake();
 

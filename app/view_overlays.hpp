@@ -2,6 +2,7 @@
 // Text drawn over the 3D view (grid axis labels, furnace readings, debug-view labels and
 // the texel readout), the same in the window and in headless PNGs.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -27,8 +28,9 @@ public:
     OffscreenOverlay(const OffscreenOverlay&) = delete;
     OffscreenOverlay& operator=(const OffscreenOverlay&) = delete;
 
-    // Draws the view's overlays over the last frame's display image.
-    void drawOver(Renderer& renderer, const FrameSettings& settings, int width, int height);
+    // Draws the view's overlays over the last frame's display image, and the caption's
+    // lines (if any) at its top-left on a dark backdrop.
+    void drawOver(Renderer& renderer, const FrameSettings& settings, int width, int height, const std::vector<std::string>& caption = {});
 
 private:
     ::ImGuiContext* context_ = nullptr;

@@ -158,6 +158,7 @@ struct Renderer::Impl {
         const bool haveCube = bool(irradiance);
         p.set("uDiffuseSource", settings.sampling.diffuse == DiffuseSource::IrradianceCube && haveCube ? 1 : 0);
         p.set("uMultiscatter", int(settings.sampling.multiscatter));
+        p.set("uRoughFresnelOnLut", int(settings.sampling.roughFresnelOnLut));
         p.set("uForcedMip", float(settings.sampling.forcedMip));
         p.set("uPdfMipFiltering", int(settings.sampling.pdfMipFiltering));
         p.set("uMipBias", settings.sampling.mipBias);

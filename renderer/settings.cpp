@@ -130,6 +130,7 @@ Json samplingJson(const SamplingSettings& s)
             {"diffuse", std::string(diffuseSourceName(s.diffuse))},
             {"cosine_sampled_diffuse", s.cosineSampledDiffuse},
             {"multiscatter", s.multiscatter},
+            {"rough_fresnel_on_lut", s.roughFresnelOnLut},
             {"normalize_by_accepted", s.normalizeByAccepted}};
 }
 
@@ -144,6 +145,7 @@ void readSampling(const Reader& sampling, SamplingSettings& s)
     sampling.readName("diffuse", kDiffuseSources, s.diffuse);
     sampling.read("cosine_sampled_diffuse", s.cosineSampledDiffuse);
     sampling.read("multiscatter", s.multiscatter);
+    sampling.read("rough_fresnel_on_lut", s.roughFresnelOnLut);
     sampling.read("normalize_by_accepted", s.normalizeByAccepted);
 }
 

@@ -57,6 +57,10 @@ struct SamplingSettings {
     DiffuseSource diffuse = DiffuseSource::Sh9;
     bool cosineSampledDiffuse = false; // sampled method: diffuse from N cosine samples instead of SH9
     bool multiscatter = false;         // Fdez-Aguera energy compensation from the LUT's third channel
+    // Split sum as LearnOpenGL writes it: prefiltered * (F_roughness(n.v) A + B), Fresnel applied
+    // on top of the LUT that already integrates it. false: prefiltered * (F0 A + B), exact for
+    // the split sum (Karis 2013). The convention presets turn it on for LearnOpenGL.
+    bool roughFresnelOnLut = false;
     // Sampled method: divide by the samples above the horizon, as LearnOpenGL's prefilter
     // does, instead of by N (unbiased); for comparing the two.
     bool normalizeByAccepted = false;

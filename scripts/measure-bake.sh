@@ -15,9 +15,13 @@ errors() {
   python3 -c '
 import json, sys
 e = json.load(sys.stdin)["errors"]
-mips = " ".join("%.3g" % m["relative_rmse"] for m in e["prefilter"])
+mips = " ".join("%.3g (r %.2f)" % (m["relative_rmse"], m["roughness"]) for m in e["prefilter"])
+shaded = [m["relative_rmse"] for m in e["prefilter_shaded"]]
 irr = "; ".join("%s %.2g / %.2g" % (k, v["mean_relative"], v["max_relative"]) for k, v in e["irradiance"].items() if isinstance(v, dict))
-print("mips 0-4: %s | diffuse mean / max: %s" % (mips, irr))'
+lut = "; ".join("%s %.2g" % (k, v) for k, v in e["lut_max_abs"].items())
+print("    per mip: %s" % mips)
+print("    as shaded, roughness 0, 0.1 .. 1: %s | RMS %.3g, max %.3g" % (" ".join("%.3f" % x for x in shaded), e["prefilter_shaded_rms"], max(shaded)))
+print("    diffuse mean / max: %s | LUT max abs: %s" % (irr, lut))'
 }
 for env in "$@"; do
   [ -f "$env" ] || { echo "measure-bake: $env: no such file" >&2; exit 2; }
@@ -33,6 +37,6 @@ import sys
 env, t, d = sys.argv[1], min(map(float, sys.argv[2].split())), min(map(float, sys.argv[3].split()))
 print(f"{env}: tutorial {t:.0f} ms, default (LUTs cached) {d:.0f} ms: {t / d:.1f}x")
 PY
-  echo "  tutorial: $("$iblab" bake --env "$env" --preset tutorial --no-cache --json | errors)"
-  echo "  default:  $("$iblab" bake --env "$env" --no-cache --json | errors)"
+  echo "  tutorial:"; "$iblab" bake --env "$env" --preset tutorial --no-cache --json | errors
+  echo "  default:"; "$iblab" bake --env "$env" --no-cache --json | errors
 done

@@ -8,6 +8,7 @@
 
 #include <imgui.h>
 
+#include "conventions.hpp"
 #include "ibl/error_metrics.hpp"
 #include "ibl/tonemap.hpp"
 
@@ -172,6 +173,10 @@ void drawSamplingControls(SamplingSettings& settings)
     enumCombo("Geometry term", settings.geometry, std::array{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith}, geometryTermShortName);
     enumCombo("Diffuse", settings.diffuse, std::array{DiffuseSource::Sh9, DiffuseSource::IrradianceCube}, diffuseSourceName);
     ImGui::Checkbox("Multiple-scattering compensation", &settings.multiscatter);
+    if (settings.method == ShadingMethod::SplitSum) {
+        ImGui::Checkbox("F_roughness on the LUT", &settings.roughFresnelOnLut);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("LearnOpenGL's split sum: F_roughness(n.v) A + B; off: F0 A + B (exact)");
+    }
 }
 
 // "sampled N=16" or "splitsum", the divider's labels.
@@ -182,6 +187,7 @@ std::string samplingSummary(const SamplingSettings& s)
     if (s.forcedMip >= 0) text += " mip " + std::to_string(s.forcedMip);
     text += ", " + std::string(geometryTermShortName(s.geometry));
     if (s.multiscatter) text += ", ms";
+    if (s.roughFresnelOnLut && s.method == ShadingMethod::SplitSum) text += ", F_r on LUT";
     return text;
 }
 
@@ -205,6 +211,22 @@ void drawMetricsTable(const char* id, const ErrorMetrics& m)
 }
 
 } // namespace
+
+void drawConventionPanel(PanelState& state, UiRequests& requests)
+{
+    if (!ImGui::CollapsingHeader("Conventions")) return;
+    ImGui::TextWrapped("Bake and shade as another viewer does; the Compare section's A/B split and error view show what it changes.");
+    for (const ConventionPreset& convention : conventionPresets()) {
+        const bool current = state.convention == convention.name;
+        if (ImGui::RadioButton(std::string(convention.title).c_str(), current) && !current)
+            requests.applyConvention = std::string(convention.name);
+        if (ImGui::IsItemHovered()) {
+            ImGui::BeginTooltip();
+            for (const auto& [aspect, choice] : conventionChoices(convention)) ImGui::Text("%-20s %s", aspect.c_str(), choice.c_str());
+            ImGui::EndTooltip();
+        }
+    }
+}
 
 void drawSamplingPanel(SamplingSettings& settings)
 {
@@ -445,6 +467,7 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     drawScenePanel(settings.scene, state, requests);
     drawMaterialPanel(settings.material, settings.scene);
     drawSamplingPanel(settings.sampling);
+    drawConventionPanel(state, requests);
     drawToneMapPanel(settings.toneMap);
     drawViewPanel(settings.view);
     drawComparePanel(settings.view, settings.sampling, state.compare);

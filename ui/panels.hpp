@@ -39,6 +39,7 @@ struct UiRequests {
     std::optional<std::string> savePreset;      // lab settings as JSON
     std::optional<std::string> loadPreset;
     std::optional<std::string> exportModel;     // a copy of the loaded glTF with the tuned material
+    std::optional<std::string> applyConvention; // conventions.hpp: rebake and set the shading as that viewer does
     bool frameScene = false;
     bool sceneChanged = false;                  // the scene kind changed: frame it
 };
@@ -69,6 +70,7 @@ struct PanelState {
     CaptureSettings capture;
     Activity activity;
     CompareState compare;
+    std::string convention; // the convention preset last applied ("" = none)
     char environmentPath[512] = "";
     char modelPath[512] = "";
     char presetPath[512] = "iblab-preset.json";
@@ -82,6 +84,8 @@ void drawToneMapPanel(ToneMapSettings& settings);
 void drawCameraPanel(CameraSettings& settings, UiRequests& requests);
 void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene);
 void drawSamplingPanel(SamplingSettings& settings);
+// The convention presets (LearnOpenGL, Filament, glTF Sample Viewer, iblab) and what each chose.
+void drawConventionPanel(PanelState& state, UiRequests& requests);
 // The error view's and the split view's controls, the reference's progress and the numbers.
 void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state);
 void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests);

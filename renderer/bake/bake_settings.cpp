@@ -46,6 +46,57 @@ BakeSettings tutorialPreset()
     return s;
 }
 
+// Filament's IBL as cmgen and its IBLPrefilterContext set it up (Filament.md.html, "Image
+// based lights"): a 256 cube, roughness laid out quadratically over the mips down to the 16
+// face (iblRoughnessOneLevel = 4, so 5 levels), filtered importance sampling with K = 4
+// (bias +1) against the face-average texel, a DFG LUT with the height-correlated Smith term
+// and multiple-scattering energy compensation, SH9 for diffuse. The sample count is ours
+// (Filament's varies by tool and version): 1024, LearnOpenGL's, so that the layout and the
+// bias are what differs.
+BakeSettings filamentPreset()
+{
+    BakeSettings s;
+    s.preset = "filament";
+    s.exactTexelSolidAngle = false;
+    s.cube.faceSize = 256;
+    s.importance.enabled = false;
+    s.prefilter = {.faceSize = 256,
+                   .levels = 5,
+                   .layout = RoughnessLayout::Quadratic,
+                   .samples = 1024,
+                   .sampleGrowth = 1.0f,
+                   .mipFiltering = true,
+                   .mipBias = 1.0f,
+                   .mirrorCopy = true};
+    s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
+    return s;
+}
+
+// The Khronos glTF Sample Viewer's ibl_sampler.js: a 256 cube, 1024 GGX samples per texel,
+// mips down to the 16 face (lowestMipLevel 4: 5 levels) with roughness linear in the mip,
+// a Lambertian cube by 2048 cosine samples (its face size, 32, is ours), and the source lod
+// 0.5 log2(6 w^2 / (N pdf)) + lodBias (0): Krivanek's formula without the 4 pi of the texel's
+// solid angle, which is the face-average formula with a bias of 0.5 log2(4 pi) = +1.83 mips.
+// Its LUT (lut_ggx.png) uses the height-correlated Smith term; no energy compensation.
+BakeSettings gltfViewerPreset()
+{
+    BakeSettings s;
+    s.preset = "gltf-viewer";
+    s.exactTexelSolidAngle = false;
+    s.cube.faceSize = 256;
+    s.importance = {.enabled = true, .faceSize = 32, .samples = 2048, .mipFiltering = true, .mipBias = 1.8257f};
+    s.prefilter = {.faceSize = 256,
+                   .levels = 5,
+                   .layout = RoughnessLayout::Linear,
+                   .samples = 1024,
+                   .sampleGrowth = 1.0f,
+                   .mipFiltering = true,
+                   .mipBias = 1.8257f,
+                   .mirrorCopy = false};
+    s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
+    return s;
+}
+
 BakeSettings defaultPreset()
 {
     BakeSettings s; // the member initialisers are the default preset
@@ -53,7 +104,7 @@ BakeSettings defaultPreset()
     return s;
 }
 
-std::vector<std::string> presetNames() { return {"default", "tutorial"}; }
+std::vector<std::string> presetNames() { return {"default", "tutorial", "filament", "gltf-viewer"}; }
 
 BakeSettings presetByName(std::string_view name)
 {
@@ -61,7 +112,11 @@ BakeSettings presetByName(std::string_view name)
         return defaultPreset();
     if (name == "tutorial")
         return tutorialPreset();
-    throw Error("preset \"" + std::string(name) + "\"", "unknown preset; expected default or tutorial");
+    if (name == "filament")
+        return filamentPreset();
+    if (name == "gltf-viewer")
+        return gltfViewerPreset();
+    throw Error("preset \"" + std::string(name) + "\"", "unknown preset; expected default, tutorial, filament or gltf-viewer");
 }
 
 int prefilterSamples(const PrefilterSettings& settings, int level)

@@ -142,6 +142,10 @@ BakeSettings tutorialPreset();
 // with PDF source-mip filtering (bias 0), 8 samples at mip 1 tripling per mip, LUTs 128^2 x
 // 2048 for both geometry terms (cached: they depend on no environment).
 BakeSettings defaultPreset();
+// How Filament and the Khronos glTF Sample Viewer bake (bake_settings.cpp says where each
+// value comes from); with tutorialPreset() they are the bake side of the convention presets.
+BakeSettings filamentPreset();
+BakeSettings gltfViewerPreset();
 std::vector<std::string> presetNames();
 // Throws iblab::Error naming the preset and the valid ones.
 BakeSettings presetByName(std::string_view name);

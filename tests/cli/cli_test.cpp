@@ -370,4 +370,30 @@ TEST_F(Cli, SplitViewShowsAOnTheLeftAndBOnTheRight)
     EXPECT_GT(differing, 50) << "A and B must differ right of the divider for this to prove anything";
 }
 
+// Two conventions side by side: one row each (frame + error view), the choices that differ,
+// and each one's error against the exact integral of its own BRDF.
+TEST_F(Cli, ConventionsRendersEachPresetWithItsError)
+{
+    const Result r = run("conventions --env builtin:studio?width=128 --reference-width 64 --width 48 --height 32 --only filament --only iblab "
+                         "--json -o conventions.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto report = nlohmann::json::parse(r.out);
+    ASSERT_EQ(report["conventions"].size(), 2u);
+    EXPECT_EQ(report["conventions"][0]["name"], "filament");
+    EXPECT_NE(report["conventions"][0]["choices"]["source-mip bias"], report["conventions"][1]["choices"]["source-mip bias"]);
+    for (const auto& c : report["conventions"]) {
+        const double rmse = c["error"]["relative_rmse"].get<double>();
+        EXPECT_TRUE(std::isfinite(rmse) && rmse > 0.0) << c["name"];
+        EXPECT_GT(c["error"]["pixels"].get<int>(), 50) << c["name"];
+    }
+    auto input = OIIO::ImageInput::open((dir / "conventions.png").string());
+    ASSERT_TRUE(input);
+    EXPECT_EQ(input->spec().width, 2 * 48);
+    EXPECT_EQ(input->spec().height, 2 * 32);
+
+    const Result unknown = run("render --convention unreal -o x.png");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.err.find("unknown convention \"unreal\""), std::string::npos) << unknown.err;
+}
+
 } // namespace

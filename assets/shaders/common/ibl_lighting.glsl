@@ -19,6 +19,7 @@ uniform float uEnvironmentLevels;
 uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
 uniform int uDiffuseSource;  // 0: SH9, 1: irradiance cube
 uniform bool uMultiscatter;
+uniform bool uRoughFresnelOnLut; // LearnOpenGL's F_roughness * A + B (SamplingSettings::roughFresnelOnLut)
 uniform float uForcedMip;    // < 0: automatic
 uniform bool uPdfMipFiltering;
 uniform float uMipBias;
@@ -62,7 +63,8 @@ vec3 combineLobes(SurfacePoint s, float NdotV, vec3 irradianceOverPi, vec3 specu
 // Split sum (Karis 2013): the specular integral as (prefiltered radiance at R) times
 // (F0 A + B), with A and B from the LUT. LearnOpenGL multiplies the LUT by the
 // roughness-aware Fresnel instead of F0; that counts Fresnel twice (it is already inside A
-// and B), so here F_roughness only sets the diffuse weight kD = (1 - F)(1 - metallic).
+// and B), so by default F_roughness only sets the diffuse weight kD = (1 - F)(1 - metallic),
+// and uRoughFresnelOnLut reproduces the tutorial for the convention presets.
 vec3 shadeSplitSum(SurfacePoint s)
 {
     float NdotV = max(dot(s.N, s.V), 1e-4);
@@ -70,7 +72,8 @@ vec3 shadeSplitSum(SurfacePoint s)
     float lod = uForcedMip >= 0.0 ? uForcedMip : prefilterMipFromRoughness(s.roughness, uPrefilteredLevels, uPrefilteredLayout);
     vec3 prefiltered = textureLod(uPrefiltered, toEnvironment(R), lod).rgb * uEnvironmentIntensity;
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
-    vec3 specular = prefiltered * (s.F0 * lut.r + lut.g) * energyCompensation(s.F0, lut.b);
+    vec3 scaleFresnel = uRoughFresnelOnLut ? fresnelSchlickRoughness(NdotV, s.F0, s.roughness) : s.F0;
+    vec3 specular = prefiltered * (scaleFresnel * lut.r + lut.g) * energyCompensation(s.F0, lut.b);
     return combineLobes(s, NdotV, diffuseIrradiance(s.N) * (1.0 / IBL_PI), specular);
 }
 

@@ -1,0 +1,81 @@
+// The convention presets (renderer/conventions.hpp): each names a valid bake preset, bakes
+// only the LUT it shades with, and reproduces the published choices that make viewers differ.
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "bake/bake_settings.hpp"
+#include "bake/prefilter_lod.hpp"
+#include "conventions.hpp"
+
+namespace iblab {
+namespace {
+
+const ConventionPreset& preset(std::string_view name)
+{
+    const ConventionPreset* found = findConvention(name);
+    EXPECT_NE(found, nullptr) << name;
+    return *found;
+}
+
+TEST(ConventionPresets, EveryPresetBakesValidlyAndOnlyItsOwnLut)
+{
+    std::set<std::string_view> names;
+    for (const ConventionPreset& c : conventionPresets()) {
+        EXPECT_TRUE(names.insert(c.name).second) << "duplicate " << c.name;
+        const bake::BakeSettings bake = conventionBakeSettings(c);
+        EXPECT_NO_THROW(bake::validate(bake)) << c.name;
+        EXPECT_TRUE(bake.lut.wants(c.geometry)) << c.name;
+        EXPECT_FALSE(bake.lut.wants(c.geometry == GeometryTerm::SchlickGGX ? GeometryTerm::HeightCorrelatedSmith : GeometryTerm::SchlickGGX)) << c.name;
+        EXPECT_EQ(conventionChoices(c).size(), conventionChoices(conventionPresets().front()).size());
+    }
+    EXPECT_EQ(findConvention("unreal"), nullptr);
+}
+
+TEST(ConventionPresets, ReproduceWhatEachViewerChose)
+{
+    const bake::BakeSettings learnOpenGl = conventionBakeSettings(preset("learnopengl"));
+    EXPECT_EQ(learnOpenGl.prefilter.layout, bake::RoughnessLayout::Linear);
+    EXPECT_FALSE(learnOpenGl.prefilter.mipFiltering);
+    EXPECT_EQ(preset("learnopengl").geometry, GeometryTerm::SchlickGGX);
+    EXPECT_TRUE(preset("learnopengl").roughFresnelOnLut);
+
+    // Filament: quadratic lod, K = 4 (one mip blurrier), energy compensation.
+    const bake::BakeSettings filament = conventionBakeSettings(preset("filament"));
+    EXPECT_EQ(filament.prefilter.layout, bake::RoughnessLayout::Quadratic);
+    EXPECT_FLOAT_EQ(filament.prefilter.mipBias, 1.0f);
+    EXPECT_TRUE(preset("filament").multiscatter);
+    EXPECT_FALSE(preset("filament").roughFresnelOnLut);
+    // Its shading reads roughness 0.5 at lod 4 x 0.75 = 3 of its 5 levels.
+    EXPECT_FLOAT_EQ(bake::prefilterMipFromRoughness(0.5f, float(filament.prefilter.levels), int(filament.prefilter.layout)), 3.0f);
+
+    // glTF Sample Viewer: lod = 0.5 log2(6 w^2 / (N pdf)), the face-average formula without
+    // 4 pi: a bias of 0.5 log2(4 pi).
+    const bake::BakeSettings gltf = conventionBakeSettings(preset("gltf-viewer"));
+    EXPECT_EQ(gltf.prefilter.layout, bake::RoughnessLayout::Linear);
+    EXPECT_FALSE(gltf.exactTexelSolidAngle);
+    const float w = float(gltf.cube.faceSize), n = 1024.0f, pdf = 3.7f;
+    const float theirs = 0.5f * std::log2(6.0f * w * w / (n * pdf));
+    EXPECT_NEAR(bake::sourceLodFromPdf(pdf, n, w, gltf.prefilter.mipBias), theirs, 1e-3f);
+    EXPECT_TRUE(preset("gltf-viewer").roughFresnelOnLut);
+    EXPECT_FALSE(preset("gltf-viewer").multiscatter);
+}
+
+TEST(ConventionPresets, ApplyingOneSetsTheSplitSumShadingItUses)
+{
+    SamplingSettings sampling;
+    sampling.method = ShadingMethod::Sampled;
+    sampling.forcedMip = 3;
+    sampling.samples = 77;
+    applyConvention(preset("learnopengl"), sampling);
+    EXPECT_EQ(sampling.method, ShadingMethod::SplitSum);
+    EXPECT_EQ(sampling.forcedMip, -1);
+    EXPECT_EQ(sampling.geometry, GeometryTerm::SchlickGGX);
+    EXPECT_TRUE(sampling.roughFresnelOnLut);
+    EXPECT_EQ(sampling.diffuse, DiffuseSource::IrradianceCube);
+    EXPECT_EQ(sampling.samples, 77); // not the convention's business
+}
+
+} // namespace
+} // namespace iblab
