@@ -195,6 +195,7 @@ int runCommandLine(int argc, char** argv)
     commands.push_back(addShCommand(app, processStart));
     commands.push_back(addLutCommand(app, processStart));
     commands.push_back(addStressCommand(app, processStart));
+    commands.push_back(addBenchCommand(app, processStart));
 
     try {
         app.parse(argc, argv);

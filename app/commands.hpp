@@ -25,5 +25,6 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addShCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addLutCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addStressCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addBenchCommand(CLI::App& app, ProcessClock::time_point processStart);
 
 } // namespace iblab::app

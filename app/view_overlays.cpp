@@ -45,15 +45,22 @@ OffscreenOverlay::~OffscreenOverlay()
 
 void OffscreenOverlay::drawOver(Renderer& renderer, const FrameSettings& settings, int width, int height)
 {
+    const std::vector<SphereReading> readings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
+    drawFrame(
+        width, height, [&] { drawViewOverlays(renderer, settings, width, height, glm::vec2(0.0f), readings, std::nullopt); },
+        [&] { renderer.bindDisplayFramebuffer(); });
+}
+
+void OffscreenOverlay::drawFrame(int width, int height, const std::function<void()>& build, const std::function<void()>& bindTarget)
+{
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(float(width), float(height));
     io.DeltaTime = 1.0f / 60.0f;
     ImGui_ImplOpenGL3_NewFrame();
     ImGui::NewFrame();
-    const std::vector<SphereReading> readings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
-    drawViewOverlays(renderer, settings, width, height, glm::vec2(0.0f), readings, std::nullopt);
+    build();
     ImGui::Render();
-    renderer.bindDisplayFramebuffer();
+    bindTarget();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

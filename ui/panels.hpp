@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "debug_layout.hpp"
+#include "pareto_chart.hpp"
 #include "renderer.hpp"
 #include "settings.hpp"
 
@@ -41,6 +42,8 @@ struct UiRequests {
     std::optional<std::string> exportModel;     // a copy of the loaded glTF with the tuned material
     bool frameScene = false;
     bool sceneChanged = false;                  // the scene kind changed: frame it
+    bool startStudy = false;                    // a quick bench sweep on the current environment and scene
+    bool stopStudy = false;
 };
 
 struct CaptureSettings {
@@ -59,6 +62,15 @@ struct CompareState {
     ErrorReport error;
 };
 
+// The Study panel's view of the bench sweep the app runs: progress and the chart so far.
+struct StudyState {
+    bool running = false;
+    float progress = 0.0f;
+    std::string activity;
+    StatusLine status;
+    std::vector<ParetoChart> charts;
+};
+
 struct PanelState {
     EnvironmentCatalog catalog;
     StatusLine environmentStatus;
@@ -69,6 +81,7 @@ struct PanelState {
     CaptureSettings capture;
     Activity activity;
     CompareState compare;
+    StudyState study;
     char environmentPath[512] = "";
     char modelPath[512] = "";
     char presetPath[512] = "iblab-preset.json";
@@ -89,6 +102,9 @@ void drawViewPanel(ViewSettings& settings);
 void drawPresetPanel(PanelState& state, UiRequests& requests);
 void drawCapturePanel(PanelState& state, UiRequests& requests);
 void drawStatsOverlay(const FrameStats& stats);
+// Starts and stops the quick sweep; its chart is drawn live in a window of its own.
+void drawStudyPanel(PanelState& state, UiRequests& requests);
+void drawStudyChartWindow(const StudyState& study);
 
 // Labels of the debug view's tiles (rects y up, in framebuffer pixels), unit axes on each
 // tile when `axes` (the LUTs), and the readout of the texel under the cursor.
