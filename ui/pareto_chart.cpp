@@ -19,7 +19,7 @@ constexpr ImU32 kFront = IM_COL32(255, 255, 255, 150);
 
 ImU32 seriesColour(std::size_t index, int alpha = 255)
 {
-    // Distinguishable hues (Tableau 20's strong half first).
+    // Distinguishable hues, none of them the front line's white or the grid's grey.
     static constexpr std::array<std::array<int, 3>, 16> kPalette{{{78, 161, 237},
                                                                   {255, 148, 46},
                                                                   {80, 200, 100},
@@ -27,7 +27,7 @@ ImU32 seriesColour(std::size_t index, int alpha = 255)
                                                                   {176, 130, 225},
                                                                   {190, 140, 110},
                                                                   {240, 130, 200},
-                                                                  {190, 190, 190},
+                                                                  {0, 170, 150},
                                                                   {210, 210, 60},
                                                                   {60, 210, 220},
                                                                   {160, 200, 255},
@@ -72,24 +72,33 @@ void fitRange(double& lo, double& hi)
 
 std::vector<double> logTicks(double lo, double hi)
 {
-    std::vector<double> decades, all;
-    for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi))); ++k)
-        for (double m : {1.0, 2.0, 5.0}) {
-            const double v = m * std::pow(10.0, k);
-            if (v < lo || v > hi) continue;
-            all.push_back(v);
-            if (m == 1.0) decades.push_back(v);
-        }
-    return decades.size() >= 3 ? decades : all;
+    // The coarsest of decades, 1-2-5 and 1..9 per decade that puts three ticks in the range.
+    const auto ticks = [&](std::initializer_list<double> mantissas) {
+        std::vector<double> list;
+        for (int k = int(std::floor(std::log10(lo))); k <= int(std::ceil(std::log10(hi))); ++k)
+            for (double m : mantissas) {
+                const double v = m * std::pow(10.0, k);
+                if (v >= lo && v <= hi) list.push_back(v);
+            }
+        return list;
+    };
+    std::vector<double> list = ticks({1.0});
+    if (list.size() < 3) list = ticks({1.0, 2.0, 5.0});
+    if (list.size() < 3) list = ticks({1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0});
+    return list;
 }
 
 ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 origin, ImVec2 size, std::optional<ImVec2> mouse)
 {
-    constexpr float kLeft = 62.0f, kBottom = 42.0f, kTop = 40.0f, kLegendWidth = 210.0f, kRadius = 4.0f;
+    constexpr float kLeft = 62.0f, kBottom = 42.0f, kTop = 40.0f, kRadius = 4.0f;
     const ImVec2 end(origin.x + size.x, origin.y + size.y);
+    // The legend takes what its longest line needs, up to half the chart.
+    float legendWidth = ImGui::CalcTextSize("front: nothing cheaper").x;
+    for (const ChartSeries& s : chart.series) legendWidth = std::max(legendWidth, ImGui::CalcTextSize(s.name.c_str()).x);
+    legendWidth = std::min(legendWidth + 36.0f, 0.5f * size.x);
     draw.AddRectFilled(origin, end, kBackground);
     const ImVec2 plot0(origin.x + kLeft, origin.y + kTop);
-    const ImVec2 plot1(std::max(plot0.x + 40.0f, end.x - kLegendWidth), std::max(plot0.y + 40.0f, end.y - kBottom));
+    const ImVec2 plot1(std::max(plot0.x + 40.0f, end.x - legendWidth), std::max(plot0.y + 40.0f, end.y - kBottom));
     draw.AddRectFilled(plot0, plot1, kPlotBackground);
     draw.AddText(ImVec2(origin.x + 8.0f, origin.y + 6.0f), kText, chart.title.c_str());
     draw.AddText(ImVec2(origin.x + 8.0f, origin.y + 22.0f), kAxis, chart.yLabel.c_str());

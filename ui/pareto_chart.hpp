@@ -40,8 +40,8 @@ struct ChartHover {
 // returns the point within a few pixels of `mouse`, if any.
 ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 origin, ImVec2 size, std::optional<ImVec2> mouse = std::nullopt);
 
-// Log-axis ticks for [lo, hi]: the decades inside it, with 2 and 5 between them when fewer
-// than three decades fit (a chart with one tick says nothing).
+// Log-axis ticks for [lo, hi]: the decades inside it, or 1-2-5 or 1..9 per decade when
+// fewer than three would fit (a chart with one tick says nothing).
 std::vector<double> logTicks(double lo, double hi);
 
 } // namespace iblab::ui
