@@ -19,7 +19,8 @@ mkdir -p "$out" "$scratch"
 envs=()
 for e in ${BENCH_ENVS:-}; do envs+=(--env "$e"); done
 start=$(date +%s)
-"$iblab" bench --out "$scratch/bench" "${envs[@]}" > /dev/null
+# Charts smaller than the command's default keep pareto.png small enough to commit.
+"$iblab" bench --out "$scratch/bench" --chart-width "${CHART_WIDTH:-560}" --chart-height "${CHART_HEIGHT:-340}" "${envs[@]}" > /dev/null
 bench_s=$(( $(date +%s) - start ))
 start=$(date +%s)
 "$iblab" stress --out "$scratch/stress" > /dev/null

@@ -137,9 +137,10 @@ std::vector<SweepPoint> sweepPoints(bool quick)
 std::vector<BenchEnvironment> builtinBenchEnvironments(int width)
 {
     // A bright small light, saturated colour, and sub-texel detail: where methods differ most.
+    // Prefixed, so that the builtin studio is not taken for the bundled studio.exr.
     std::vector<BenchEnvironment> list;
     for (const stress::StressEnvironment& e : stress::stressEnvironments(width))
-        if (e.name == "sun-1e3" || e.name == "studio" || e.name == "slits") list.push_back({e.name, e.spec, nullptr});
+        if (e.name == "sun-1e3" || e.name == "studio" || e.name == "slits") list.push_back({"builtin-" + e.name, e.spec, nullptr});
     return list;
 }
 
@@ -226,6 +227,12 @@ BenchJob::BenchJob(Renderer& renderer, BenchOptions options) : state_(std::make_
 {
     if (options.environments.empty()) throw Error("iblab bench", "no environment to sweep");
     if (options.points.empty()) throw Error("iblab bench", "no sweep point");
+    // Points are told apart by environment name (dominance, charts, tables).
+    for (std::size_t i = 0; i < options.environments.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (options.environments[i].name == options.environments[j].name)
+                throw Error("iblab bench", "two environments are named \"" + options.environments[i].name + "\" (" + options.environments[j].spec +
+                                               " and " + options.environments[i].spec + ")");
     if (options.width < 8 || options.height < 8) throw Error("iblab bench", "the image must be at least 8x8");
     options.repeats = std::max(options.repeats, 1);
     options.frame.view.mode = ViewMode::Final;

@@ -32,7 +32,7 @@
 namespace iblab::bench {
 
 struct BenchEnvironment {
-    std::string name; // short key for tables: "courtyard", "sun-1e4"
+    std::string name; // short key for tables, unique in a run: "courtyard", "builtin-sun-1e3"
     std::string spec; // a file or builtin spec
     // Already in memory (the GUI's current map): skips loading the spec again.
     std::shared_ptr<const Environment> loaded;
@@ -118,7 +118,8 @@ void markDominated(std::vector<BenchPoint>& points);
 
 class BenchJob {
 public:
-    // Throws iblab::Error for options no sweep can use (no environment, no point).
+    // Throws iblab::Error for options no sweep can use (no environment, no point, two
+    // environments of one name).
     BenchJob(Renderer& renderer, BenchOptions options);
     ~BenchJob();
     BenchJob(const BenchJob&) = delete;

@@ -9,11 +9,13 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_sweep.hpp"
+#include "environment/error.hpp"
 #include "gl_test_fixture.hpp"
 #include "renderer.hpp"
 
@@ -130,6 +132,21 @@ TEST_F(Bench, DominanceIsCheaperAndMoreAccurateWithinOneEnvironment)
     markDominated(points);
     const std::vector<bool> expected{false, false, true, false, false, false, false};
     for (std::size_t i = 0; i < points.size(); ++i) EXPECT_EQ(points[i].dominated, expected[i]) << i;
+}
+
+TEST_F(Bench, EnvironmentsAreToldApartByName)
+{
+    // The full default run: the bundled studio.exr and the builtin studio must not share a
+    // name, or their points would be compared with each other.
+    const BenchOptions full = defaultBenchOptions(/*quick=*/false, IBLAB_ASSET_DIR);
+    ASSERT_GT(full.environments.size(), 3u);
+    std::set<std::string> names;
+    for (const BenchEnvironment& e : full.environments) EXPECT_TRUE(names.insert(e.name).second) << e.name;
+
+    BenchOptions twice = defaultBenchOptions(/*quick=*/true, IBLAB_ASSET_DIR);
+    twice.environments.push_back(twice.environments.front());
+    Renderer renderer(shaderDirectory());
+    EXPECT_THROW(BenchJob(renderer, twice), Error);
 }
 
 TEST_F(Bench, CsvAndJsonParseBackWithTheExpectedColumns)
