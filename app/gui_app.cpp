@@ -212,7 +212,7 @@ public:
             options.frame = settings;
             options.width = options.height = 96; // the quick run's 48 is for tests; 96 still sweeps in seconds
             job_ = std::make_unique<bench::BenchJob>(*renderer_, options);
-            study = {true, 0.0f, "", {}, {}};
+            study = {true, 0.0f, "", {}, {}, true};
         } catch (const std::exception& e) {
             study.status = {e.what(), true};
         }

@@ -439,6 +439,10 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
                        "samples, runtime N, diffuse sources), each point baked, timed and compared with the reference.");
     if (!study.running) {
         if (ImGui::Button("Run quick sweep")) requests.startStudy = true;
+        if (!study.charts.empty() && !study.chartOpen) {
+            ImGui::SameLine();
+            if (ImGui::Button("Show chart")) study.chartOpen = true;
+        }
     } else {
         if (ImGui::Button("Stop")) requests.stopStudy = true;
         ImGui::SameLine();
@@ -448,12 +452,12 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
     drawStatus(study.status);
 }
 
-void drawStudyChartWindow(const StudyState& study)
+void drawStudyChartWindow(StudyState& study)
 {
-    if (study.charts.empty()) return;
+    if (study.charts.empty() || !study.chartOpen) return;
     ImGui::SetNextWindowSize(ImVec2(760, 480), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 780, 20), ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Study: speed against accuracy")) {
+    if (!ImGui::Begin("Study: speed against accuracy", &study.chartOpen)) {
         ImGui::End();
         return;
     }

@@ -69,6 +69,7 @@ struct StudyState {
     std::string activity;
     StatusLine status;
     std::vector<ParetoChart> charts;
+    bool chartOpen = true; // the chart's window; closing it leaves the sweep running
 };
 
 struct PanelState {
@@ -104,7 +105,7 @@ void drawCapturePanel(PanelState& state, UiRequests& requests);
 void drawStatsOverlay(const FrameStats& stats);
 // Starts and stops the quick sweep; its chart is drawn live in a window of its own.
 void drawStudyPanel(PanelState& state, UiRequests& requests);
-void drawStudyChartWindow(const StudyState& study);
+void drawStudyChartWindow(StudyState& study);
 
 // Labels of the debug view's tiles (rects y up, in framebuffer pixels), unit axes on each
 // tile when `axes` (the LUTs), and the readout of the texel under the cursor.

@@ -519,22 +519,55 @@ std::string benchJsonText(const BenchReport& report)
 
 std::string benchMarkdown(const BenchReport& report)
 {
-    std::ostringstream out;
+    struct Environment {
+        std::string name;
+        std::vector<const BenchPoint*> points, front;
+        double cheapest = 0.0;
+        // The lowest error of a family and what it costs.
+        const BenchPoint* best(const std::string& family) const
+        {
+            const BenchPoint* found = nullptr;
+            for (const BenchPoint* p : points)
+                if (p->setting.family == family && (!found || p->error.relativeRmse < found->error.relativeRmse)) found = p;
+            return found;
+        }
+    };
+    std::vector<Environment> environments;
     for (const BenchEnvironment& e : report.options.environments) {
-        std::vector<const BenchPoint*> front;
-        int total = 0;
+        Environment env{e.name, {}, {}, 0.0};
         for (const BenchPoint& p : report.points) {
             if (p.environment != e.name) continue;
-            ++total;
-            if (!p.dominated) front.push_back(&p);
+            env.points.push_back(&p);
+            if (!p.dominated) env.front.push_back(&p);
         }
-        if (front.empty()) continue;
-        std::sort(front.begin(), front.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->costMilliseconds < b->costMilliseconds; });
-        const double cheapest = std::max(front.front()->costMilliseconds, 1e-9);
-        out << "**" << e.name << "**: " << front.size() << " of " << total << " settings are not dominated\n\n";
+        if (env.front.empty()) continue;
+        std::sort(env.front.begin(), env.front.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->costMilliseconds < b->costMilliseconds; });
+        env.cheapest = std::max(env.front.front()->costMilliseconds, 1e-9);
+        environments.push_back(std::move(env));
+    }
+
+    std::ostringstream out;
+    const auto bestCell = [&](const Environment& env, const char* family) {
+        const BenchPoint* p = env.best(family);
+        if (!p) return std::string("-");
+        return formatNumber(p->error.relativeRmse, "%.3g") + " at " + formatNumber(p->costMilliseconds / env.cheapest, "%.1f") + "x (" + p->setting.label + ")";
+    };
+    out << "Per environment: how many settings nothing beats on both axes, and each family's lowest relative RMSE with its cost as a "
+           "multiple of the environment's cheapest setting.\n\n";
+    out << "| environment | not dominated | split-sum: lowest error | sampled: lowest error | diffuse variants: error range |\n|---|---|---|---|---|\n";
+    for (const Environment& env : environments) {
+        double lo = 1e300, hi = 0.0;
+        for (const BenchPoint* p : env.points)
+            if (p->setting.family == "diffuse") lo = std::min(lo, p->error.relativeRmse), hi = std::max(hi, p->error.relativeRmse);
+        out << "| " << env.name << " | " << env.front.size() << " of " << env.points.size() << " | " << bestCell(env, "split-sum") << " | "
+            << bestCell(env, "sampled") << " | " << (hi > 0.0 ? formatNumber(lo, "%.3g") + " - " + formatNumber(hi, "%.3g") : "-") << " |\n";
+    }
+    out << "\n";
+    for (const Environment& env : environments) {
+        out << "**" << env.name << "**: " << env.front.size() << " of " << env.points.size() << " settings are not dominated\n\n";
         out << "| setting | cost / cheapest | relative RMSE | bake ms | frame ms |\n|---|---|---|---|---|\n";
-        for (const BenchPoint* p : front)
-            out << "| " << p->setting.label << " | " << formatNumber(p->costMilliseconds / cheapest, "%.2f") << " | "
+        for (const BenchPoint* p : env.front)
+            out << "| " << p->setting.label << " | " << formatNumber(p->costMilliseconds / env.cheapest, "%.2f") << " | "
                 << formatNumber(p->error.relativeRmse, "%.3g") << " | " << formatNumber(p->bakeMilliseconds, "%.1f") << " | "
                 << formatNumber(p->frameMilliseconds, "%.1f") << " |\n";
         out << "\n";

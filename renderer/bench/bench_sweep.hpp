@@ -148,8 +148,9 @@ std::string benchCsvText(const BenchReport& report);
 std::string benchJsonText(const BenchReport& report);
 // The CSV's column names, in order.
 const std::vector<std::string>& benchCsvColumns();
-// Markdown: per environment, the points no other point dominates, cost as a ratio to the
-// cheapest of them (ratios carry over to other machines; milliseconds do not).
+// Markdown: a summary table (per environment, each family's lowest error and its cost), then
+// per environment the points no other point dominates. Cost as a ratio to the environment's
+// cheapest setting: ratios carry over to other machines, milliseconds do not.
 std::string benchMarkdown(const BenchReport& report);
 
 } // namespace iblab::bench
