@@ -65,13 +65,13 @@ int runBench(const BenchCommandOptions& o)
         options.costFrames = o.costFrames;
 
         bench::BenchJob job(renderer, options);
-        std::string lastEnvironment;
+        const bench::BenchEnvironment* reported = nullptr;
         while (job.step()) {
-            const std::string activity = job.currentActivity();
-            const std::string environment = activity.substr(0, activity.find(':'));
-            if (environment != lastEnvironment && !environment.empty())
-                std::fprintf(stderr, "iblab bench: %s (%zu points done)\n", environment.c_str(), job.report().points.size());
-            lastEnvironment = environment;
+            const bench::BenchEnvironment* environment = job.currentEnvironment();
+            const std::vector<bench::BenchEnvironment>& all = job.report().options.environments;
+            if (environment && environment != reported)
+                std::fprintf(stderr, "iblab bench: %s (%zu/%zu)\n", environment->name.c_str(), std::size_t(environment - all.data()) + 1, all.size());
+            reported = environment;
         }
         const bench::BenchReport report = job.runToCompletion();
         if (gl.debug.errorCount() > 0) return failCommand("bench", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.debug.firstError());

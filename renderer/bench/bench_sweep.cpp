@@ -4,7 +4,6 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <sstream>
 
 #include <epoxy/gl.h>
@@ -255,6 +254,11 @@ float BenchJob::progress() const
     double done = double(report_.points.size());
     if (s.phase == State::Phase::Bake && s.bakeJob) done += 0.9 * s.bakeJob->progress();
     return float(std::min(1.0, done / total));
+}
+
+const BenchEnvironment* BenchJob::currentEnvironment() const
+{
+    return done() ? nullptr : &report_.options.environments[state_->environment];
 }
 
 std::string BenchJob::currentActivity() const

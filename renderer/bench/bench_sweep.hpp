@@ -134,6 +134,8 @@ public:
     bool done() const;
     float progress() const; // 0..1, by points measured and bake progress
     std::string currentActivity() const;
+    // The environment the next step works on; null when done.
+    const BenchEnvironment* currentEnvironment() const;
     // The points measured so far, dominance marked among them.
     const BenchReport& report() const { return report_; }
 
