@@ -29,5 +29,6 @@ Command addShCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addLutCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addStressCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addConventionsCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addBenchCommand(CLI::App& app, ProcessClock::time_point processStart);
 
 } // namespace iblab::app

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +20,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "asset_paths.hpp"
+#include "bench_chart.hpp"
 #include "camera.hpp"
 #include "conventions.hpp"
 #include "view_overlays.hpp"
@@ -188,6 +190,75 @@ bool displayAvailable()
     return true;
 }
 
+// The Study panel's sweep: a quick bench on the current environment and scene, a slice per
+// frame. It runs on a renderer of its own, so the view keeps its environment and bake.
+class StudyRun {
+public:
+    void start(const LabSession& session, const FrameSettings& settings, ui::StudyState& study)
+    {
+        if (!session.environment()) {
+            study.status = {"no environment loaded yet", true};
+            return;
+        }
+        if (settings.scene.kind == SceneKind::None) {
+            study.status = {"the scene has no surfaces to measure: pick sphere, grid or a model", true};
+            return;
+        }
+        try {
+            if (!renderer_) renderer_ = std::make_unique<Renderer>(shaderDirectory());
+            bench::BenchOptions options = bench::defaultBenchOptions(/*quick=*/true, assetDirectory().string());
+            const Environment& environment = *session.environment();
+            options.environments = {{std::filesystem::path(environment.source).stem().string(), environment.source,
+                                     std::make_shared<const Environment>(environment)}};
+            options.frame = settings;
+            options.width = options.height = 96; // the quick run's 48 is for tests; 96 still sweeps in seconds
+            job_ = std::make_unique<bench::BenchJob>(*renderer_, options);
+            study = {true, 0.0f, "", {}, {}, true};
+        } catch (const std::exception& e) {
+            study.status = {e.what(), true};
+        }
+    }
+
+    void stop(ui::StudyState& study)
+    {
+        job_.reset();
+        study.running = false;
+        study.status = {"stopped", false};
+    }
+
+    // One slice of the sweep; the chart follows the points measured so far.
+    void advance(ui::StudyState& study, std::chrono::steady_clock::duration budget)
+    {
+        if (!job_) return;
+        try {
+            const bool more = job_->runFor(budget);
+            study.progress = job_->progress();
+            study.activity = job_->currentActivity();
+            if (job_->report().points.size() != pointsCharted_) {
+                pointsCharted_ = job_->report().points.size();
+                study.charts = benchCharts(job_->report());
+            }
+            if (!more) {
+                study.running = false;
+                study.status = {std::to_string(pointsCharted_) + " settings measured in " + std::to_string(int(job_->report().seconds)) + " s", false};
+                job_.reset();
+            }
+        } catch (const std::exception& e) {
+            study.running = false;
+            study.status = {e.what(), true};
+            job_.reset();
+        }
+        if (!job_) pointsCharted_ = 0;
+    }
+
+    bool running() const { return bool(job_); }
+
+private:
+    std::unique_ptr<Renderer> renderer_;
+    std::unique_ptr<bench::BenchJob> job_;
+    std::size_t pointsCharted_ = 0;
+};
+
 int runGui(const GuiOptions& options)
 {
     using Clock = std::chrono::steady_clock;
@@ -231,6 +302,7 @@ int runGui(const GuiOptions& options)
     float previousScale = 1.0f;
     bool idle = false;
     std::string lastRenderedKey; // settings + size of the image on screen
+    StudyRun study;
     while (!glfwWindowShouldClose(window.handle)) {
         // Idle and converged: sleep until input instead of re-rendering the same image.
         if (idle) glfwWaitEventsTimeout(0.25);
@@ -253,6 +325,7 @@ int runGui(const GuiOptions& options)
         if (finished.environment) panels.environmentStatus = *finished.environment;
         if (finished.bake) panels.bakeStatus = *finished.bake;
         panels.activity = {session.activity(), session.progress()};
+        study.advance(panels.study, std::chrono::milliseconds(30));
 
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -284,6 +357,8 @@ int runGui(const GuiOptions& options)
                 panels.convention = convention->name;
                 panels.bakeStatus = {"convention " + std::string(convention->title) + ": baking its preset \"" + std::string(convention->bakePreset) + "\"", false};
             }
+        if (requests.startStudy) study.start(session, settings, panels.study);
+        if (requests.stopStudy) study.stop(panels.study);
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
             const SceneInfo scene = renderer.sceneInfo(settings);
             frameBox(settings.camera, scene.centre, scene.halfExtents, float(fbWidth) / float(fbHeight));
@@ -314,7 +389,7 @@ int runGui(const GuiOptions& options)
                                       (errorView && panels.compare.reference.complete ? " with reference" : "");
         const bool converged = renderKey == lastRenderedKey && !interacting && !session.busy() && !requests.captureTo &&
                                renderer.accumulatedFrames() >= (renderer.lastFrameWasSampled() ? kMaxAccumulatedFrames : 1);
-        idle = converged && !referencePending && !ImGui::IsAnyItemHovered() && !io.WantTextInput;
+        idle = converged && !referencePending && !study.running() && !ImGui::IsAnyItemHovered() && !io.WantTextInput;
         lastRenderedKey = renderKey;
         const auto renderStart = Clock::now();
         if (!converged) renderer.renderFrame(settings, fbWidth, fbHeight, renderOptions);

@@ -47,25 +47,34 @@ OffscreenOverlay::~OffscreenOverlay()
 
 void OffscreenOverlay::drawOver(Renderer& renderer, const FrameSettings& settings, int width, int height, const std::vector<std::string>& caption)
 {
+    const std::vector<SphereReading> readings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
+    drawFrame(
+        width, height,
+        [&] {
+            drawViewOverlays(renderer, settings, width, height, glm::vec2(0.0f), readings, std::nullopt);
+            if (caption.empty()) return;
+            ImDrawList* draw = ImGui::GetForegroundDrawList();
+            const float lineHeight = ImGui::GetTextLineHeightWithSpacing();
+            float widest = 0.0f;
+            for (const std::string& line : caption) widest = std::max(widest, ImGui::CalcTextSize(line.c_str()).x);
+            draw->AddRectFilled(ImVec2(0.0f, 0.0f), ImVec2(widest + 12.0f, lineHeight * float(caption.size()) + 8.0f), IM_COL32(0, 0, 0, 170));
+            for (std::size_t i = 0; i < caption.size(); ++i)
+                draw->AddText(ImVec2(6.0f, 4.0f + lineHeight * float(i)), i == 0 ? IM_COL32(255, 255, 255, 255) : IM_COL32(210, 210, 210, 255),
+                              caption[i].c_str());
+        },
+        [&] { renderer.bindDisplayFramebuffer(); });
+}
+
+void OffscreenOverlay::drawFrame(int width, int height, const std::function<void()>& build, const std::function<void()>& bindTarget)
+{
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(float(width), float(height));
     io.DeltaTime = 1.0f / 60.0f;
     ImGui_ImplOpenGL3_NewFrame();
     ImGui::NewFrame();
-    const std::vector<SphereReading> readings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
-    drawViewOverlays(renderer, settings, width, height, glm::vec2(0.0f), readings, std::nullopt);
-    if (!caption.empty()) {
-        ImDrawList* draw = ImGui::GetForegroundDrawList();
-        const float lineHeight = ImGui::GetTextLineHeightWithSpacing();
-        float widest = 0.0f;
-        for (const std::string& line : caption) widest = std::max(widest, ImGui::CalcTextSize(line.c_str()).x);
-        draw->AddRectFilled(ImVec2(0.0f, 0.0f), ImVec2(widest + 12.0f, lineHeight * float(caption.size()) + 8.0f), IM_COL32(0, 0, 0, 170));
-        for (std::size_t i = 0; i < caption.size(); ++i)
-            draw->AddText(ImVec2(6.0f, 4.0f + lineHeight * float(i)), i == 0 ? IM_COL32(255, 255, 255, 255) : IM_COL32(210, 210, 210, 255),
-                          caption[i].c_str());
-    }
+    build();
     ImGui::Render();
-    renderer.bindDisplayFramebuffer();
+    bindTarget();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

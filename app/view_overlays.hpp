@@ -1,6 +1,7 @@
 #pragma once
 // Text drawn over the 3D view (grid axis labels, furnace readings, debug-view labels and
 // the texel readout), the same in the window and in headless PNGs.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,6 +32,9 @@ public:
     // Draws the view's overlays over the last frame's display image, and the caption's
     // lines (if any) at its top-left on a dark backdrop.
     void drawOver(Renderer& renderer, const FrameSettings& settings, int width, int height, const std::vector<std::string>& caption = {});
+    // One ImGui frame of width x height: `build` adds to the draw lists (between NewFrame and
+    // Render), `bindTarget` binds the framebuffer it is rendered into.
+    void drawFrame(int width, int height, const std::function<void()>& build, const std::function<void()>& bindTarget);
 
 private:
     ::ImGuiContext* context_ = nullptr;

@@ -1,5 +1,6 @@
 #include "panels.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -452,6 +453,51 @@ void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewO
     draw->AddText(bAt, text, b.c_str());
 }
 
+void drawStudyPanel(PanelState& state, UiRequests& requests)
+{
+    if (!ImGui::CollapsingHeader("Study")) return;
+    StudyState& study = state.study;
+    ImGui::TextWrapped("Speed against accuracy on the current environment and scene: the quick sweep of `iblab bench` (split-sum prefilter "
+                       "samples, runtime N, diffuse sources), each point baked, timed and compared with the reference.");
+    if (!study.running) {
+        if (ImGui::Button("Run quick sweep")) requests.startStudy = true;
+        if (!study.charts.empty() && !study.chartOpen) {
+            ImGui::SameLine();
+            if (ImGui::Button("Show chart")) study.chartOpen = true;
+        }
+    } else {
+        if (ImGui::Button("Stop")) requests.stopStudy = true;
+        ImGui::SameLine();
+        ImGui::ProgressBar(study.progress, ImVec2(-1.0f, 0.0f));
+        ImGui::TextDisabled("%s", study.activity.c_str());
+    }
+    drawStatus(study.status);
+}
+
+void drawStudyChartWindow(StudyState& study)
+{
+    if (study.charts.empty() || !study.chartOpen) return;
+    ImGui::SetNextWindowSize(ImVec2(760, 480), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 780, 20), ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("Study: speed against accuracy", &study.chartOpen)) {
+        ImGui::End();
+        return;
+    }
+    for (std::size_t i = 0; i < study.charts.size(); ++i) {
+        const ParetoChart& chart = study.charts[i];
+        const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 420.0f), std::max(ImGui::GetContentRegionAvail().y, 260.0f));
+        const ImVec2 origin = ImGui::GetCursorScreenPos();
+        ImGui::PushID(int(i));
+        ImGui::InvisibleButton("##chart", size);
+        const bool hovered = ImGui::IsItemHovered();
+        ImGui::PopID();
+        const ChartHover hover = drawParetoChart(*ImGui::GetWindowDrawList(), chart, origin, size,
+                                                 hovered ? std::optional<ImVec2>(ImGui::GetIO().MousePos) : std::nullopt);
+        if (hover.valid()) ImGui::SetTooltip("%s", chart.series[std::size_t(hover.series)].points[std::size_t(hover.point)].tooltip.c_str());
+    }
+    ImGui::End();
+}
+
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests)
 {
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab)) && !ImGui::GetIO().WantTextInput) state.showPanels = !state.showPanels;
@@ -474,7 +520,9 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     drawCameraPanel(settings.camera, requests);
     drawCapturePanel(state, requests);
     drawPresetPanel(state, requests);
+    drawStudyPanel(state, requests);
     ImGui::End();
+    drawStudyChartWindow(state.study);
 }
 
 } // namespace iblab::ui

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "debug_layout.hpp"
+#include "pareto_chart.hpp"
 #include "renderer.hpp"
 #include "settings.hpp"
 
@@ -42,6 +43,8 @@ struct UiRequests {
     std::optional<std::string> applyConvention; // conventions.hpp: rebake and set the shading as that viewer does
     bool frameScene = false;
     bool sceneChanged = false;                  // the scene kind changed: frame it
+    bool startStudy = false;                    // a quick bench sweep on the current environment and scene
+    bool stopStudy = false;
 };
 
 struct CaptureSettings {
@@ -60,6 +63,16 @@ struct CompareState {
     ErrorReport error;
 };
 
+// The Study panel's view of the bench sweep the app runs: progress and the chart so far.
+struct StudyState {
+    bool running = false;
+    float progress = 0.0f;
+    std::string activity;
+    StatusLine status;
+    std::vector<ParetoChart> charts;
+    bool chartOpen = true; // the chart's window; closing it leaves the sweep running
+};
+
 struct PanelState {
     EnvironmentCatalog catalog;
     StatusLine environmentStatus;
@@ -71,6 +84,7 @@ struct PanelState {
     Activity activity;
     CompareState compare;
     std::string convention; // the convention preset last applied ("" = none)
+    StudyState study;
     char environmentPath[512] = "";
     char modelPath[512] = "";
     char presetPath[512] = "iblab-preset.json";
@@ -93,6 +107,9 @@ void drawViewPanel(ViewSettings& settings);
 void drawPresetPanel(PanelState& state, UiRequests& requests);
 void drawCapturePanel(PanelState& state, UiRequests& requests);
 void drawStatsOverlay(const FrameStats& stats);
+// Starts and stops the quick sweep; its chart is drawn live in a window of its own.
+void drawStudyPanel(PanelState& state, UiRequests& requests);
+void drawStudyChartWindow(StudyState& study);
 
 // Labels of the debug view's tiles (rects y up, in framebuffer pixels), unit axes on each
 // tile when `axes` (the LUTs), and the readout of the texel under the cursor.

@@ -314,6 +314,45 @@ TEST_F(Cli, StressQuickJsonHasEveryEnvironmentAndMethod)
     EXPECT_GT(png->spec().width, png->spec().height) << "columns (method x roughness) outnumber rows (environments)";
 }
 
+// `iblab bench --quick`: the three files in --out (JSON on stdout equal to bench.json, the
+// CSV with a row per point, pareto.png of one chart at the asked size with something drawn
+// on it), and a missing environment failing in one line that names it.
+TEST_F(Cli, BenchQuickWritesCsvJsonAndChart)
+{
+    const Result r = run("bench --quick --json --out b --chart-width 400 --chart-height 300");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "b" / "bench.json")), j);
+    ASSERT_FALSE(j.at("points").empty());
+    EXPECT_EQ(j.at("references").size(), 1u);
+
+    std::ifstream csv(dir / "b" / "bench.csv");
+    std::string header, line;
+    ASSERT_TRUE(std::getline(csv, header));
+    EXPECT_EQ(header.rfind("environment,family,series,label,", 0), 0u) << header;
+    EXPECT_NE(header.find(",cost_ms,relative_rmse,"), std::string::npos) << header;
+    std::size_t rows = 0;
+    while (std::getline(csv, line)) ++rows;
+    EXPECT_EQ(rows, j.at("points").size());
+
+    auto png = OIIO::ImageInput::open((dir / "b" / "pareto.png").string());
+    ASSERT_TRUE(png);
+    const OIIO::ImageSpec spec = png->spec();
+    EXPECT_EQ(spec.width, 400);
+    EXPECT_EQ(spec.height, 300);
+    std::vector<std::uint8_t> pixels(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+    ASSERT_TRUE(png->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data()));
+    std::set<std::uint32_t> colours;
+    for (std::size_t i = 0; i + 2 < pixels.size(); i += std::size_t(spec.nchannels))
+        colours.insert(std::uint32_t(pixels[i]) << 16 | std::uint32_t(pixels[i + 1]) << 8 | pixels[i + 2]);
+    EXPECT_GT(colours.size(), 20u) << "axes, text and coloured points, not a blank image";
+
+    const Result missing = run("bench --quick --env nosuch.exr --out m");
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_EQ(lineCount(missing.err), 1) << missing.err;
+    EXPECT_NE(missing.err.find("nosuch.exr"), std::string::npos) << missing.err;
+}
+
 // The error view's numbers in the JSON report: one block for the frame, or one per side of
 // the split; the reference's environment size and the roughness it resolves with it.
 TEST_F(Cli, ErrorViewReportsMetricsAsJson)

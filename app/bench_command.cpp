@@ -1,0 +1,129 @@
+// `iblab bench`: the speed-against-accuracy sweep (renderer/bench/bench_sweep.hpp),
+// headless. Writes bench.csv, bench.json, bench.md (the points nothing dominates, per
+// environment) and pareto.png to --out, and prints the CSV's path (or the JSON with --json).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "asset_paths.hpp"
+#include "bench_chart.hpp"
+#include "command_support.hpp"
+#include "commands.hpp"
+#include "environment/atomic_file.hpp"
+#include "environment/builtin_environments.hpp"
+#include "renderer.hpp"
+
+namespace iblab::app {
+namespace {
+
+struct BenchCommandOptions {
+    std::vector<std::string> environments;
+    SceneSettings scene{.kind = SceneKind::Grid};
+    std::string out = "bench";
+    bool json = false;
+    bool quick = false;
+    int width = 0;  // 0: the sweep's default (bench_sweep.cpp)
+    int height = 0;
+    int repeats = 0;
+    int referenceWidth = 0;
+    int costFrames = 1;
+    int chartWidth = 720;
+    int chartHeight = 440;
+};
+
+// "courtyard" for a file, "sun" for builtin:sun?..., made unique by a suffix.
+std::vector<bench::BenchEnvironment> namedEnvironments(const std::vector<std::string>& specs)
+{
+    std::vector<bench::BenchEnvironment> list;
+    std::set<std::string> taken;
+    for (const std::string& spec : specs) {
+        std::string name = spec.rfind(kBuiltinPrefix, 0) == 0 ? spec.substr(kBuiltinPrefix.size(), spec.find('?') - kBuiltinPrefix.size())
+                                                               : std::filesystem::path(spec).stem().string();
+        std::string unique = name;
+        for (int k = 2; taken.count(unique); ++k) unique = name + "-" + std::to_string(k);
+        taken.insert(unique);
+        list.push_back({unique, spec, nullptr});
+    }
+    return list;
+}
+
+int runBench(const BenchCommandOptions& o)
+{
+    try {
+        HeadlessGl gl(/*debugContext=*/true);
+        Renderer renderer(shaderDirectory());
+        bench::BenchOptions options = bench::defaultBenchOptions(o.quick, assetDirectory().string());
+        if (!o.environments.empty()) options.environments = namedEnvironments(o.environments);
+        options.frame.scene = o.scene;
+        if (o.width > 0) options.width = o.width;
+        if (o.height > 0) options.height = o.height;
+        if (o.repeats > 0) options.repeats = o.repeats;
+        if (o.referenceWidth > 0) options.referenceWidth = o.referenceWidth;
+        options.costFrames = o.costFrames;
+
+        bench::BenchJob job(renderer, options);
+        const bench::BenchEnvironment* reported = nullptr;
+        while (job.step()) {
+            const bench::BenchEnvironment* environment = job.currentEnvironment();
+            const std::vector<bench::BenchEnvironment>& all = job.report().options.environments;
+            if (environment && environment != reported)
+                std::fprintf(stderr, "iblab bench: %s (%zu/%zu)\n", environment->name.c_str(), std::size_t(environment - all.data()) + 1, all.size());
+            reported = environment;
+        }
+        const bench::BenchReport report = job.runToCompletion();
+        if (gl.debug.errorCount() > 0) return failCommand("bench", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.debug.firstError());
+
+        const std::filesystem::path dir(o.out);
+        std::filesystem::create_directories(dir);
+        const std::string json = bench::benchJsonText(report);
+        writeTextFileAtomic((dir / "bench.json").string(), json);
+        writeTextFileAtomic((dir / "bench.csv").string(), bench::benchCsvText(report));
+        writeTextFileAtomic((dir / "bench.md").string(), bench::benchMarkdown(report));
+        writeChartsPng((dir / "pareto.png").string(), benchCharts(report), o.chartWidth, o.chartHeight, 2);
+        if (gl.debug.errorCount() > 0) return failCommand("bench", std::to_string(gl.debug.errorCount()) + " GL error(s) drawing the chart, the first: " + gl.debug.firstError());
+
+        if (o.json) std::printf("%s\n", json.c_str());
+        else std::printf("%s\n", (dir / "bench.csv").string().c_str());
+        return 0;
+    } catch (const std::exception& e) {
+        return failCommand("bench", e.what());
+    }
+}
+
+} // namespace
+
+Command addBenchCommand(CLI::App& app, ProcessClock::time_point)
+{
+    auto o = std::make_shared<BenchCommandOptions>();
+    CLI::App* c = app.add_subcommand("bench", "Speed against accuracy: every method and setting of the sweep, baked, timed and compared with the "
+                                              "reference; writes bench.csv, bench.json, bench.md and pareto.png");
+    c->add_option("--env", o->environments, "Environment file or builtin spec; repeat for several (default: the bundled maps and three stress environments)");
+    c->add_option_function<std::string>(
+         "--scene",
+         [o](const std::string& value) {
+             if (parseSceneKind(value, o->scene.kind) && o->scene.kind != SceneKind::Model && o->scene.kind != SceneKind::None) return;
+             const std::string ext = std::filesystem::path(value).extension().string();
+             if (ext != ".gltf" && ext != ".glb") throw CLI::ValidationError("--scene", "expected sphere, grid, counting, sweep or a .gltf/.glb file, got \"" + value + "\"");
+             o->scene.kind = SceneKind::Model;
+             o->scene.modelPath = value;
+         },
+         "Scene: sphere|grid|counting|sweep|FILE.gltf|FILE.glb")
+        ->default_str("grid");
+    c->add_option("--out", o->out, "Directory for bench.csv, bench.json, bench.md and pareto.png")->capture_default_str();
+    c->add_flag("--json", o->json, "Print the JSON report on stdout instead of the CSV's path");
+    c->add_flag("--quick", o->quick, "A tiny sweep on a small builtin (seconds; for tests)");
+    c->add_option("--width", o->width, "Image width (default 128, quick 48)")->check(CLI::Range(8, 4096));
+    c->add_option("--height", o->height, "Image height (default 128, quick 48)")->check(CLI::Range(8, 4096));
+    c->add_option("--repeats", o->repeats, "Timed frames per point, median reported (default 5, quick 3)")->check(CLI::Range(1, 1000));
+    c->add_option("--reference-width", o->referenceWidth, "Width of the environment the reference sums over (default 256, quick 64)")
+        ->check(CLI::Range(8, 4096));
+    c->add_option("--cost-frames", o->costFrames, "cost = bake + this many frames")->capture_default_str()->check(CLI::Range(0, 1000000));
+    c->add_option("--chart-width", o->chartWidth, "Width of one environment's chart in pareto.png")->capture_default_str()->check(CLI::Range(320, 4096));
+    c->add_option("--chart-height", o->chartHeight, "Height of one environment's chart in pareto.png")->capture_default_str()->check(CLI::Range(200, 4096));
+    return {c, [o] { return runBench(*o); }};
+}
+
+} // namespace iblab::app

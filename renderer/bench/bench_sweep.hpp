@@ -1,0 +1,158 @@
+#pragma once
+// The speed-against-accuracy sweep behind `iblab bench` and the GUI's Study panel: for each
+// environment, every sweep point (a method and its settings) is baked, rendered and timed,
+// and its frame is compared with the reference renderer's full integral of the same scene
+// and camera. One reference per environment serves every point: it depends on the scene,
+// the camera and the shading model, not on the estimator (Renderer::referenceKeyFor).
+//
+// A job of small steps like BakeJob, so that the GUI runs a slice per frame and the CLI
+// runs it to the end:
+//
+//   BenchJob job(renderer, options);
+//   while (job.runFor(std::chrono::milliseconds(30))) drawChart(job.report());   // GUI
+//   BenchReport report = BenchJob(renderer, options).runToCompletion();           // CLI
+//
+// The job replaces the renderer's environment, bake and model: give it a renderer of its
+// own when another one shows something else. Needs the context that was current when the
+// job was made to be current at every call. Public header: no GL.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bake/bake_settings.hpp"
+#include "environment/environment.hpp"
+#include "ibl/error_metrics.hpp"
+#include "renderer.hpp"
+#include "settings.hpp"
+
+namespace iblab::bench {
+
+struct BenchEnvironment {
+    std::string name; // short key for tables, unique in a run: "courtyard", "builtin-sun-1e3"
+    std::string spec; // a file or builtin spec
+    // Already in memory (the GUI's current map): skips loading the spec again.
+    std::shared_ptr<const Environment> loaded;
+};
+
+// One method and its settings. `series` names the curve it belongs to on the chart (every
+// setting but the swept one), `parameter` its place along that curve.
+struct SweepPoint {
+    std::string family; // "split-sum" | "sampled" | "diffuse"
+    std::string series; // "split-sum 64 PDF", "sampled no mip filter", "Riemann cube"
+    std::string label;  // the whole setting in words, for tooltips and tables
+    double parameter = 0.0;
+    SamplingSettings sampling;
+    bake::BakeSettings bake;
+    bool plainSh = false; // the bake's SH9 irradiance without the window
+};
+
+struct BenchOptions {
+    bool quick = false;
+    std::vector<BenchEnvironment> environments;
+    // Scene, material and view of every frame (environment and sampling are the sweep's).
+    FrameSettings frame;
+    bool frameCamera = true; // fit the camera to the scene as `iblab render` does
+    int width = 128;
+    int height = 128;
+    int repeats = 5;         // timed frames per point; the median is reported
+    int referenceWidth = 256;
+    // cost = bake + frames x frame: the time to this many frames after the environment changed.
+    int costFrames = 1;
+    std::vector<SweepPoint> points;
+};
+
+// The full sweep (split-sum over prefilter samples x PDF filtering x face sizes, sampled
+// N = 1..256 with and without mip filtering, the diffuse sources) or the quick one (a few
+// points of each family on small bakes, for tests and the Study panel).
+std::vector<SweepPoint> sweepPoints(bool quick);
+// Defaults of `iblab bench`: the grid, the bundled maps and three stress environments.
+BenchOptions defaultBenchOptions(bool quick, const std::string& assetDirectory);
+
+// The stress environments the default run adds, at `width` (stress_suite.hpp's specs).
+std::vector<BenchEnvironment> builtinBenchEnvironments(int width);
+
+struct BenchPoint {
+    std::string environment;
+    SweepPoint setting;
+    double bakeMilliseconds = 0.0;  // the phases the frame reads (see bakePhasesRead)
+    double frameMilliseconds = 0.0; // median of the repeats, steady clock around glFinish
+    double costMilliseconds = 0.0;  // bake + costFrames x frame
+    ErrorMetrics error;             // linear HDR, resolved surface pixels (measureResolvedError)
+    bool dominated = false;
+};
+
+struct ReferenceSummary {
+    std::string environment;
+    int environmentWidth = 0;
+    double minResolvedRoughness = 0.0;
+    double milliseconds = 0.0;
+};
+
+struct BenchReport {
+    std::string renderer; // GL renderer string
+    BenchOptions options; // the points and environments it ran (preloaded maps dropped)
+    std::vector<ReferenceSummary> references;
+    std::vector<BenchPoint> points;
+    double seconds = 0.0;
+};
+
+// The bake phases a frame of this setting reads: the upload and environment cube always,
+// then the prefilter (split-sum), SH9 or the irradiance cube that was baked. Not the
+// shaders (compiled once per process) nor the LUTs (no environment in them; cached).
+std::vector<std::string> bakePhasesRead(const SweepPoint& point);
+
+// The per-pixel relative error of `frame` against `reference` over the surface pixels (the
+// G-buffer's normal layer has coverage in alpha) whose perceptual roughness (the view
+// layer's alpha) is at least minRoughness: below it the reference's midpoint rule is not
+// converged, and its error would swamp the estimators' (referenceMinResolvedRoughness).
+ErrorMetrics measureResolvedError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
+                                  const FrameReadback& viewLayer, double minRoughness);
+
+// A point is dominated when another point of the same environment is both cheaper and
+// more accurate (strictly: lower cost and lower relative RMSE).
+void markDominated(std::vector<BenchPoint>& points);
+
+class BenchJob {
+public:
+    // Throws iblab::Error for options no sweep can use (no environment, no point, two
+    // environments of one name).
+    BenchJob(Renderer& renderer, BenchOptions options);
+    ~BenchJob();
+    BenchJob(const BenchJob&) = delete;
+    BenchJob& operator=(const BenchJob&) = delete;
+
+    // Runs the next step (loading an environment, one bake step, one slice of the
+    // reference, or rendering and measuring one point); true while steps remain.
+    bool step();
+    bool runFor(std::chrono::steady_clock::duration budget);
+    BenchReport runToCompletion();
+
+    bool done() const;
+    float progress() const; // 0..1, by points measured and bake progress
+    std::string currentActivity() const;
+    // The environment the next step works on; null when done.
+    const BenchEnvironment* currentEnvironment() const;
+    // The points measured so far, dominance marked among them.
+    const BenchReport& report() const { return report_; }
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+    BenchReport report_;
+};
+
+// CSV (one row per point, header first) and JSON (options, references, points).
+std::string benchCsvText(const BenchReport& report);
+std::string benchJsonText(const BenchReport& report);
+// The CSV's column names, in order.
+const std::vector<std::string>& benchCsvColumns();
+// Markdown: a summary table (per environment, each family's lowest error and its cost), then
+// per environment the points no other point dominates. Cost as a ratio to the environment's
+// cheapest setting: ratios carry over to other machines, milliseconds do not.
+std::string benchMarkdown(const BenchReport& report);
+
+} // namespace iblab::bench
