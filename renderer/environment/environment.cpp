@@ -470,15 +470,7 @@ Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOption
     // The image libraries below OpenImageIO throw on their own (std::bad_alloc for a header
     // that asks for more than the machine has, std::exception from OpenEXR): every way out
     // of a file load is one Error naming the file.
-    try {
-        return loadFile(spec, options);
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw Error(spec, "out of memory while reading (a corrupt header claiming a huge size?)");
-    } catch (const std::exception& e) {
-        throw Error(spec, std::string("cannot read: ") + e.what());
-    }
+    return rethrowAsError(spec, "reading (a corrupt header claiming a huge size?)", "cannot read", [&] { return loadFile(spec, options); });
 }
 
 std::string defaultEnvironmentPath(const std::string& assetDir)

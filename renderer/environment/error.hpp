@@ -4,9 +4,11 @@
 //   "env.exr: not equirectangular: 1536x512 is 3:1, expected 2:1"
 // Functions that throw it have no side effects on their caller's state (they return new
 // values or write atomically), so a caller that catches it keeps what it had.
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace iblab {
 
@@ -40,5 +42,23 @@ struct Error : std::runtime_error {
     {
     }
 };
+
+// Runs work() and lets only Error out: the libraries below (OpenImageIO, OpenEXR, tinygltf,
+// nlohmann::json) throw std::bad_alloc for a header that claims more than the machine has,
+// and std::exception subclasses of their own. Either becomes one Error naming `subject`:
+// "<subject>: out of memory while <doing>" or "<subject>: <failure>: <what()>".
+template <typename Work>
+auto rethrowAsError(std::string_view subject, std::string_view doing, std::string_view failure, Work&& work) -> decltype(work())
+{
+    try {
+        return std::forward<Work>(work)();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw Error(subject, "out of memory while " + std::string(doing));
+    } catch (const std::exception& e) {
+        throw Error(subject, std::string(failure) + ": " + e.what());
+    }
+}
 
 } // namespace iblab

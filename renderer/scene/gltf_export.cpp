@@ -126,8 +126,7 @@ std::vector<std::string> exportGltfWithMaterials(const std::string& sourcePath, 
     if (ext != ".glb" && ext != ".gltf")
         throw Error(outPath, "exports are written as .glb or .gltf, not '" + ext + "'");
     std::vector<std::string> warnings;
-    std::string bytes;
-    try {
+    const std::string bytes = rethrowAsError(sourcePath, "exporting", "cannot be exported", [&] {
         sd::GltfDocument doc = sd::readGltfDocument(sourcePath, {options.maxInputBytes, options.maxJsonDepth});
         const bool hadMaterials = doc.json.contains("materials");
         json& materials = doc.json["materials"];
@@ -150,15 +149,8 @@ std::vector<std::string> exportGltfWithMaterials(const std::string& sourcePath, 
             doc.json.erase("materials");
         embedImages(doc, warnings);
         sd::setSingleBuffer(doc.json, doc.bin, ext == ".gltf");
-        bytes = ext == ".glb" ? sd::serializeGlb(doc.json, doc.bin)
-                              : doc.json.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw Error(sourcePath, "out of memory while exporting");
-    } catch (const std::exception& e) {
-        throw Error(sourcePath, std::string("cannot be exported: ") + e.what());
-    }
+        return ext == ".glb" ? sd::serializeGlb(doc.json, doc.bin) : doc.json.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+    });
     writeTextFileAtomic(outPath, bytes);
     return warnings;
 }

@@ -702,7 +702,9 @@ const PbrMaterial& ModelData::material(int index) const
 
 ModelData loadGltfModel(const std::string& path, const ModelLoadOptions& options)
 {
-    try {
+    // Anything else (a JSON type surprise deep in a library) still ends as one clean line
+    // naming the file rather than escaping as an unknown exception.
+    return rethrowAsError(path, "loading; lower the ModelLoadOptions budgets", "cannot be loaded", [&] {
         sd::GltfDocument doc = sd::readGltfDocument(path, {options.maxInputBytes, options.maxJsonDepth});
         ModelData model;
         model.warnings = std::move(doc.warnings);
@@ -711,15 +713,7 @@ ModelData loadGltfModel(const std::string& path, const ModelLoadOptions& options
         if (model.instances.empty())
             model.warnings.push_back("the default scene has no triangles to show");
         return model;
-    } catch (const Error&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw Error(path, "out of memory while loading; lower the ModelLoadOptions budgets");
-    } catch (const std::exception& e) {
-        // Anything else (a JSON type surprise deep in a library) still ends as one clean
-        // line naming the file rather than escaping as an unknown exception.
-        throw Error(path, std::string("cannot be loaded: ") + e.what());
-    }
+    });
 }
 
 } // namespace iblab
