@@ -181,6 +181,21 @@ void drawSamplingControls(SamplingSettings& settings)
 }
 
 // "sampled N=16" or "splitsum", the divider's labels.
+// The smoothest roughness the scene shows, where the settings say it (a glTF's own
+// materials are not known here).
+std::optional<float> smoothestRoughness(const FrameSettings& settings)
+{
+    switch (settings.scene.kind) {
+    case SceneKind::Sphere:
+    case SceneKind::Counting: return settings.material.roughness;
+    case SceneKind::Grid:
+    case SceneKind::Sweep: return 0.0f;
+    case SceneKind::Model: return settings.material.overrideModel ? std::optional<float>(settings.material.roughness) : std::nullopt;
+    case SceneKind::None: return std::nullopt;
+    }
+    return std::nullopt;
+}
+
 std::string samplingSummary(const SamplingSettings& s)
 {
     std::string text(shadingMethodName(s.method));
@@ -235,7 +250,7 @@ void drawSamplingPanel(SamplingSettings& settings)
     drawSamplingControls(settings);
 }
 
-void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state)
+void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state, std::optional<float> sceneMinRoughness)
 {
     if (!ImGui::CollapsingHeader("Compare")) return;
     bool errorView = view.mode == ViewMode::Error;
@@ -256,6 +271,11 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
             std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d)", 100.0 * r.progress, r.environmentWidth, r.environmentHeight);
             ImGui::ProgressBar(r.progress, ImVec2(-1.0f, 0.0f), text);
             ImGui::TextDisabled("texel %.2f deg: converged for roughness >= %.2f", r.texelDegrees, r.minResolvedRoughness);
+            if (sceneMinRoughness && *sceneMinRoughness < r.minResolvedRoughness)
+                ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f),
+                                   "Roughness %.2f is below that: there the heatmap measures the reference's texels, not the method. "
+                                   "Use a wider reference map.",
+                                   *sceneMinRoughness);
         }
         if (state.error.valid) {
             ImGui::TextUnformatted(view.split ? "A (left)" : "Frame");
@@ -444,11 +464,16 @@ void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewO
     const std::string a = "A: " + samplingSummary(settings.sampling);
     const std::string b = "B: " + samplingSummary(settings.view.compare);
     const ImU32 background = IM_COL32(0, 0, 0, 170), text = IM_COL32(255, 255, 255, 255);
-    const ImVec2 aSize = ImGui::CalcTextSize(a.c_str());
-    const ImVec2 aAt(x - aSize.x - 10.0f, viewOrigin.y + 36.0f), bAt(x + 10.0f, viewOrigin.y + 36.0f);
+    const ImVec2 aSize = ImGui::CalcTextSize(a.c_str()), bSize = ImGui::CalcTextSize(b.c_str());
+    // Each label beside the divider on its own side, but kept inside the view; when the
+    // divider is so near an edge that they would overlap, B moves one line down.
+    const float top = viewOrigin.y + 36.0f;
+    const float aX = std::max(x - aSize.x - 10.0f, viewOrigin.x + 6.0f);
+    const float bX = std::min(x + 10.0f, viewOrigin.x + viewSize.x - bSize.x - 6.0f);
+    const bool overlap = aX + aSize.x + 8.0f > bX;
+    const ImVec2 aAt(aX, top), bAt(bX, overlap ? top + aSize.y + 8.0f : top);
     draw->AddRectFilled(ImVec2(aAt.x - 4, aAt.y - 2), ImVec2(aAt.x + aSize.x + 4, aAt.y + aSize.y + 2), background, 3.0f);
     draw->AddText(aAt, text, a.c_str());
-    const ImVec2 bSize = ImGui::CalcTextSize(b.c_str());
     draw->AddRectFilled(ImVec2(bAt.x - 4, bAt.y - 2), ImVec2(bAt.x + bSize.x + 4, bAt.y + bSize.y + 2), background, 3.0f);
     draw->AddText(bAt, text, b.c_str());
 }
@@ -516,7 +541,7 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     drawConventionPanel(state, requests);
     drawToneMapPanel(settings.toneMap);
     drawViewPanel(settings.view);
-    drawComparePanel(settings.view, settings.sampling, state.compare);
+    drawComparePanel(settings.view, settings.sampling, state.compare, smoothestRoughness(settings));
     drawCameraPanel(settings.camera, requests);
     drawCapturePanel(state, requests);
     drawPresetPanel(state, requests);

@@ -101,7 +101,10 @@ void drawSamplingPanel(SamplingSettings& settings);
 // The convention presets (LearnOpenGL, Filament, glTF Sample Viewer, iblab) and what each chose.
 void drawConventionPanel(PanelState& state, UiRequests& requests);
 // The error view's and the split view's controls, the reference's progress and the numbers.
-void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state);
+// sceneMinRoughness: the smoothest surface shown, if known; below the reference's resolved
+// roughness the panel warns that the heatmap is not the method's error there.
+void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state,
+                      std::optional<float> sceneMinRoughness = std::nullopt);
 void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests);
 void drawViewPanel(ViewSettings& settings);
 void drawPresetPanel(PanelState& state, UiRequests& requests);
