@@ -63,11 +63,12 @@ struct RiemannIrradianceSettings {
 // Cosine-weighted importance sampling with PDF-based source-mip selection.
 struct ImportanceIrradianceSettings {
     bool enabled = true;
-    // Irradiance is so smooth that an 8^2 face read bilinearly is within 0.7% of the exact
-    // value everywhere on the bundled maps; the samples go into each texel instead: 8^2 x 8192
-    // has less error than 16^2 x 1024 (0.21% vs 0.60% mean on courtyard.exr) and than the
-    // tutorial's Riemann cube (0.26%) at 1/20 of its cost (docs/bake.md).
-    int faceSize = 8;
+    // Irradiance is so smooth that a 6^2 face read bilinearly stays within 0.65% of the exact
+    // value on courtyard.exr (2.7% on the sun-lit sunset.exr, where sampling noise dominates);
+    // the samples go into each texel instead: 6^2 x 8192 has less error than 16^2 x 1024
+    // (0.18% vs 0.60% mean on the courtyard) and than the tutorial's Riemann cube (0.26%) at
+    // 1/50 of its cost (docs/bake.md).
+    int faceSize = 6;
     int samples = 8192;
     bool mipFiltering = true;
     float mipBias = 0.0f;
@@ -137,7 +138,7 @@ inline constexpr std::array<GeometryTerm, 2> kGeometryTerms{GeometryTerm::Schlic
 // (Schlick-GGX only, as the tutorial). SH9 is computed as well (it costs milliseconds).
 BakeSettings tutorialPreset();
 // The fast and accurate choice (docs/bake.md has the measurements): cube sized from the
-// source, SH9 for diffuse plus an 8^2 irradiance cube by cosine importance sampling (8192
+// source, SH9 for diffuse plus a 6^2 irradiance cube by cosine importance sampling (8192
 // samples, PDF source-mip filtering), prefilter 256 x 6 mips in Filament's quadratic layout
 // with PDF source-mip filtering (bias 0), 8 samples at mip 1 tripling per mip, LUTs 128^2 x
 // 2048 for both geometry terms (cached: they depend on no environment).
