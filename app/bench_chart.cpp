@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstring>
 
 #include "environment/image_writer.hpp"
 #include "gl/render_target.hpp"
@@ -23,17 +24,23 @@ std::vector<ui::ParetoChart> benchCharts(const bench::BenchReport& report)
                       std::to_string(report.options.height) + ")";
         chart.xLabel = "cost, ms: bake + " + std::to_string(report.options.costFrames) + " frame" + (report.options.costFrames == 1 ? "" : "s") + " (log)";
         chart.yLabel = "relative RMSE against the reference (log)";
-        for (const std::string& name : seriesOrder) chart.series.push_back({name, {}});
+        for (const std::string& name : seriesOrder) {
+            const auto member = std::find_if(report.options.points.begin(), report.options.points.end(), [&](const bench::SweepPoint& p) { return p.series == name; });
+            chart.series.push_back({name, {}, !member->scatter});
+        }
         bool any = false;
         for (const bench::BenchPoint& p : report.points) {
             if (p.environment != e.name) continue;
             any = true;
             const std::size_t index = std::size_t(std::find(seriesOrder.begin(), seriesOrder.end(), p.setting.series) - seriesOrder.begin());
-            char text[256];
+            char text[512];
             std::snprintf(text, sizeof text, "\ncost %.1f ms (bake %.1f ms, frame %.2f ms)\nrelative RMSE %.4g, p99 %.3g, fireflies %zu%s", p.costMilliseconds,
                           p.bakeMilliseconds, p.frameMilliseconds, p.error.relativeRmse, p.error.p99Relative, p.error.fireflies,
                           p.dominated ? "\ndominated: another setting is cheaper and more accurate" : "");
-            chart.series[index].points.push_back({p.costMilliseconds, p.error.relativeRmse, p.dominated, p.setting.label + text});
+            std::snprintf(text + std::strlen(text), sizeof text - std::strlen(text), "\ndisplay error: p99 %.3g, RMS %.3g 8-bit steps%s", p.display.p99Steps,
+                          p.display.rmsSteps, p.chosen ? "\nthe auto quality mode's choice" : "");
+            chart.series[index].points.push_back(
+                {p.costMilliseconds, p.error.relativeRmse, p.dominated, p.setting.label + text, p.chosen ? std::string("auto") : p.setting.mark});
         }
         if (any) charts.push_back(std::move(chart));
     }

@@ -152,7 +152,7 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
         std::vector<ImVec2> curve;
         for (const ChartPoint& p : s.points)
             if (drawable(p)) curve.push_back(screen(p));
-        if (curve.size() > 1) draw.AddPolyline(curve.data(), int(curve.size()), seriesColour(si, 150), ImDrawFlags_None, 1.5f);
+        if (s.joined && curve.size() > 1) draw.AddPolyline(curve.data(), int(curve.size()), seriesColour(si, 150), ImDrawFlags_None, 1.5f);
         for (std::size_t pi = 0; pi < s.points.size(); ++pi) {
             const ChartPoint& p = s.points[pi];
             if (!drawable(p)) continue;
@@ -161,6 +161,10 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
             else {
                 draw.AddCircleFilled(at, kRadius + 0.5f, seriesColour(si), 12);
                 draw.AddCircle(at, kRadius + 1.5f, kFront, 12, 1.0f);
+            }
+            if (!p.mark.empty()) {
+                draw.AddCircle(at, kRadius + 4.5f, kText, 16, 2.0f);
+                draw.AddText(ImVec2(at.x + kRadius + 7.0f, at.y - 7.0f), kText, p.mark.c_str());
             }
             if (mouse) {
                 const float d = std::hypot(mouse->x - at.x, mouse->y - at.y);

@@ -16,11 +16,13 @@ struct ChartPoint {
     double y = 0.0; // > 0
     bool dominated = false;
     std::string tooltip;
+    std::string mark; // drawn beside the point with a ring around it ("auto", a preset's name); "" for none
 };
 
 struct ChartSeries {
     std::string name;
     std::vector<ChartPoint> points; // in the order the curve joins them
+    bool joined = true;             // false: points of several settings at once, which no curve orders
 };
 
 struct ParetoChart {

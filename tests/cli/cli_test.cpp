@@ -353,6 +353,56 @@ TEST_F(Cli, BenchQuickWritesCsvJsonAndChart)
     EXPECT_NE(missing.err.find("nosuch.exr"), std::string::npos) << missing.err;
 }
 
+// `iblab bench --quick --auto`: one auto choice for the quick sky, marked on exactly one
+// measured point, that point the cheapest within the target (or the most accurate when none
+// is), the two presets measured beside it, and its section in bench.md; a target no
+// candidate reaches says so instead of claiming it.
+TEST_F(Cli, BenchQuickAutoChoosesTheCheapestWithinTheTarget)
+{
+    const Result r = run("bench --quick --auto --json --out a --width 32 --height 32 --repeats 1");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j.at("auto").size(), 1u);
+    const nlohmann::json& choice = j.at("auto").at(0);
+    EXPECT_EQ(choice.at("environment"), "sky");
+    EXPECT_EQ(choice.at("target_p99_steps"), 1.0);
+    ASSERT_TRUE(choice.at("found").get<bool>());
+    EXPECT_GT(choice.at("candidates_measured").get<int>(), 10);
+    EXPECT_FALSE(choice.at("reasons").empty());
+
+    std::size_t chosen = 0, presets = 0;
+    double cheapestMeeting = 1e300, lowestError = 1e300;
+    const nlohmann::json* chosenPoint = nullptr;
+    for (const nlohmann::json& p : j.at("points")) {
+        if (p.value("auto_chosen", false)) ++chosen, chosenPoint = &p;
+        if (p.at("family") == "preset") {
+            ++presets;
+            continue;
+        }
+        const double steps = p.at("display_error").at("p99_steps").get<double>();
+        lowestError = std::min(lowestError, steps);
+        if (steps <= 1.0) cheapestMeeting = std::min(cheapestMeeting, p.at("cost_ms").get<double>());
+    }
+    EXPECT_EQ(presets, 2u);
+    ASSERT_EQ(chosen, 1u);
+    EXPECT_EQ(chosenPoint->at("label"), choice.at("chosen"));
+    EXPECT_NE(chosenPoint->at("family"), "preset");
+    if (choice.at("meets_target").get<bool>())
+        EXPECT_EQ(chosenPoint->at("cost_ms").get<double>(), cheapestMeeting);
+    else
+        EXPECT_EQ(chosenPoint->at("display_error").at("p99_steps").get<double>(), lowestError);
+
+    std::ifstream markdown(dir / "a" / "bench.md");
+    const std::string text((std::istreambuf_iterator<char>(markdown)), {});
+    EXPECT_NE(text.find("## Auto quality"), std::string::npos);
+    EXPECT_NE(text.find("preset tutorial"), std::string::npos);
+
+    // No frame of these candidates is within a hundredth of a step at the 99th percentile.
+    const Result strict = run("bench --quick --auto --auto-target 0.01 --out s --width 32 --height 32 --repeats 1");
+    ASSERT_EQ(strict.exitCode, 0) << strict.err;
+    EXPECT_NE(strict.out.find("auto sky: out of reach (target 0.01 steps)"), std::string::npos) << strict.out;
+}
+
 // The error view's numbers in the JSON report: one block for the frame, or one per side of
 // the split; the reference's environment size and the roughness it resolves with it.
 TEST_F(Cli, ErrorViewReportsMetricsAsJson)
