@@ -38,7 +38,7 @@ CandidateSpace candidateSpace(bool quick)
     // Quick: a few seconds on llvmpipe for the GUI and the tests. Levels 5 and 6 are
     // LearnOpenGL's and iblab's (Filament's quadratic layout over 6 levels) mip counts.
     // The reference is capped where its cost (texels x pixels) stays in seconds.
-    if (quick) return {{32, 64}, {5, 6}, {4, 16}, {1, 4, 16}, 64, 128};
+    if (quick) return {{32, 64}, {5, 6}, {4, 16}, {1, 4, 16, 64}, 64, 128};
     return {{32, 64, 128}, {5, 6}, {4, 16, 64, 256}, {1, 4, 16, 64, 256}, 1024, 512};
 }
 
