@@ -130,7 +130,7 @@ int runBench(const BenchCommandOptions& o)
         writeTextFileAtomic((dir / "bench.json").string(), json);
         writeTextFileAtomic((dir / "bench.csv").string(), bench::benchCsvText(report));
         writeTextFileAtomic((dir / "bench.md").string(), (o.autoQuality ? bench::autoMarkdown(report, choices) : "") + bench::benchMarkdown(report));
-        writeChartsPng((dir / "pareto.png").string(), benchCharts(report), o.chartWidth, o.chartHeight, 2);
+        writeChartsPng((dir / "pareto.png").string(), o.autoQuality ? benchCharts(report, ChartError::DisplayP99, o.autoTargetSteps) : benchCharts(report), o.chartWidth, o.chartHeight, 2);
         if (gl.debug.errorCount() > 0) return failCommand("bench", std::to_string(gl.debug.errorCount()) + " GL error(s) drawing the chart, the first: " + gl.debug.firstError());
 
         if (o.json) {

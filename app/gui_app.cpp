@@ -220,7 +220,7 @@ public:
             study.activity = job_->currentActivity();
             if (job_->report().points.size() != pointsCharted_) {
                 pointsCharted_ = job_->report().points.size();
-                study.charts = benchCharts(job_->report());
+                study.charts = study.autoQuality.running ? benchCharts(job_->report(), ChartError::DisplayP99, targetSteps_) : benchCharts(job_->report());
             }
             if (!more) {
                 study.running = false;
@@ -292,7 +292,7 @@ private:
         bench::BenchReport report = job_->report();
         choice_ = bench::chooseAuto(report.points, targetSteps_, candidates_.reasons);
         bench::markChosen(report.points, *choice_);
-        study.charts = benchCharts(report);
+        study.charts = benchCharts(report, ChartError::DisplayP99, targetSteps_);
         ui::AutoQualityState& shown = study.autoQuality;
         shown.running = false;
         shown.haveChoice = choice_->found;

@@ -478,7 +478,7 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
     AutoQualityState& autoQuality = study.autoQuality;
     ImGui::TextWrapped("The cheapest settings whose 99th-percentile error after tone mapping stays within the target, measured on this "
                        "environment and scene.");
-    ImGui::SliderFloat("Target (8-bit steps)", &autoQuality.targetSteps, 0.25f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("Target", &autoQuality.targetSteps, 0.25f, 64.0f, "p99 %.2f 8-bit steps", ImGuiSliderFlags_Logarithmic);
     ImGui::BeginDisabled(study.running);
     if (ImGui::Button("Choose")) requests.startAutoQuality = true;
     ImGui::EndDisabled();

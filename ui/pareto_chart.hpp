@@ -25,11 +25,18 @@ struct ChartSeries {
     bool joined = true;             // false: points of several settings at once, which no curve orders
 };
 
+// A value drawn across the plot (a target), kept inside the y range.
+struct ChartMarker {
+    double y = 0.0; // > 0; none when 0
+    std::string label;
+};
+
 struct ParetoChart {
     std::string title;
     std::string xLabel;
     std::string yLabel;
     std::vector<ChartSeries> series;
+    ChartMarker yMarker;
 };
 
 struct ChartHover {

@@ -214,9 +214,13 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
     if (droppedFaces)
         out.reasons.push_back("roughness: the smoothest surface (" + formatNumber(facts.minRoughness) + ") reads a mip that a face of " +
                               std::to_string(largestKept) + " already resolves; " + std::to_string(droppedFaces) + " candidates with larger faces dropped");
+    else if (largestUsefulFace(facts.minRoughness, space.levels.front()) == std::numeric_limits<int>::max())
+        out.reasons.push_back("roughness: the scene shows a mirror (roughness " + formatNumber(facts.minRoughness) +
+                              "), which reads the prefilter's full-size mip 0: no face size dropped");
     else
-        out.reasons.push_back("roughness: the smoothest surface (" + formatNumber(facts.minRoughness) + ") needs every candidate face size (" +
-                              (facts.minRoughness <= 0.0 ? "a mirror reads mip 0" : "its lobe spans few texels of the largest") + ")");
+        out.reasons.push_back("roughness: the smoothest surface (" + formatNumber(facts.minRoughness) + ") has two texels across its lobe only from a face of " +
+                              std::to_string(largestUsefulFace(facts.minRoughness, space.levels.back())) + " (" + std::to_string(space.levels.back()) +
+                              " mips) up: no candidate face is larger, none dropped");
     if (droppedCubes) out.reasons.push_back("metallic: every surface is metal, no diffuse term: " + std::to_string(droppedCubes) + " irradiance cube candidates dropped");
 
     // The reference resolves roughness down to referenceMinResolvedRoughness(width): as wide

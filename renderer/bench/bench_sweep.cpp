@@ -223,12 +223,17 @@ DisplayError measureResolvedDisplayError(const FrameReadback& frame, const Frame
     return e;
 }
 
-void markDominated(std::vector<BenchPoint>& points)
+void markDominated(std::vector<BenchPoint>& points, double (*error)(const BenchPoint&))
 {
     for (BenchPoint& p : points)
         p.dominated = std::any_of(points.begin(), points.end(), [&](const BenchPoint& q) {
-            return q.environment == p.environment && q.costMilliseconds < p.costMilliseconds && q.error.relativeRmse < p.error.relativeRmse;
+            return q.environment == p.environment && q.costMilliseconds < p.costMilliseconds && error(q) < error(p);
         });
+}
+
+void markDominated(std::vector<BenchPoint>& points)
+{
+    markDominated(points, [](const BenchPoint& p) { return p.error.relativeRmse; });
 }
 
 // ---- The job ------------------------------------------------------------------------------

@@ -136,6 +136,8 @@ DisplayError measureResolvedDisplayError(const FrameReadback& frame, const Frame
 // A point is dominated when another point of the same environment is both cheaper and
 // more accurate (strictly: lower cost and lower relative RMSE).
 void markDominated(std::vector<BenchPoint>& points);
+// The same by another error (the auto quality chart's display p99).
+void markDominated(std::vector<BenchPoint>& points, double (*error)(const BenchPoint&));
 
 class BenchJob {
 public:
