@@ -206,9 +206,9 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
         out.points.push_back(std::move(p));
     }
 
-    out.reasons.push_back("environment: peak luminance " + formatNumber(facts.dynamicRange) + "x its mean; " +
+    out.reasons.push_back("environment: peak luminance " + formatNumber(facts.dynamicRange, "%.4g") + "x its mean; " +
                           (droppedUnfiltered ? std::to_string(droppedUnfiltered) + " candidates without PDF source-mip filtering and fewer than " +
-                                                   formatNumber(std::ceil(fewestUnfiltered)) +
+                                                   formatNumber(std::ceil(fewestUnfiltered), "%.4g") +
                                                    " samples dropped (one sample on the peak would be a firefly, > 3x the reference)"
                                              : std::string("low enough that no unfiltered candidate risks fireflies")));
     if (droppedFaces)
@@ -269,8 +269,8 @@ AutoChoice chooseAuto(const std::vector<BenchPoint>& measured, double targetStep
     if (choice.meetsTarget) {
         const BenchPoint* chosen = *std::min_element(meeting.begin(), meeting.end(), cheaper);
         choice.chosen = *chosen;
-        choice.reasons.push_back("chosen: the cheapest of the " + std::to_string(meeting.size()) + " of " + std::to_string(candidates.size()) +
-                                 " candidates whose 99th-percentile display error is within " + target + ": " + pointSummary(*chosen));
+        choice.reasons.push_back("chosen: " + std::to_string(meeting.size()) + " of " + std::to_string(candidates.size()) +
+                                 " candidates have a 99th-percentile display error within " + target + "; the cheapest is " + pointSummary(*chosen));
         if (cheapest != chosen) choice.reasons.push_back("cheaper, but over the target: " + pointSummary(*cheapest));
         if (best != chosen)
             choice.reasons.push_back("most accurate: " + pointSummary(*best) + ", " + formatNumber(best->costMilliseconds / std::max(chosen->costMilliseconds, 1e-9), "%.2g") +
