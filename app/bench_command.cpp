@@ -114,7 +114,7 @@ int runBench(const BenchCommandOptions& o)
                 for (bench::SweepPoint& preset : bench::presetPoints(o.quick)) one.points.push_back(std::move(preset));
                 if (o.referenceWidth <= 0) one.referenceWidth = candidates.referenceWidth;
                 bench::BenchReport measured = runReported(renderer, one);
-                bench::AutoChoice choice = bench::chooseAuto(measured.points, o.autoTargetSteps, candidates.reasons);
+                bench::AutoChoice choice = bench::chooseAuto(measured, o.autoTargetSteps, candidates);
                 bench::markChosen(measured.points, choice);
                 mergeReport(report, std::move(measured));
                 choices.push_back(std::move(choice));

@@ -290,7 +290,7 @@ private:
     void finishAutoQuality(ui::StudyState& study)
     {
         bench::BenchReport report = job_->report();
-        choice_ = bench::chooseAuto(report.points, targetSteps_, candidates_.reasons);
+        choice_ = bench::chooseAuto(report, targetSteps_, candidates_);
         bench::markChosen(report.points, *choice_);
         study.charts = benchCharts(report, ChartError::DisplayP99, targetSteps_);
         ui::AutoQualityState& shown = study.autoQuality;

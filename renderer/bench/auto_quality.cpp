@@ -138,6 +138,7 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
     const CandidateSpace space = candidateSpace(quick);
     const bake::BakeSettings base = benchBaseBake(quick);
     AutoCandidates out;
+    out.facts = facts;
 
     std::vector<SweepPoint> all;
     const auto add = [&](SweepPoint p, const std::string& series) {
@@ -228,16 +229,6 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
     const int widest = facts.environmentWidth > 0 ? std::min(space.maxReferenceWidth, facts.environmentWidth) : space.maxReferenceWidth;
     out.referenceWidth = std::min(64, widest);
     while (out.referenceWidth * 2 <= widest && referenceMinResolvedRoughness(out.referenceWidth) > facts.minRoughness) out.referenceWidth *= 2;
-    const double floor = referenceMinResolvedRoughness(out.referenceWidth);
-    if (floor > facts.maxRoughness)
-        out.reasons.push_back("measured: nothing: the reference over a " + std::to_string(out.referenceWidth) + "-wide map resolves roughness >= " +
-                              formatNumber(floor) + " only, and no surface is that rough");
-    else if (floor > facts.minRoughness)
-        out.reasons.push_back("measured: surfaces with roughness >= " + formatNumber(floor) + " (the reference over a " + std::to_string(out.referenceWidth) +
-                              "-wide map does not resolve smoother ones: the choice is not judged on those)");
-    else
-        out.reasons.push_back("measured: every surface (the reference over a " + std::to_string(out.referenceWidth) + "-wide map resolves roughness >= " +
-                              formatNumber(floor) + ")");
     return out;
 }
 
@@ -287,6 +278,22 @@ void markChosen(std::vector<BenchPoint>& points, const AutoChoice& choice)
 {
     for (BenchPoint& p : points)
         p.chosen = choice.found && p.environment == choice.chosen.environment && p.setting.label == choice.chosen.setting.label;
+}
+
+std::string referenceReason(const SceneFacts& facts, const ReferenceSummary& reference)
+{
+    const std::string over = "the reference over a " + std::to_string(reference.environmentWidth) + "-wide map resolves roughness >= " +
+                             formatNumber(reference.minResolvedRoughness);
+    if (reference.minResolvedRoughness > facts.maxRoughness) return "measured: nothing: " + over + " only, and no surface is that rough";
+    if (reference.minResolvedRoughness > facts.minRoughness) return "measured: surfaces with roughness >= " + formatNumber(reference.minResolvedRoughness) + " only (" + over + "): the choice is not judged on smoother ones";
+    return "measured: every surface (" + over + ")";
+}
+
+AutoChoice chooseAuto(const BenchReport& report, double targetSteps, const AutoCandidates& candidates)
+{
+    std::vector<std::string> reasons = candidates.reasons;
+    for (const ReferenceSummary& reference : report.references) reasons.push_back(referenceReason(candidates.facts, reference));
+    return chooseAuto(report.points, targetSteps, std::move(reasons));
 }
 
 std::vector<SweepPoint> presetPoints(bool quick)

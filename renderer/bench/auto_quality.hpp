@@ -46,9 +46,10 @@ SceneFacts sceneFacts(const FrameSettings& frame, const ImageRGB32F& environment
 double environmentDynamicRange(const ImageRGB32F& environment);
 
 struct AutoCandidates {
+    SceneFacts facts;                 // what they were pruned by
     std::vector<SweepPoint> points;   // family "split-sum" or "sampled"; each a whole configuration
     int referenceWidth = 0;           // wide enough to resolve the scene's smoothest surface, within a cap and the map's width
-    std::vector<std::string> reasons; // what was pruned and why, what the measurement leaves out
+    std::vector<std::string> reasons; // what was pruned and why
 };
 
 // The candidate space (quick: small bakes for the GUI and tests) pruned by the facts:
@@ -73,6 +74,11 @@ struct AutoChoice {
 // the one with the lowest p99, with a reason saying by how much the target is out of reach.
 // Points of family "preset" are not candidates. pruningReasons lead the returned reasons.
 AutoChoice chooseAuto(const std::vector<BenchPoint>& measured, double targetSteps, std::vector<std::string> pruningReasons);
+// The same on a bench run of the candidates, its reasons saying which surfaces the run's
+// reference resolved (and so which the choice was judged on).
+AutoChoice chooseAuto(const BenchReport& report, double targetSteps, const AutoCandidates& candidates);
+// Which of the scene's surfaces a reference of this summary resolves, in words.
+std::string referenceReason(const SceneFacts& facts, const ReferenceSummary& reference);
 
 // Sets BenchPoint::chosen on the choice's point (same environment and setting) and clears it elsewhere.
 void markChosen(std::vector<BenchPoint>& points, const AutoChoice& choice);

@@ -153,15 +153,32 @@ TEST(AutoQuality, TheReferenceIsAsWideAsTheSmoothestSurfaceNeeds)
     EXPECT_EQ(autoCandidates(true, sphere).referenceWidth, 64); // resolves >= 0.38
     sphere.minRoughness = 0.3;
     EXPECT_EQ(autoCandidates(true, sphere).referenceWidth, 128); // resolves >= 0.27
-    const AutoCandidates mirror = autoCandidates(true, grid(2.0));
-    EXPECT_EQ(mirror.referenceWidth, 128) << "capped in the quick run";
-    EXPECT_TRUE(std::any_of(mirror.reasons.begin(), mirror.reasons.end(), [](const std::string& r) { return r.find("does not resolve") != std::string::npos; }));
-    // The reference sums over no more texels than the map has: a 64-wide map cannot judge roughness 0.3.
-    sphere.maxRoughness = 0.3;
+    EXPECT_EQ(autoCandidates(true, grid(2.0)).referenceWidth, 128) << "capped in the quick run";
+    // The reference sums over no more texels than the map has.
     sphere.environmentWidth = 64;
-    const AutoCandidates narrow = autoCandidates(true, sphere);
-    EXPECT_EQ(narrow.referenceWidth, 64);
-    EXPECT_TRUE(std::any_of(narrow.reasons.begin(), narrow.reasons.end(), [](const std::string& r) { return r.find("measured: nothing") != std::string::npos; }));
+    EXPECT_EQ(autoCandidates(true, sphere).referenceWidth, 64);
+}
+
+TEST(AutoQuality, ReasonsSayWhichSurfacesTheReferenceResolved)
+{
+    SceneFacts sphere = grid(2.0);
+    sphere.minRoughness = sphere.maxRoughness = 0.3;
+    const ReferenceSummary narrow{"env", 64, 0.38, 1.0}, wide{"env", 128, 0.27, 1.0};
+    EXPECT_NE(referenceReason(sphere, narrow).find("measured: nothing"), std::string::npos) << referenceReason(sphere, narrow);
+    EXPECT_NE(referenceReason(sphere, wide).find("measured: every surface"), std::string::npos) << referenceReason(sphere, wide);
+    EXPECT_NE(referenceReason(grid(2.0), wide).find("not judged on smoother"), std::string::npos) << referenceReason(grid(2.0), wide);
+
+    // The report's reference lands in the choice's reasons, after the pruning.
+    BenchReport report;
+    report.references = {narrow};
+    report.points = {point("a", 1.0, 0.5)};
+    AutoCandidates candidates;
+    candidates.facts = sphere;
+    candidates.reasons = {"pruned"};
+    const AutoChoice c = chooseAuto(report, 1.0, candidates);
+    ASSERT_GE(c.reasons.size(), 3u);
+    EXPECT_EQ(c.reasons[0], "pruned");
+    EXPECT_EQ(c.reasons[1], referenceReason(sphere, narrow));
 }
 
 TEST(AutoQuality, SceneFactsFollowTheSceneAndTheEnvironment)
