@@ -282,11 +282,12 @@ void markChosen(std::vector<BenchPoint>& points, const AutoChoice& choice)
 
 std::string referenceReason(const SceneFacts& facts, const ReferenceSummary& reference)
 {
-    const std::string over = "the reference over a " + std::to_string(reference.environmentWidth) + "-wide map resolves roughness >= " +
-                             formatNumber(reference.minResolvedRoughness);
-    if (reference.minResolvedRoughness > facts.maxRoughness) return "measured: nothing: " + over + " only, and no surface is that rough";
-    if (reference.minResolvedRoughness > facts.minRoughness) return "measured: surfaces with roughness >= " + formatNumber(reference.minResolvedRoughness) + " only (" + over + "): the choice is not judged on smoother ones";
-    return "measured: every surface (" + over + ")";
+    const std::string map = "the reference over a " + std::to_string(reference.environmentWidth) + "-wide map";
+    const std::string floor = formatNumber(reference.minResolvedRoughness);
+    if (reference.minResolvedRoughness > facts.maxRoughness) return "measured: nothing: " + map + " resolves roughness >= " + floor + " only, and no surface is that rough";
+    if (reference.minResolvedRoughness > facts.minRoughness)
+        return "measured: surfaces with roughness >= " + floor + " only: " + map + " resolves no smoother ones, so the choice is not judged on them";
+    return "measured: every surface (" + map + " resolves roughness >= " + floor + ")";
 }
 
 AutoChoice chooseAuto(const BenchReport& report, double targetSteps, const AutoCandidates& candidates)
