@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstring>
 
 #include "environment/image_writer.hpp"
 #include "gl/render_target.hpp"
@@ -10,8 +11,12 @@
 
 namespace iblab::app {
 
-std::vector<ui::ParetoChart> benchCharts(const bench::BenchReport& report)
+std::vector<ui::ParetoChart> benchCharts(const bench::BenchReport& report, ChartError error, double targetSteps)
 {
+    const bool display = error == ChartError::DisplayP99;
+    std::vector<bench::BenchPoint> points = report.points;
+    if (display) bench::markDominated(points, [](const bench::BenchPoint& p) { return p.display.p99Steps; });
+
     std::vector<std::string> seriesOrder;
     for (const bench::SweepPoint& p : report.options.points)
         if (std::find(seriesOrder.begin(), seriesOrder.end(), p.series) == seriesOrder.end()) seriesOrder.push_back(p.series);
@@ -22,18 +27,25 @@ std::vector<ui::ParetoChart> benchCharts(const bench::BenchReport& report)
         chart.title = e.name + " (" + std::string(sceneKindName(report.options.frame.scene.kind)) + ", " + std::to_string(report.options.width) + "x" +
                       std::to_string(report.options.height) + ")";
         chart.xLabel = "cost, ms: bake + " + std::to_string(report.options.costFrames) + " frame" + (report.options.costFrames == 1 ? "" : "s") + " (log)";
-        chart.yLabel = "relative RMSE against the reference (log)";
-        for (const std::string& name : seriesOrder) chart.series.push_back({name, {}});
+        chart.yLabel = display ? "display error against the reference: 99th percentile, 8-bit steps (log)" : "relative RMSE against the reference (log)";
+        if (display && targetSteps > 0.0) chart.yMarker = {targetSteps, "target"};
+        for (const std::string& name : seriesOrder) {
+            const auto member = std::find_if(report.options.points.begin(), report.options.points.end(), [&](const bench::SweepPoint& p) { return p.series == name; });
+            chart.series.push_back({name, {}, !member->scatter});
+        }
         bool any = false;
-        for (const bench::BenchPoint& p : report.points) {
+        for (const bench::BenchPoint& p : points) {
             if (p.environment != e.name) continue;
             any = true;
             const std::size_t index = std::size_t(std::find(seriesOrder.begin(), seriesOrder.end(), p.setting.series) - seriesOrder.begin());
-            char text[256];
+            char text[512];
             std::snprintf(text, sizeof text, "\ncost %.1f ms (bake %.1f ms, frame %.2f ms)\nrelative RMSE %.4g, p99 %.3g, fireflies %zu%s", p.costMilliseconds,
                           p.bakeMilliseconds, p.frameMilliseconds, p.error.relativeRmse, p.error.p99Relative, p.error.fireflies,
                           p.dominated ? "\ndominated: another setting is cheaper and more accurate" : "");
-            chart.series[index].points.push_back({p.costMilliseconds, p.error.relativeRmse, p.dominated, p.setting.label + text});
+            std::snprintf(text + std::strlen(text), sizeof text - std::strlen(text), "\ndisplay error: p99 %.3g, RMS %.3g 8-bit steps%s", p.display.p99Steps,
+                          p.display.rmsSteps, p.chosen ? "\nthe auto quality mode's choice" : "");
+            chart.series[index].points.push_back(
+                {p.costMilliseconds, display ? p.display.p99Steps : p.error.relativeRmse, p.dominated, p.setting.label + text, p.chosen ? std::string("auto") : p.setting.mark});
         }
         if (any) charts.push_back(std::move(chart));
     }

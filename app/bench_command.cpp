@@ -1,6 +1,7 @@
 // `iblab bench`: the speed-against-accuracy sweep (renderer/bench/bench_sweep.hpp),
 // headless. Writes bench.csv, bench.json, bench.md (the points nothing dominates, per
 // environment) and pareto.png to --out, and prints the CSV's path (or the JSON with --json).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,11 +10,13 @@
 #include <vector>
 
 #include "asset_paths.hpp"
+#include "bench/auto_quality.hpp"
 #include "bench_chart.hpp"
 #include "command_support.hpp"
 #include "commands.hpp"
 #include "environment/atomic_file.hpp"
 #include "environment/builtin_environments.hpp"
+#include "environment/environment.hpp"
 #include "renderer.hpp"
 
 namespace iblab::app {
@@ -30,6 +33,8 @@ struct BenchCommandOptions {
     int repeats = 0;
     int referenceWidth = 0;
     int costFrames = 1;
+    bool autoQuality = false;
+    double autoTargetSteps = bench::kDefaultAutoTargetSteps;
     int chartWidth = 720;
     int chartHeight = 440;
 };
@@ -50,6 +55,38 @@ std::vector<bench::BenchEnvironment> namedEnvironments(const std::vector<std::st
     return list;
 }
 
+// Runs the sweep to the end, naming each environment on stderr as it starts.
+bench::BenchReport runReported(Renderer& renderer, const bench::BenchOptions& options)
+{
+    bench::BenchJob job(renderer, options);
+    const bench::BenchEnvironment* reported = nullptr;
+    while (job.step()) {
+        const bench::BenchEnvironment* environment = job.currentEnvironment();
+        const std::vector<bench::BenchEnvironment>& all = job.report().options.environments;
+        if (environment && environment != reported)
+            std::fprintf(stderr, "iblab bench: %s (%zu/%zu)\n", environment->name.c_str(), std::size_t(environment - all.data()) + 1, all.size());
+        reported = environment;
+    }
+    return job.runToCompletion();
+}
+
+// One environment's auto run into the whole report: its environment, reference and points,
+// and its points' settings where no earlier environment had them (the charts' series order).
+void mergeReport(bench::BenchReport& into, bench::BenchReport one)
+{
+    if (into.options.environments.empty()) {
+        into = std::move(one);
+        return;
+    }
+    for (const bench::SweepPoint& p : one.options.points)
+        if (std::none_of(into.options.points.begin(), into.options.points.end(), [&](const bench::SweepPoint& q) { return q.label == p.label; }))
+            into.options.points.push_back(p);
+    into.options.environments.insert(into.options.environments.end(), one.options.environments.begin(), one.options.environments.end());
+    into.references.insert(into.references.end(), one.references.begin(), one.references.end());
+    into.points.insert(into.points.end(), one.points.begin(), one.points.end());
+    into.seconds += one.seconds;
+}
+
 int runBench(const BenchCommandOptions& o)
 {
     try {
@@ -64,29 +101,48 @@ int runBench(const BenchCommandOptions& o)
         if (o.referenceWidth > 0) options.referenceWidth = o.referenceWidth;
         options.costFrames = o.costFrames;
 
-        bench::BenchJob job(renderer, options);
-        const bench::BenchEnvironment* reported = nullptr;
-        while (job.step()) {
-            const bench::BenchEnvironment* environment = job.currentEnvironment();
-            const std::vector<bench::BenchEnvironment>& all = job.report().options.environments;
-            if (environment && environment != reported)
-                std::fprintf(stderr, "iblab bench: %s (%zu/%zu)\n", environment->name.c_str(), std::size_t(environment - all.data()) + 1, all.size());
-            reported = environment;
+        bench::BenchReport report;
+        std::vector<bench::AutoChoice> choices;
+        if (o.autoQuality) {
+            // Per environment, since what it prunes depends on the environment's dynamic range.
+            for (bench::BenchEnvironment environment : options.environments) {
+                if (!environment.loaded) environment.loaded = std::make_shared<const Environment>(loadEnvironment(environment.spec));
+                const bench::AutoCandidates candidates = bench::autoCandidates(o.quick, bench::sceneFacts(options.frame, environment.loaded->image));
+                bench::BenchOptions one = options;
+                one.environments = {environment};
+                one.points = candidates.points;
+                for (bench::SweepPoint& preset : bench::presetPoints(o.quick)) one.points.push_back(std::move(preset));
+                if (o.referenceWidth <= 0) one.referenceWidth = candidates.referenceWidth;
+                bench::BenchReport measured = runReported(renderer, one);
+                bench::AutoChoice choice = bench::chooseAuto(measured, o.autoTargetSteps, candidates);
+                bench::markChosen(measured.points, choice);
+                mergeReport(report, std::move(measured));
+                choices.push_back(std::move(choice));
+            }
+        } else {
+            report = runReported(renderer, options);
         }
-        const bench::BenchReport report = job.runToCompletion();
         if (gl.debug.errorCount() > 0) return failCommand("bench", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.debug.firstError());
 
         const std::filesystem::path dir(o.out);
         std::filesystem::create_directories(dir);
-        const std::string json = bench::benchJsonText(report);
+        const std::string json = o.autoQuality ? bench::benchJsonTextWithAuto(report, choices) : bench::benchJsonText(report);
         writeTextFileAtomic((dir / "bench.json").string(), json);
         writeTextFileAtomic((dir / "bench.csv").string(), bench::benchCsvText(report));
-        writeTextFileAtomic((dir / "bench.md").string(), bench::benchMarkdown(report));
-        writeChartsPng((dir / "pareto.png").string(), benchCharts(report), o.chartWidth, o.chartHeight, 2);
+        writeTextFileAtomic((dir / "bench.md").string(), (o.autoQuality ? bench::autoMarkdown(report, choices) : "") + bench::benchMarkdown(report));
+        writeChartsPng((dir / "pareto.png").string(), o.autoQuality ? benchCharts(report, ChartError::DisplayP99, o.autoTargetSteps) : benchCharts(report), o.chartWidth, o.chartHeight, 2);
         if (gl.debug.errorCount() > 0) return failCommand("bench", std::to_string(gl.debug.errorCount()) + " GL error(s) drawing the chart, the first: " + gl.debug.firstError());
 
-        if (o.json) std::printf("%s\n", json.c_str());
-        else std::printf("%s\n", (dir / "bench.csv").string().c_str());
+        if (o.json) {
+            std::printf("%s\n", json.c_str());
+            return 0;
+        }
+        for (const bench::AutoChoice& c : choices)
+            if (!c.found) std::printf("auto %s: nothing measured: %s\n", c.chosen.environment.c_str(), c.reasons.back().c_str());
+            else std::printf("auto %s: %s (target %g steps)\n  %s\n  cost %.1f ms, display p99 %.3g steps, RMS %.3g steps, relative RMSE %.3g\n", c.chosen.environment.c_str(),
+                        c.meetsTarget ? "met" : c.found ? "out of reach" : "nothing measured", c.targetSteps, bench::describeSettings(c.chosen.setting).c_str(),
+                        c.chosen.costMilliseconds, c.chosen.display.p99Steps, c.chosen.display.rmsSteps, c.chosen.error.relativeRmse);
+        std::printf("%s\n", (dir / "bench.csv").string().c_str());
         return 0;
     } catch (const std::exception& e) {
         return failCommand("bench", e.what());
@@ -121,6 +177,12 @@ Command addBenchCommand(CLI::App& app, ProcessClock::time_point)
     c->add_option("--reference-width", o->referenceWidth, "Width of the environment the reference sums over (default 256, quick 64)")
         ->check(CLI::Range(8, 4096));
     c->add_option("--cost-frames", o->costFrames, "cost = bake + this many frames")->capture_default_str()->check(CLI::Range(0, 1000000));
+    c->add_flag("--auto", o->autoQuality,
+                "Auto quality: per environment, measure the candidate settings the scene and environment leave, choose the cheapest within "
+                "--auto-target, and measure the tutorial and default presets beside it (instead of the sweep)");
+    c->add_option("--auto-target", o->autoTargetSteps, "Auto quality's target: 99th-percentile display error in 8-bit steps after tone mapping")
+        ->capture_default_str()
+        ->check(CLI::Range(0.01, 255.0));
     c->add_option("--chart-width", o->chartWidth, "Width of one environment's chart in pareto.png")->capture_default_str()->check(CLI::Range(320, 4096));
     c->add_option("--chart-height", o->chartHeight, "Height of one environment's chart in pareto.png")->capture_default_str()->check(CLI::Range(200, 4096));
     return {c, [o] { return runBench(*o); }};

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +21,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "asset_paths.hpp"
+#include "bench/auto_quality.hpp"
 #include "bench_chart.hpp"
 #include "camera.hpp"
 #include "conventions.hpp"
@@ -194,7 +196,60 @@ bool displayAvailable()
 // frame. It runs on a renderer of its own, so the view keeps its environment and bake.
 class StudyRun {
 public:
-    void start(const LabSession& session, const FrameSettings& settings, ui::StudyState& study)
+    void start(const LabSession& session, const FrameSettings& settings, ui::StudyState& study) { begin(session, settings, study, false); }
+
+    // The auto quality mode: its candidates for this scene and environment, and the presets
+    // beside them, measured like the sweep; the choice is made when the last one is in.
+    void startAutoQuality(const LabSession& session, const FrameSettings& settings, ui::StudyState& study) { begin(session, settings, study, true); }
+
+    void stop(ui::StudyState& study)
+    {
+        job_.reset();
+        study.running = false;
+        study.autoQuality.running = false;
+        study.status = {"stopped", false};
+    }
+
+    // One slice of the sweep; the chart follows the points measured so far.
+    void advance(ui::StudyState& study, std::chrono::steady_clock::duration budget)
+    {
+        if (!job_) return;
+        try {
+            const bool more = job_->runFor(budget);
+            study.progress = job_->progress();
+            study.activity = job_->currentActivity();
+            if (job_->report().points.size() != pointsCharted_) {
+                pointsCharted_ = job_->report().points.size();
+                study.charts = study.autoQuality.running ? benchCharts(job_->report(), ChartError::DisplayP99, targetSteps_) : benchCharts(job_->report());
+            }
+            if (!more) {
+                study.running = false;
+                study.status = {std::to_string(pointsCharted_) + " settings measured in " + std::to_string(int(job_->report().seconds)) + " s", false};
+                if (study.autoQuality.running) finishAutoQuality(study);
+                job_.reset();
+            }
+        } catch (const std::exception& e) {
+            study.running = false;
+            study.autoQuality.running = false;
+            study.status = {e.what(), true};
+            job_.reset();
+        }
+        if (!job_) pointsCharted_ = 0;
+    }
+
+    // The chosen bake and sampling on top of the session's: its environment cube and LUT stay.
+    void applyAutoQuality(LabSession& session, FrameSettings& settings, ui::PanelState& panels) const
+    {
+        if (!choice_ || !choice_->found) return;
+        session.setBakeSettings(bench::appliedBakeSettings(*choice_, session.bakeSettings()));
+        settings.sampling = bench::appliedSampling(*choice_, settings.sampling);
+        panels.bakeStatus = {"auto quality: baking " + bench::describeSettings(choice_->chosen.setting), false};
+    }
+
+    bool running() const { return bool(job_); }
+
+private:
+    void begin(const LabSession& session, const FrameSettings& settings, ui::StudyState& study, bool autoQuality)
     {
         if (!session.environment()) {
             study.status = {"no environment loaded yet", true};
@@ -212,51 +267,60 @@ public:
                                      std::make_shared<const Environment>(environment)}};
             options.frame = settings;
             options.width = options.height = 96; // the quick run's 48 is for tests; 96 still sweeps in seconds
+            if (autoQuality) {
+                candidates_ = bench::autoCandidates(/*quick=*/true, bench::sceneFacts(settings, environment.image));
+                options.points = candidates_.points;
+                for (bench::SweepPoint& preset : bench::presetPoints(/*quick=*/true)) options.points.push_back(std::move(preset));
+                options.referenceWidth = candidates_.referenceWidth;
+                targetSteps_ = study.autoQuality.targetSteps;
+            }
             job_ = std::make_unique<bench::BenchJob>(*renderer_, options);
-            study = {true, 0.0f, "", {}, {}, true};
+            ui::AutoQualityState kept = study.autoQuality;
+            study = {true, 0.0f, "", {}, {}, true, kept};
+            study.autoQuality.running = autoQuality;
+            if (autoQuality) {
+                study.autoQuality.haveChoice = false;
+                choice_.reset();
+            }
         } catch (const std::exception& e) {
             study.status = {e.what(), true};
         }
     }
 
-    void stop(ui::StudyState& study)
+    void finishAutoQuality(ui::StudyState& study)
     {
-        job_.reset();
-        study.running = false;
-        study.status = {"stopped", false};
-    }
-
-    // One slice of the sweep; the chart follows the points measured so far.
-    void advance(ui::StudyState& study, std::chrono::steady_clock::duration budget)
-    {
-        if (!job_) return;
-        try {
-            const bool more = job_->runFor(budget);
-            study.progress = job_->progress();
-            study.activity = job_->currentActivity();
-            if (job_->report().points.size() != pointsCharted_) {
-                pointsCharted_ = job_->report().points.size();
-                study.charts = benchCharts(job_->report());
-            }
-            if (!more) {
-                study.running = false;
-                study.status = {std::to_string(pointsCharted_) + " settings measured in " + std::to_string(int(job_->report().seconds)) + " s", false};
-                job_.reset();
-            }
-        } catch (const std::exception& e) {
-            study.running = false;
-            study.status = {e.what(), true};
-            job_.reset();
+        bench::BenchReport report = job_->report();
+        choice_ = bench::chooseAuto(report, targetSteps_, candidates_);
+        bench::markChosen(report.points, *choice_);
+        study.charts = benchCharts(report, ChartError::DisplayP99, targetSteps_);
+        ui::AutoQualityState& shown = study.autoQuality;
+        shown.running = false;
+        shown.haveChoice = choice_->found;
+        shown.meetsTarget = choice_->meetsTarget;
+        shown.reasons = choice_->reasons;
+        shown.presets.clear();
+        if (!choice_->found) {
+            study.status = {choice_->reasons.back(), true};
+            return;
         }
-        if (!job_) pointsCharted_ = 0;
+        const auto numbers = [](const bench::BenchPoint& p) {
+            char text[160];
+            std::snprintf(text, sizeof text, "cost %.1f ms (bake %.1f + frame %.2f), display p99 %.2f steps, RMS %.2f", p.costMilliseconds,
+                          p.bakeMilliseconds, p.frameMilliseconds, p.display.p99Steps, p.display.rmsSteps);
+            return std::string(text);
+        };
+        shown.chosen = bench::describeSettings(choice_->chosen.setting);
+        shown.numbers = numbers(choice_->chosen);
+        for (const bench::BenchPoint& p : report.points)
+            if (p.setting.family == "preset") shown.presets.push_back(p.setting.mark + " preset: " + numbers(p));
     }
 
-    bool running() const { return bool(job_); }
-
-private:
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<bench::BenchJob> job_;
     std::size_t pointsCharted_ = 0;
+    bench::AutoCandidates candidates_;
+    double targetSteps_ = bench::kDefaultAutoTargetSteps;
+    std::optional<bench::AutoChoice> choice_;
 };
 
 int runGui(const GuiOptions& options)
@@ -359,6 +423,8 @@ int runGui(const GuiOptions& options)
             }
         if (requests.startStudy) study.start(session, settings, panels.study);
         if (requests.stopStudy) study.stop(panels.study);
+        if (requests.startAutoQuality) study.startAutoQuality(session, settings, panels.study);
+        if (requests.applyAutoQuality) study.applyAutoQuality(session, settings, panels);
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
             const SceneInfo scene = renderer.sceneInfo(settings);
             frameBox(settings.camera, scene.centre, scene.halfExtents, float(fbWidth) / float(fbHeight));

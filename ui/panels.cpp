@@ -497,6 +497,36 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
         ImGui::TextDisabled("%s", study.activity.c_str());
     }
     drawStatus(study.status);
+
+    ImGui::Separator();
+    ImGui::TextUnformatted("Auto quality");
+    AutoQualityState& autoQuality = study.autoQuality;
+    ImGui::TextWrapped("The cheapest settings whose 99th-percentile error after tone mapping stays within the target, measured on this "
+                       "environment and scene.");
+    ImGui::SliderFloat("Target", &autoQuality.targetSteps, 0.25f, 64.0f, "p99 %.2f 8-bit steps", ImGuiSliderFlags_Logarithmic);
+    ImGui::BeginDisabled(study.running);
+    if (ImGui::Button("Choose")) requests.startAutoQuality = true;
+    ImGui::EndDisabled();
+    if (autoQuality.haveChoice) {
+        ImGui::SameLine();
+        ImGui::BeginDisabled(study.running);
+        if (ImGui::Button("Apply")) requests.applyAutoQuality = true;
+        ImGui::EndDisabled();
+        if (autoQuality.meetsTarget) ImGui::TextColored(ImVec4(0.5f, 0.9f, 0.5f, 1.0f), "Chosen (within the target):");
+        else ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "Target out of reach; the most accurate:");
+        ImGui::TextWrapped("%s", autoQuality.chosen.c_str());
+        ImGui::TextWrapped("%s", autoQuality.numbers.c_str());
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        for (const std::string& preset : autoQuality.presets) ImGui::TextWrapped("%s", preset.c_str());
+        ImGui::PopStyleColor();
+        if (ImGui::TreeNodeEx("Why", ImGuiTreeNodeFlags_DefaultOpen)) {
+            for (const std::string& reason : autoQuality.reasons) {
+                ImGui::Bullet();
+                ImGui::TextWrapped("%s", reason.c_str());
+            }
+            ImGui::TreePop();
+        }
+    }
 }
 
 void drawStudyChartWindow(StudyState& study)

@@ -45,6 +45,8 @@ struct UiRequests {
     bool sceneChanged = false;                  // the scene kind changed: frame it
     bool startStudy = false;                    // a quick bench sweep on the current environment and scene
     bool stopStudy = false;
+    bool startAutoQuality = false;              // measure the auto candidates on the current environment and scene
+    bool applyAutoQuality = false;              // bake and shade with the auto choice
 };
 
 struct CaptureSettings {
@@ -63,6 +65,18 @@ struct CompareState {
     ErrorReport error;
 };
 
+// The auto quality mode's choice as the Study panel shows it (bench/auto_quality.hpp).
+struct AutoQualityState {
+    float targetSteps = 1.0f;      // 99th-percentile display error, 8-bit steps after tone mapping
+    bool running = false;          // measuring its candidates (the StudyState's progress and chart follow it)
+    bool haveChoice = false;
+    bool meetsTarget = false;
+    std::string chosen;            // the settings in words
+    std::string numbers;           // its cost and error
+    std::vector<std::string> presets; // the fixed presets measured beside it, one line each
+    std::vector<std::string> reasons;
+};
+
 // The Study panel's view of the bench sweep the app runs: progress and the chart so far.
 struct StudyState {
     bool running = false;
@@ -71,6 +85,7 @@ struct StudyState {
     StatusLine status;
     std::vector<ParetoChart> charts;
     bool chartOpen = true; // the chart's window; closing it leaves the sweep running
+    AutoQualityState autoQuality;
 };
 
 struct PanelState {

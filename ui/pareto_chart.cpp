@@ -109,6 +109,7 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
             if (!(p.x > 0.0) || !(p.y > 0.0)) continue; // a log axis has no place for them
             xlo = std::min(xlo, p.x), xhi = std::max(xhi, p.x), ylo = std::min(ylo, p.y), yhi = std::max(yhi, p.y);
         }
+    if (chart.yMarker.y > 0.0) ylo = std::min(ylo, chart.yMarker.y), yhi = std::max(yhi, chart.yMarker.y);
     fitRange(xlo, xhi);
     fitRange(ylo, yhi);
     const LogAxis x{xlo, xhi, plot0.x, plot1.x};
@@ -137,6 +138,11 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
     const auto drawable = [](const ChartPoint& p) { return p.x > 0.0 && p.y > 0.0 && std::isfinite(p.x) && std::isfinite(p.y); };
 
     draw.PushClipRect(plot0, plot1, true);
+    if (chart.yMarker.y > 0.0) {
+        const float py = y.at(chart.yMarker.y);
+        draw.AddLine(ImVec2(plot0.x, py), ImVec2(plot1.x, py), kText, 1.0f);
+        draw.AddText(ImVec2(plot0.x + 4.0f, py - 15.0f), kText, chart.yMarker.label.c_str());
+    }
     // The front: every point nothing beats, joined in order of cost.
     std::vector<ImVec2> front;
     for (const ChartSeries& s : chart.series)
@@ -152,7 +158,7 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
         std::vector<ImVec2> curve;
         for (const ChartPoint& p : s.points)
             if (drawable(p)) curve.push_back(screen(p));
-        if (curve.size() > 1) draw.AddPolyline(curve.data(), int(curve.size()), seriesColour(si, 150), ImDrawFlags_None, 1.5f);
+        if (s.joined && curve.size() > 1) draw.AddPolyline(curve.data(), int(curve.size()), seriesColour(si, 150), ImDrawFlags_None, 1.5f);
         for (std::size_t pi = 0; pi < s.points.size(); ++pi) {
             const ChartPoint& p = s.points[pi];
             if (!drawable(p)) continue;
@@ -161,6 +167,13 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
             else {
                 draw.AddCircleFilled(at, kRadius + 0.5f, seriesColour(si), 12);
                 draw.AddCircle(at, kRadius + 1.5f, kFront, 12, 1.0f);
+            }
+            if (!p.mark.empty()) {
+                draw.AddCircle(at, kRadius + 4.5f, kText, 16, 2.0f);
+                // Right of the point, or left of it where the plot ends.
+                const float width = ImGui::CalcTextSize(p.mark.c_str()).x;
+                const float tx = at.x + kRadius + 7.0f + width <= plot1.x ? at.x + kRadius + 7.0f : at.x - kRadius - 7.0f - width;
+                draw.AddText(ImVec2(tx, at.y - 7.0f), kText, p.mark.c_str());
             }
             if (mouse) {
                 const float d = std::hypot(mouse->x - at.x, mouse->y - at.y);

@@ -16,11 +16,19 @@ struct ChartPoint {
     double y = 0.0; // > 0
     bool dominated = false;
     std::string tooltip;
+    std::string mark; // drawn beside the point with a ring around it ("auto", a preset's name); "" for none
 };
 
 struct ChartSeries {
     std::string name;
     std::vector<ChartPoint> points; // in the order the curve joins them
+    bool joined = true;             // false: points of several settings at once, which no curve orders
+};
+
+// A value drawn across the plot (a target), kept inside the y range.
+struct ChartMarker {
+    double y = 0.0; // > 0; none when 0
+    std::string label;
 };
 
 struct ParetoChart {
@@ -28,6 +36,7 @@ struct ParetoChart {
     std::string xLabel;
     std::string yLabel;
     std::vector<ChartSeries> series;
+    ChartMarker yMarker;
 };
 
 struct ChartHover {

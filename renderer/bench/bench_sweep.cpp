@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "camera.hpp"
 #include "environment/error.hpp"
 #include "gl/context_info.hpp"
+#include "ibl/tonemap.hpp"
 #include "scene/gltf_model.hpp"
 #include "stress/stress_suite.hpp"
 
@@ -30,9 +32,28 @@ std::string formatNumber(double v, const char* format = "%g")
     return text;
 }
 
+std::string onOff(bool on, const char* what) { return std::string(on ? "" : "no ") + what; }
+
+// Surface pixels (coverage in the normal layer's alpha) the reference resolves (roughness
+// in the view layer's alpha at least minRoughness).
+std::vector<std::uint8_t> resolvedPixels(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
+                                         const FrameReadback& viewLayer, double minRoughness)
+{
+    const std::size_t pixels = std::size_t(frame.width) * std::size_t(frame.height);
+    if (frame.rgba.size() != pixels * 4 || reference.rgba.size() != pixels * 4 || normalLayer.rgba.size() != pixels * 4 ||
+        viewLayer.rgba.size() != pixels * 4)
+        throw std::invalid_argument("bench error measure: the frame, the reference and its layers differ in size");
+    std::vector<std::uint8_t> include(pixels);
+    for (std::size_t i = 0; i < pixels; ++i)
+        include[i] = normalLayer.rgba[i * 4 + 3] != 0.0f && double(viewLayer.rgba[i * 4 + 3]) >= minRoughness;
+    return include;
+}
+
+} // namespace
+
 // The bake every point starts from: the default preset without the irradiance cubes (a
 // diffuse point turns on the one it measures), the LUT of the default geometry term only.
-bake::BakeSettings baseBake(bool quick)
+bake::BakeSettings benchBaseBake(bool quick)
 {
     bake::BakeSettings b = bake::defaultPreset();
     b.preset = quick ? "bench-quick" : "bench";
@@ -53,13 +74,9 @@ bake::BakeSettings baseBake(bool quick)
     return b;
 }
 
-std::string onOff(bool on, const char* what) { return std::string(on ? "" : "no ") + what; }
-
-} // namespace
-
 std::vector<SweepPoint> sweepPoints(bool quick)
 {
-    const bake::BakeSettings base = baseBake(quick);
+    const bake::BakeSettings base = benchBaseBake(quick);
     std::vector<SweepPoint> points;
 
     const std::vector<int> faces = quick ? std::vector<int>{32} : std::vector<int>{32, 64, 128};
@@ -176,21 +193,47 @@ std::vector<std::string> bakePhasesRead(const SweepPoint& point)
 ErrorMetrics measureResolvedError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
                                   const FrameReadback& viewLayer, double minRoughness)
 {
-    const std::size_t pixels = std::size_t(frame.width) * std::size_t(frame.height);
-    if (reference.rgba.size() != pixels * 4 || normalLayer.rgba.size() != pixels * 4 || viewLayer.rgba.size() != pixels * 4)
-        throw std::invalid_argument("measureResolvedError: the frame, the reference and its layers differ in size");
-    std::vector<std::uint8_t> include(pixels);
-    for (std::size_t i = 0; i < pixels; ++i)
-        include[i] = normalLayer.rgba[i * 4 + 3] != 0.0f && double(viewLayer.rgba[i * 4 + 3]) >= minRoughness;
-    return computeErrorMetrics(frame.rgba, reference.rgba, include);
+    return computeErrorMetrics(frame.rgba, reference.rgba, resolvedPixels(frame, reference, normalLayer, viewLayer, minRoughness));
+}
+
+DisplayError measureResolvedDisplayError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
+                                         const FrameReadback& viewLayer, double minRoughness, const ToneMapSettings& toneMap)
+{
+    const std::vector<std::uint8_t> include = resolvedPixels(frame, reference, normalLayer, viewLayer, minRoughness);
+    const auto shown = [&](const FrameReadback& image, std::size_t i) {
+        return displayEncode(glm::vec3(image.rgba[i * 4], image.rgba[i * 4 + 1], image.rgba[i * 4 + 2]), toneMap.exposureEv, toneMap.op);
+    };
+    std::vector<double> steps;
+    double sumSquares = 0.0;
+    DisplayError e;
+    for (std::size_t i = 0; i < include.size(); ++i) {
+        if (!include[i]) continue;
+        const glm::vec3 difference = glm::abs(shown(frame, i) - shown(reference, i));
+        const double s = 255.0 * double(std::max({difference.r, difference.g, difference.b}));
+        steps.push_back(s);
+        sumSquares += s * s;
+        e.maxSteps = std::max(e.maxSteps, s);
+    }
+    e.pixels = steps.size();
+    if (steps.empty()) return e;
+    e.rmsSteps = std::sqrt(sumSquares / double(steps.size()));
+    const std::size_t rank = std::size_t(std::ceil(0.99 * double(steps.size()))) - 1;
+    std::nth_element(steps.begin(), steps.begin() + std::ptrdiff_t(rank), steps.end());
+    e.p99Steps = steps[rank];
+    return e;
+}
+
+void markDominated(std::vector<BenchPoint>& points, double (*error)(const BenchPoint&))
+{
+    for (BenchPoint& p : points)
+        p.dominated = std::any_of(points.begin(), points.end(), [&](const BenchPoint& q) {
+            return q.environment == p.environment && q.costMilliseconds < p.costMilliseconds && error(q) < error(p);
+        });
 }
 
 void markDominated(std::vector<BenchPoint>& points)
 {
-    for (BenchPoint& p : points)
-        p.dominated = std::any_of(points.begin(), points.end(), [&](const BenchPoint& q) {
-            return q.environment == p.environment && q.costMilliseconds < p.costMilliseconds && q.error.relativeRmse < p.error.relativeRmse;
-        });
+    markDominated(points, [](const BenchPoint& p) { return p.error.relativeRmse; });
 }
 
 // ---- The job ------------------------------------------------------------------------------
@@ -357,7 +400,9 @@ bool BenchJob::step()
         for (const std::string& phase : bakePhasesRead(p)) measured.bakeMilliseconds += s.bake->phaseMilliseconds(phase);
         measured.frameMilliseconds = frameMs[frameMs.size() / 2];
         measured.costMilliseconds = measured.bakeMilliseconds + double(o.costFrames) * measured.frameMilliseconds;
-        measured.error = measureResolvedError(s.renderer.readHdrFrame(), s.referenceFrame, s.normalLayer, s.viewLayer, s.reference.minResolvedRoughness);
+        const FrameReadback frame = s.renderer.readHdrFrame();
+        measured.error = measureResolvedError(frame, s.referenceFrame, s.normalLayer, s.viewLayer, s.reference.minResolvedRoughness);
+        measured.display = measureResolvedDisplayError(frame, s.referenceFrame, s.normalLayer, s.viewLayer, s.reference.minResolvedRoughness, o.frame.toneMap);
         report_.points.push_back(std::move(measured));
         markDominated(report_.points);
 
@@ -429,7 +474,8 @@ const std::vector<std::string>& benchCsvColumns()
     static const std::vector<std::string> columns{
         "environment", "family",        "series",         "label",        "method",        "diffuse",      "prefilter_face", "prefilter_samples",
         "pdf_mips",    "sampled_n",     "riemann_delta",  "importance_samples", "bake_ms", "frame_ms",     "cost_ms",        "relative_rmse",
-        "mean_relative", "p99_relative", "max_relative",  "fireflies",    "pixels",        "dominated"};
+        "mean_relative", "p99_relative", "max_relative",  "fireflies",    "pixels",        "display_p99_steps", "display_rms_steps",
+        "display_max_steps", "dominated", "auto_chosen"};
     return columns;
 }
 
@@ -463,7 +509,11 @@ std::string benchCsvText(const BenchReport& report)
                                            formatNumber(p.error.maxRelative, "%.6g"),
                                            std::to_string(p.error.fireflies),
                                            std::to_string(p.error.pixels),
-                                           p.dominated ? "1" : "0"};
+                                           formatNumber(p.display.p99Steps, "%.4g"),
+                                           formatNumber(p.display.rmsSteps, "%.4g"),
+                                           formatNumber(p.display.maxSteps, "%.4g"),
+                                           p.dominated ? "1" : "0",
+                                           p.chosen ? "1" : "0"};
         for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
         out << "\n";
     }
@@ -483,7 +533,9 @@ std::string benchJsonText(const BenchReport& report)
                     {"repeats", o.repeats},
                     {"reference_width", o.referenceWidth},
                     {"cost", "bake_ms + " + std::to_string(o.costFrames) + " x frame_ms"},
-                    {"error", "relative RMSE, linear HDR, surface pixels with roughness >= min_resolved_roughness"}};
+                    {"error", "relative RMSE, linear HDR, surface pixels with roughness >= min_resolved_roughness"},
+                    {"display_error", "largest channel difference after exposure, tone mapping and sRGB encoding, in 8-bit steps, same pixels"},
+                    {"tone_map", std::string(toneMapOperatorName(o.frame.toneMap.op)) + ", exposure " + formatNumber(o.frame.toneMap.exposureEv) + " EV"}};
     for (const BenchEnvironment& e : o.environments) j["environments"].push_back({{"name", e.name}, {"spec", e.spec}});
     for (const ReferenceSummary& r : report.references)
         j["references"].push_back({{"environment", r.environment},
@@ -514,7 +566,9 @@ std::string benchJsonText(const BenchReport& report)
                           {"max_relative", p.error.maxRelative},
                           {"fireflies", p.error.fireflies},
                           {"pixels", p.error.pixels}};
+        point["display_error"] = {{"p99_steps", p.display.p99Steps}, {"rms_steps", p.display.rmsSteps}, {"max_steps", p.display.maxSteps}};
         point["dominated"] = p.dominated;
+        if (p.chosen) point["auto_chosen"] = true;
         j["points"].push_back(point);
     }
     j["seconds"] = report.seconds;

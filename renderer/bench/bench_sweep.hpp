@@ -48,6 +48,8 @@ struct SweepPoint {
     SamplingSettings sampling;
     bake::BakeSettings bake;
     bool plainSh = false; // the bake's SH9 irradiance without the window
+    bool scatter = false; // its series varies more than one setting: no curve joins its points
+    std::string mark;     // drawn beside the point on the chart (a preset's name)
 };
 
 struct BenchOptions {
@@ -69,11 +71,24 @@ struct BenchOptions {
 // N = 1..256 with and without mip filtering, the diffuse sources) or the quick one (a few
 // points of each family on small bakes, for tests and the Study panel).
 std::vector<SweepPoint> sweepPoints(bool quick);
+// The bake every sweep point starts from: the default preset without the irradiance cubes,
+// only the default geometry term's LUT, and (quick) small enough for tens of milliseconds.
+bake::BakeSettings benchBaseBake(bool quick);
 // Defaults of `iblab bench`: the grid, the bundled maps and three stress environments.
 BenchOptions defaultBenchOptions(bool quick, const std::string& assetDirectory);
 
 // The stress environments the default run adds, at `width` (stress_suite.hpp's specs).
 std::vector<BenchEnvironment> builtinBenchEnvironments(int width);
+
+// The error as the eye is shown it: both frames through the view's exposure, tone mapping and
+// sRGB encoding (displayEncode, as ErrorSpace::Display), per pixel the largest channel
+// difference in 8-bit steps (1 step = 1/255).
+struct DisplayError {
+    std::size_t pixels = 0;
+    double p99Steps = 0.0; // nearest rank, as ErrorMetrics::p99Relative
+    double rmsSteps = 0.0;
+    double maxSteps = 0.0;
+};
 
 struct BenchPoint {
     std::string environment;
@@ -82,7 +97,9 @@ struct BenchPoint {
     double frameMilliseconds = 0.0; // median of the repeats, steady clock around glFinish
     double costMilliseconds = 0.0;  // bake + costFrames x frame
     ErrorMetrics error;             // linear HDR, resolved surface pixels (measureResolvedError)
+    DisplayError display;           // the same pixels after tone mapping (measureResolvedDisplayError)
     bool dominated = false;
+    bool chosen = false;            // the auto quality mode's pick (auto_quality.hpp)
 };
 
 struct ReferenceSummary {
@@ -112,9 +129,15 @@ std::vector<std::string> bakePhasesRead(const SweepPoint& point);
 ErrorMetrics measureResolvedError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
                                   const FrameReadback& viewLayer, double minRoughness);
 
+// The same pixels as measureResolvedError, compared after `toneMap` in 8-bit steps.
+DisplayError measureResolvedDisplayError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
+                                         const FrameReadback& viewLayer, double minRoughness, const ToneMapSettings& toneMap);
+
 // A point is dominated when another point of the same environment is both cheaper and
 // more accurate (strictly: lower cost and lower relative RMSE).
 void markDominated(std::vector<BenchPoint>& points);
+// The same by another error (the auto quality chart's display p99).
+void markDominated(std::vector<BenchPoint>& points, double (*error)(const BenchPoint&));
 
 class BenchJob {
 public:

@@ -353,6 +353,64 @@ TEST_F(Cli, BenchQuickWritesCsvJsonAndChart)
     EXPECT_NE(missing.err.find("nosuch.exr"), std::string::npos) << missing.err;
 }
 
+// `iblab bench --quick --auto`: one auto choice for the quick sky, marked on exactly one
+// measured point, the two presets measured beside it, and its section in bench.md. A target
+// of 255 steps (the whole display range) admits every candidate, so the choice must be the
+// cheapest candidate; a hundredth of a step admits none, so it must be the most accurate,
+// and the command says the target is out of reach instead of claiming it.
+TEST_F(Cli, BenchQuickAutoChoosesTheCheapestWithinTheTarget)
+{
+    struct Measured {
+        std::size_t chosen = 0, presets = 0;
+        double cheapest = 1e300, lowestError = 1e300;
+        const nlohmann::json* chosenPoint = nullptr;
+    };
+    const auto measure = [](const nlohmann::json& j) {
+        Measured m;
+        for (const nlohmann::json& p : j.at("points")) {
+            if (p.value("auto_chosen", false)) ++m.chosen, m.chosenPoint = &p;
+            if (p.at("family") == "preset") {
+                ++m.presets;
+                continue;
+            }
+            m.lowestError = std::min(m.lowestError, p.at("display_error").at("p99_steps").get<double>());
+            m.cheapest = std::min(m.cheapest, p.at("cost_ms").get<double>());
+        }
+        return m;
+    };
+    const std::string common = "bench --quick --auto --width 32 --height 32 --repeats 1";
+
+    const Result loose = run(common + " --auto-target 255 --json --out a");
+    ASSERT_EQ(loose.exitCode, 0) << loose.err;
+    const nlohmann::json j = nlohmann::json::parse(loose.out);
+    ASSERT_EQ(j.at("auto").size(), 1u);
+    const nlohmann::json& choice = j.at("auto").at(0);
+    EXPECT_EQ(choice.at("environment"), "sky");
+    ASSERT_TRUE(choice.at("meets_target").get<bool>());
+    EXPECT_GT(choice.at("candidates_measured").get<int>(), 10);
+    EXPECT_EQ(choice.at("candidates_meeting"), choice.at("candidates_measured"));
+    EXPECT_FALSE(choice.at("reasons").empty());
+    const Measured all = measure(j);
+    EXPECT_EQ(all.presets, 2u);
+    ASSERT_EQ(all.chosen, 1u);
+    EXPECT_EQ(all.chosenPoint->at("label"), choice.at("chosen"));
+    EXPECT_NE(all.chosenPoint->at("family"), "preset");
+    EXPECT_EQ(all.chosenPoint->at("cost_ms").get<double>(), all.cheapest);
+    std::ifstream markdown(dir / "a" / "bench.md");
+    const std::string text((std::istreambuf_iterator<char>(markdown)), {});
+    EXPECT_NE(text.find("## Auto quality"), std::string::npos);
+    EXPECT_NE(text.find("preset tutorial"), std::string::npos);
+
+    const Result strict = run(common + " --auto-target 0.01 --out s");
+    ASSERT_EQ(strict.exitCode, 0) << strict.err;
+    EXPECT_NE(strict.out.find("auto sky: out of reach (target 0.01 steps)"), std::string::npos) << strict.out;
+    const nlohmann::json js = nlohmann::json::parse(std::ifstream(dir / "s" / "bench.json"));
+    const Measured none = measure(js);
+    ASSERT_EQ(none.chosen, 1u);
+    EXPECT_EQ(none.chosenPoint->at("display_error").at("p99_steps").get<double>(), none.lowestError);
+    EXPECT_FALSE(js.at("auto").at(0).at("meets_target").get<bool>());
+}
+
 // The error view's numbers in the JSON report: one block for the frame, or one per side of
 // the split; the reference's environment size and the roughness it resolves with it.
 TEST_F(Cli, ErrorViewReportsMetricsAsJson)

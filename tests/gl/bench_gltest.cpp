@@ -107,6 +107,20 @@ TEST_F(Bench, QuickSweepMeasuresEveryPointAgainstTheReference)
     EXPECT_NEAR(biased.meanRelative, 0.1, 1e-4);
     const ErrorMetrics rough = measureResolvedError(reference, reference, normal, view, r.references.front().minResolvedRoughness);
     EXPECT_EQ(rough.pixels, r.points.front().error.pixels);
+
+    // In display space: 0 steps against itself; a frame 10% too bright is off by some steps
+    // where the tone curve is steep, never more than 10% of the 255 steps of the whole range,
+    // and what the sweep recorded for its points is measured over the same pixels.
+    const ToneMapSettings toneMap = r.options.frame.toneMap;
+    const DisplayError displaySelf = measureResolvedDisplayError(reference, reference, normal, view, 0.0, toneMap);
+    EXPECT_EQ(displaySelf.pixels, self.pixels);
+    EXPECT_EQ(displaySelf.maxSteps, 0.0);
+    const DisplayError displayBiased = measureResolvedDisplayError(brighter, reference, normal, view, 0.0, toneMap);
+    EXPECT_GT(displayBiased.p99Steps, 1.0);
+    EXPECT_LE(displayBiased.maxSteps, 0.1 * 255.0);
+    EXPECT_LE(displayBiased.rmsSteps, displayBiased.maxSteps);
+    EXPECT_EQ(r.points.front().display.pixels, rough.pixels);
+    for (const BenchPoint& p : r.points) EXPECT_GT(p.display.rmsSteps, 0.0) << p.setting.label;
     EXPECT_LT(rough.pixels, self.pixels);
     EXPECT_GT(rough.pixels, self.pixels / 4);
 }
