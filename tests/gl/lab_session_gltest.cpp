@@ -94,7 +94,11 @@ TEST_F(LabSessionTest, MalformedModelsAreRefusedAndTheLoadedModelStays)
     std::filesystem::create_directories(models);
     std::ofstream(models / "broken.gltf") << "{ not json";
     std::ofstream(models / "empty.glb");
-    std::ofstream(models / "short-chunk.glb", std::ios::binary) << std::string("glTF\x02\0\0\0\x40\0\0\0\xff\0\0\0JSON{}", 24);
+    // A 12-byte header (length 64) and a JSON chunk header claiming 255 bytes, then "{}": 22
+    // bytes, embedded NULs included (the literal's own length; a count written by hand read
+    // past it, which AddressSanitizer caught).
+    constexpr char shortChunk[] = "glTF\x02\0\0\0\x40\0\0\0\xff\0\0\0JSON{}";
+    std::ofstream(models / "short-chunk.glb", std::ios::binary) << std::string(shortChunk, sizeof shortChunk - 1);
     std::ofstream(models / "missing-buffer.gltf")
         << R"({"asset":{"version":"2.0"},"buffers":[{"uri":"nowhere.bin","byteLength":36}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
            R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],)"
