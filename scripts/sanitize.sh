@@ -13,9 +13,9 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressi
 # PNG reader, see there) only matches a stack that reaches the library's own frames.
 ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:fast_unwind_on_malloc=0" \
   ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" --timeout 900 -L cpu
-# GL and CLI suites: Mesa's driver is unloaded by eglTerminate before LeakSanitizer runs, so
+# GL and CLI suites (the CLI tests run the sanitized executable): Mesa's driver is unloaded by eglTerminate before LeakSanitizer runs, so
 # its process-lifetime allocations show up as leaks from "<unknown module>" that no
 # suppression can name. Leak checking is off there; address and UB checks stay on, and
 # tests/gl/soak_gltest.cpp checks iblab's own GL objects and memory over 200 switches.
 ASAN_OPTIONS="detect_leaks=0:abort_on_error=1:strict_string_checks=1" \
-  ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" --timeout 900 -L gl
+  ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)" --timeout 900 -L 'gl|cli'
