@@ -9,3 +9,8 @@ foreach(test environment_test builtin_environments_test image_writer_test)
   target_compile_definitions(${test} PRIVATE IBLAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   target_link_libraries(${test} PRIVATE OpenImageIO::OpenImageIO nlohmann_json::nlohmann_json)
 endforeach()
+
+# Reads the bundled courtyard.exr, so it lives with the suites that read files.
+iblab_add_cpu_test(split_sum_bias_test ${CMAKE_CURRENT_SOURCE_DIR}/split_sum_bias_test.cpp)
+target_link_libraries(split_sum_bias_test PRIVATE iblab_environment)
+target_compile_definitions(split_sum_bias_test PRIVATE IBLAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
