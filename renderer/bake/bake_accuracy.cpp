@@ -86,23 +86,34 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     BakeErrors errors;
     const ImageRGB32F reduced = reduceTo(environment, options.maxReferenceWidthForWideLobes);
 
+    // Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
+    auto referenceMap = [&](float roughness) -> const ImageRGB32F& { return roughness >= 0.5f ? reduced : environment; };
+    // sqrt(sum |baked - ref|^2 / sum |ref|^2) of baked values against the prefiltered reference
+    // at `roughness` in the given directions.
+    auto prefilterRelativeRmse = [&](const std::vector<glm::dvec3>& baked, const std::vector<glm::dvec3>& directions, float roughness) {
+        double sumErr2 = 0.0;
+        double sumRef2 = 0.0;
+        for (std::size_t i = 0; i < directions.size(); ++i) {
+            const glm::dvec3 ref = referencePrefilteredRadiance(referenceMap(roughness), directions[i], roughness);
+            const glm::dvec3 d = baked[i] - ref;
+            sumErr2 += glm::dot(d, d);
+            sumRef2 += glm::dot(ref, ref);
+        }
+        return sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2);
+    };
+
     const BakedTexture& pre = result.prefiltered;
     for (int level = 0; level < pre.levels; ++level) {
         const CubeImage image = readCubeLevel(pre, level);
         const float roughness = prefilterMipRoughness(result.settings.prefilter, level);
-        const ImageRGB32F& env = roughness >= 0.5f ? reduced : environment;
-        double sumErr2 = 0.0;
-        double sumRef2 = 0.0;
-        const auto texels = cubeTexelGrid(image.size, options.texelsPerFaceEdge);
-        for (const CubeTexelRef& t : texels) {
-            const glm::dvec3 n = glm::normalize(glm::dvec3(image.texelDirection(t.face, t.x, t.row)));
-            const glm::dvec3 ref = referencePrefilteredRadiance(env, n, roughness);
-            const glm::dvec3 d = glm::dvec3(image.rgb(t.face, t.x, t.row)) - ref;
-            sumErr2 += glm::dot(d, d);
-            sumRef2 += glm::dot(ref, ref);
+        std::vector<glm::dvec3> directions;
+        std::vector<glm::dvec3> baked;
+        for (const CubeTexelRef& t : cubeTexelGrid(image.size, options.texelsPerFaceEdge)) {
+            directions.push_back(glm::normalize(glm::dvec3(image.texelDirection(t.face, t.x, t.row))));
+            baked.emplace_back(image.rgb(t.face, t.x, t.row));
         }
-        errors.prefilter.push_back({level, roughness, sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2),
-                                    int(texels.size()), env.width});
+        errors.prefilter.push_back(
+            {level, roughness, prefilterRelativeRmse(baked, directions, roughness), int(directions.size()), referenceMap(roughness).width});
     }
 
     const std::vector<glm::dvec3> shadedDirections = fibonacciSphere(options.shadedDirections);
@@ -117,18 +128,11 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     double sumSquares = 0.0;
     for (std::size_t r = 0; r < shadedRoughness.size(); ++r) {
         const float roughness = shadedRoughness[r];
-        const ImageRGB32F& env = roughness >= 0.5f ? reduced : environment;
-        double sumErr2 = 0.0;
-        double sumRef2 = 0.0;
-        for (std::size_t i = 0; i < shadedDirections.size(); ++i) {
-            const glm::dvec3 ref = referencePrefilteredRadiance(env, shadedDirections[i], roughness);
-            const glm::dvec3 d = glm::dvec3(shaded[r * shadedDirections.size() + i]) - ref;
-            sumErr2 += glm::dot(d, d);
-            sumRef2 += glm::dot(ref, ref);
-        }
-        const double rmse = sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2);
+        const auto first = shaded.begin() + std::ptrdiff_t(r * shadedDirections.size());
+        const std::vector<glm::dvec3> baked(first, first + std::ptrdiff_t(shadedDirections.size()));
+        const double rmse = prefilterRelativeRmse(baked, shadedDirections, roughness);
         errors.prefilterShaded.push_back({roughness, prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout)),
-                                          rmse, int(shadedDirections.size()), env.width});
+                                          rmse, int(shadedDirections.size()), referenceMap(roughness).width});
         sumSquares += rmse * rmse;
     }
     if (!errors.prefilterShaded.empty())
