@@ -59,6 +59,9 @@ struct BakeOverrides {
     std::optional<int> importanceSamples;
     std::optional<bool> importanceMipFilter;
     std::optional<float> importanceMipBias;
+    std::optional<bool> moments;
+    std::optional<int> momentsSize;
+    std::optional<int> momentsSourceSize;
     std::optional<int> prefilterSize;
     std::optional<int> prefilterLevels;
     std::optional<std::string> prefilterLayout;
@@ -124,6 +127,9 @@ bake::BakeSettings resolveSettings(const BakeCommandOptions& o)
     apply(v.importanceSamples, s.importance.samples);
     apply(v.importanceMipFilter, s.importance.mipFiltering);
     apply(v.importanceMipBias, s.importance.mipBias);
+    apply(v.moments, s.moments.enabled);
+    apply(v.momentsSize, s.moments.faceSize);
+    apply(v.momentsSourceSize, s.moments.sourceFaceSize);
     apply(v.prefilterSize, s.prefilter.faceSize);
     apply(v.prefilterLevels, s.prefilter.levels);
     if (v.prefilterLayout) {
@@ -150,6 +156,8 @@ bake::BakeSettings resolveSettings(const BakeCommandOptions& o)
             s.lut.heightCorrelatedSmith = *g == GeometryTerm::HeightCorrelatedSmith;
         }
     }
+    // No frame to keep responsive here: each pass is one step per mip unless asked otherwise.
+    s.samplesPerStep = bake::kUnslicedBake;
     apply(v.samplesPerStep, s.samplesPerStep);
     bake::validate(s);
     return s;
@@ -185,12 +193,14 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
         std::printf("  irradiance SH9:           mean %.4f max %.4f\n", errors->shIrradiance.mean, errors->shIrradiance.max);
         std::printf("  irradiance SH9 windowed:  mean %.4f max %.4f\n", errors->shIrradianceWindowed.mean,
                     errors->shIrradianceWindowed.max);
-        if (errors->irradianceRiemann)
-            std::printf("  irradiance cube Riemann:  mean %.4f max %.4f\n", errors->irradianceRiemann->mean,
-                        errors->irradianceRiemann->max);
-        if (errors->irradianceImportance)
-            std::printf("  irradiance cube cos-IS:   mean %.4f max %.4f\n", errors->irradianceImportance->mean,
-                        errors->irradianceImportance->max);
+        auto irradianceLine = [](const char* name, const std::optional<bake::ErrorStats>& texels, const std::optional<bake::ErrorStats>& shaded) {
+            if (texels && shaded)
+                std::printf("  irradiance cube %-9s mean %.4f max %.4f; as shaded mean %.4f max %.4f\n", name, texels->mean, texels->max,
+                            shaded->mean, shaded->max);
+        };
+        irradianceLine("Riemann:", errors->irradianceRiemann, errors->irradianceRiemannShaded);
+        irradianceLine("cos-IS:", errors->irradianceImportance, errors->irradianceImportanceShaded);
+        irradianceLine("moments:", errors->irradianceMoments, errors->irradianceMomentsShaded);
         for (GeometryTerm term : bake::kGeometryTerms)
             if (errors->lutMaxAbs[std::size_t(term)])
                 std::printf("  LUT %-24s max abs %.5f\n", std::string(geometryTermName(term)).c_str(), *errors->lutMaxAbs[std::size_t(term)]);
@@ -275,6 +285,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
             j["textures"] = {{"environment_cube", textureJson(result.environmentCube)},
                              {"irradiance_riemann", textureJson(result.irradianceRiemann)},
                              {"irradiance_importance", textureJson(result.irradianceImportance)},
+                             {"irradiance_moments", textureJson(result.irradianceMoments)},
                              {"prefiltered", textureJson(result.prefiltered)},
                              {"brdf_lut_schlick-ggx", textureJson(result.brdfLut[0])},
                              {"brdf_lut_height-correlated-smith", textureJson(result.brdfLut[1])}};
@@ -318,7 +329,7 @@ int runSh(const ShCommandOptions& o)
             HeadlessGl gl(/*debugContext=*/true);
             gl::ShaderLibrary shaders(shaderDirectory());
             bake::BakePasses passes(shaders);
-            passes.compileAll();
+            passes.compileFor(bake::BakeSettings{}, 0, /*lut=*/false);
             glFinish();
             const auto start = Clock::now();
             const gl::Texture equirect = passes.uploadEquirect(environment.image);
@@ -376,7 +387,7 @@ int runLut(const LutCommandOptions& o)
         HeadlessGl gl(/*debugContext=*/true);
         gl::ShaderLibrary shaders(shaderDirectory());
         bake::BakePasses passes(shaders);
-        passes.compileAll();
+        passes.compileFor(bake::BakeSettings{}, 0, /*lut=*/true);
         const auto start = Clock::now();
         const bake::BakedTexture lut = bake::create2DTexture(GL_RGBA16F, o.size);
         passes.brdfLut(lut, 0, o.size, o.samples, *term);
@@ -437,6 +448,9 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_option("--importance-samples", v.importanceSamples, "Cosine samples per irradiance texel");
     c->add_option("--importance-mip-filter", v.importanceMipFilter, "PDF-based source-mip selection for irradiance (on/off)");
     c->add_option("--importance-mip-bias", v.importanceMipBias, "Bias added to the irradiance source lod");
+    c->add_option("--moments", v.moments, "Bake the irradiance cube from texel groups' flux and first moments (on/off)");
+    c->add_option("--moments-size", v.momentsSize, "Moment irradiance cube face size");
+    c->add_option("--moments-source-size", v.momentsSourceSize, "Texel groups per face edge the moment irradiance sums over");
     c->add_option("--prefilter-size", v.prefilterSize, "Prefiltered cube face size (power of two)");
     c->add_option("--prefilter-levels", v.prefilterLevels, "Prefiltered mips, roughness 0 at mip 0 to 1 at the last");
     c->add_option("--prefilter-layout", v.prefilterLayout,
@@ -450,7 +464,7 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_option("--lut-size", v.lutSize, "BRDF LUT size");
     c->add_option("--lut-samples", v.lutSamples, "BRDF LUT samples per texel");
     c->add_option("--lut-geometry", v.lutGeometry, "LUT geometry terms: schlick, correlated, both or none");
-    c->add_option("--step-samples", v.samplesPerStep, "Work per bake step, in texture samples");
+    c->add_option("--step-samples", v.samplesPerStep, "Work per bake step, in texture samples, as the GUI slices a bake (default: one step per pass and mip)");
     c->add_option("--out", o->out, "Write the results to DIR (EXR + JSON, see docs/bake.md)");
     c->add_option("--cache-dir", o->cacheDir, "Cache directory (default $IBLAB_CACHE_DIR, $XDG_CACHE_HOME/iblab or ~/.cache/iblab)");
     c->add_flag("--no-cache", o->noCache, "Neither read nor write the cache");

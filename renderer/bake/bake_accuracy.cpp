@@ -138,29 +138,63 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     if (!errors.prefilterShaded.empty())
         errors.prefilterShadedRms = std::sqrt(sumSquares / double(errors.prefilterShaded.size()));
 
-    // Irradiance: the SH and every cube at the same directions, the grid texels of a
-    // cube of the irradiance size (32 by default).
-    const int irradianceSize = result.irradianceImportance ? result.irradianceImportance.size
-                               : result.irradianceRiemann  ? result.irradianceRiemann.size
-                                                           : 32;
-    const auto texels = cubeTexelGrid(irradianceSize, options.texelsPerFaceEdge);
-    const CubeImage directions(irradianceSize);
-    std::vector<glm::dvec3> reference;
-    std::vector<glm::dvec3> sh;
-    std::vector<glm::dvec3> shWindowed;
-    for (const CubeTexelRef& t : texels) {
-        const glm::dvec3 n = glm::normalize(glm::dvec3(directions.texelDirection(t.face, t.x, t.row)));
-        reference.push_back(referenceIrradiance(reduced, n));
-        sh.push_back(evaluate(result.sh.irradiance, n));
-        shWindowed.push_back(evaluate(result.sh.irradianceWindowed, n));
-    }
+    // Irradiance at texel centres: each cube at the grid texels of its own size, the SH at
+    // those of the shading cube (or of a 32^2 one when there is none).
+    auto texelGridErrors = [&](const BakedTexture& cube, int size) {
+        const auto texels = cubeTexelGrid(size, options.texelsPerFaceEdge);
+        const CubeImage directions(size);
+        std::vector<glm::dvec3> normals;
+        std::vector<glm::dvec3> reference;
+        for (const CubeTexelRef& t : texels) {
+            normals.push_back(glm::normalize(glm::dvec3(directions.texelDirection(t.face, t.x, t.row))));
+            reference.push_back(referenceIrradiance(reduced, normals.back()));
+        }
+        if (!cube) {
+            std::vector<glm::dvec3> sh;
+            std::vector<glm::dvec3> shWindowed;
+            for (const glm::dvec3& n : normals) {
+                sh.push_back(evaluate(result.sh.irradiance, n));
+                shWindowed.push_back(evaluate(result.sh.irradianceWindowed, n));
+            }
+            errors.shIrradiance = relativeErrors(sh, reference);
+            errors.shIrradianceWindowed = relativeErrors(shWindowed, reference);
+            return ErrorStats{};
+        }
+        return cubeIrradianceErrors(cube, texels, reference);
+    };
+    texelGridErrors({}, result.irradianceCube() ? result.irradianceCube().size : 32);
     errors.irradianceReferenceWidth = reduced.width;
-    errors.shIrradiance = relativeErrors(sh, reference);
-    errors.shIrradianceWindowed = relativeErrors(shWindowed, reference);
-    if (result.irradianceRiemann && result.irradianceRiemann.size == irradianceSize)
-        errors.irradianceRiemann = cubeIrradianceErrors(result.irradianceRiemann, texels, reference);
+    if (result.irradianceRiemann)
+        errors.irradianceRiemann = texelGridErrors(result.irradianceRiemann, result.irradianceRiemann.size);
     if (result.irradianceImportance)
-        errors.irradianceImportance = cubeIrradianceErrors(result.irradianceImportance, texels, reference);
+        errors.irradianceImportance = texelGridErrors(result.irradianceImportance, result.irradianceImportance.size);
+    if (result.irradianceMoments)
+        errors.irradianceMoments = texelGridErrors(result.irradianceMoments, result.irradianceMoments.size);
+
+    // Irradiance as shaded: each cube read where shading reads it (bilinear, seamless) at the
+    // Fibonacci directions, which counts the interpolation between texel centres that the
+    // texel-centre numbers above leave out, and compares cubes of different sizes on the
+    // same directions. A one-level cube read at roughness 0 is read at lod 0.
+    std::vector<glm::vec4> irradianceQueries;
+    std::vector<glm::dvec3> shadedReference;
+    for (const glm::dvec3& d : shadedDirections) {
+        irradianceQueries.emplace_back(glm::vec3(d), 0.0f);
+        shadedReference.push_back(referenceIrradiance(reduced, d));
+    }
+    auto shadedIrradianceErrors = [&](const BakedTexture& cube) {
+        const std::vector<glm::vec3> read = BakePasses(shaders).samplePrefiltered(cube, RoughnessLayout::Linear, irradianceQueries);
+        return relativeErrors(std::vector<glm::dvec3>(read.begin(), read.end()), shadedReference);
+    };
+    std::vector<glm::dvec3> shShaded;
+    for (const glm::dvec3& d : shadedDirections)
+        shShaded.push_back(evaluate(result.sh.irradiance, d));
+    errors.shIrradianceShaded = relativeErrors(shShaded, shadedReference);
+    if (result.irradianceRiemann)
+        errors.irradianceRiemannShaded = shadedIrradianceErrors(result.irradianceRiemann);
+    if (result.irradianceImportance)
+        errors.irradianceImportanceShaded = shadedIrradianceErrors(result.irradianceImportance);
+    if (result.irradianceMoments)
+        errors.irradianceMomentsShaded = shadedIrradianceErrors(result.irradianceMoments);
 
     for (GeometryTerm term : kGeometryTerms) {
         const BakedTexture& lut = result.lut(term);
@@ -211,8 +245,19 @@ std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& opti
         irr["cube_riemann"] = statsJson(*errors.irradianceRiemann);
     if (errors.irradianceImportance)
         irr["cube_importance"] = statsJson(*errors.irradianceImportance);
+    if (errors.irradianceMoments)
+        irr["cube_moments"] = statsJson(*errors.irradianceMoments);
     irr["reference_width"] = errors.irradianceReferenceWidth;
     j["irradiance"] = irr;
+    nlohmann::ordered_json irrShaded;
+    irrShaded["sh"] = statsJson(errors.shIrradianceShaded);
+    if (errors.irradianceRiemannShaded)
+        irrShaded["cube_riemann"] = statsJson(*errors.irradianceRiemannShaded);
+    if (errors.irradianceImportanceShaded)
+        irrShaded["cube_importance"] = statsJson(*errors.irradianceImportanceShaded);
+    if (errors.irradianceMomentsShaded)
+        irrShaded["cube_moments"] = statsJson(*errors.irradianceMomentsShaded);
+    j["irradiance_shaded"] = irrShaded;
     nlohmann::ordered_json lut = nlohmann::ordered_json::object();
     for (GeometryTerm term : kGeometryTerms)
         if (errors.lutMaxAbs[std::size_t(term)])
@@ -225,7 +270,8 @@ std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& opti
                   "trilinear) at " + std::to_string(options.shadedDirections) + " Fibonacci-lattice directions at roughness 0 to 1 in steps of 1/" +
                   std::to_string(options.shadedRoughnessSteps) + ", "
                   "prefilter_shaded_rms their root mean square; "
-                  "irradiance: per-direction |baked-ref|/|ref|; references for roughness >= 0.5 and irradiance on the "
+                  "irradiance: per-direction |baked-ref|/|ref| at the texel grid of each cube (SH: of the shading cube); "
+                  "irradiance_shaded: the same for each cube read bilinearly and seamlessly at the Fibonacci directions; references for roughness >= 0.5 and irradiance on the "
                   "environment halved to at most " +
                   std::to_string(options.maxReferenceWidthForWideLobes) + " wide; LUT: max abs error on a " +
                   std::to_string(options.lutGrid) + "x" + std::to_string(options.lutGrid) + " texel grid against " +

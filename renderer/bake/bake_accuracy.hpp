@@ -3,10 +3,10 @@
 // every texel of the equirect), two ways:
 //  - per texture level at the texel centres of a regular grid of texels on each face (the
 //    comparison reads texels, with no interpolation error of its own): is each mip right?
-//  - the prefiltered cube "as shaded": what the split-sum shading reads (textureLod at the
-//    layout's lod, seamless trilinear) at directions off the texel grid and at roughness
-//    values between the mips, against the reference at that roughness. This is the number
-//    that compares chains of different sizes and layouts on equal terms.
+//  - "as shaded": what shading reads (textureLod, seamless, trilinear) at directions off the
+//    texel grid: the prefiltered cube at the layout's lod for roughness values between the
+//    mips, against the reference at that roughness, and each irradiance cube bilinearly.
+//    These are the numbers that compare bakes of different sizes and layouts on equal terms.
 // Used by `iblab bake --json` and docs/bake.md.
 #include <array>
 #include <cstdint>
@@ -73,7 +73,13 @@ struct BakeErrors {
     ErrorStats shIrradianceWindowed;
     std::optional<ErrorStats> irradianceRiemann;
     std::optional<ErrorStats> irradianceImportance;
+    std::optional<ErrorStats> irradianceMoments;
     int irradianceReferenceWidth = 0;
+    // As shaded: at AccuracyOptions::shadedDirections, each cube read bilinearly.
+    ErrorStats shIrradianceShaded;
+    std::optional<ErrorStats> irradianceRiemannShaded;
+    std::optional<ErrorStats> irradianceImportanceShaded;
+    std::optional<ErrorStats> irradianceMomentsShaded;
     // Max |baked - reference| over the grid and the A, B, A + B channels.
     std::array<std::optional<double>, 2> lutMaxAbs;
     double milliseconds = 0.0;

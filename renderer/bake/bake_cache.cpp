@@ -117,6 +117,7 @@ bool BakeCache::loadBake(BakeResult& result, const MipBuilder& buildMips, std::v
         result.environmentCube = {};
         result.irradianceRiemann = {};
         result.irradianceImportance = {};
+        result.irradianceMoments = {};
         result.prefiltered = {};
         removeQuietly(dir);
         return false;

@@ -141,6 +141,8 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
         snapshot.cubes.push_back({"irradiance_riemann.exr", readCubeLevel(result.irradianceRiemann, 0)});
     if (result.irradianceImportance)
         snapshot.cubes.push_back({"irradiance_importance.exr", readCubeLevel(result.irradianceImportance, 0)});
+    if (result.irradianceMoments)
+        snapshot.cubes.push_back({"irradiance_moments.exr", readCubeLevel(result.irradianceMoments, 0)});
     for (int level = 0; level < result.prefiltered.levels; ++level)
         snapshot.cubes.push_back({prefilterFile(level), readCubeLevel(result.prefiltered, level)});
     snapshot.shJson = shJsonText(result.sh) + "\n";
@@ -162,6 +164,8 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
         meta["irradiance_riemann"] = textureJson(result.irradianceRiemann);
     if (result.irradianceImportance)
         meta["irradiance_importance"] = textureJson(result.irradianceImportance);
+    if (result.irradianceMoments)
+        meta["irradiance_moments"] = textureJson(result.irradianceMoments);
     meta["prefiltered"] = textureJson(result.prefiltered);
     ordered_json roughness = ordered_json::array();
     for (int level = 0; level < result.prefiltered.levels; ++level)
@@ -227,6 +231,10 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
         result.irradianceImportance = createCubeTexture(format, s.importance.faceSize, 1);
         uploadCubeLevel(result.irradianceImportance, 0,
                         readCubeExr(directory / "irradiance_importance.exr", s.importance.faceSize));
+    }
+    if (s.moments.enabled) {
+        result.irradianceMoments = createCubeTexture(format, s.moments.faceSize, 1);
+        uploadCubeLevel(result.irradianceMoments, 0, readCubeExr(directory / "irradiance_moments.exr", s.moments.faceSize));
     }
     result.prefiltered = createCubeTexture(format, s.prefilter.faceSize, s.prefilter.levels);
     for (int level = 0; level < s.prefilter.levels; ++level)

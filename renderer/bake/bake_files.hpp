@@ -4,6 +4,7 @@
 //   environment.exr            the environment cube, level 0 (lower mips are rebuilt)
 //   irradiance_riemann.exr     when baked
 //   irradiance_importance.exr  when baked
+//   irradiance_moments.exr     when baked
 //   prefiltered_mip<k>.exr     one file per mip, k = 0 .. levels - 1
 //   sh.json                    kSh9Convention, radiance / irradiance / windowed irradiance
 //   bake.json                  written last: format, source, content hash, settings, sizes,

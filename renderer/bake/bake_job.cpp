@@ -32,10 +32,16 @@ int rowsPerStep(double budget, double rowCost, int size)
 
 std::size_t BakeResult::gpuBytes() const
 {
-    std::size_t total = environmentCube.bytes() + irradianceRiemann.bytes() + irradianceImportance.bytes() + prefiltered.bytes();
+    std::size_t total = environmentCube.bytes() + irradianceRiemann.bytes() + irradianceImportance.bytes() +
+                        irradianceMoments.bytes() + prefiltered.bytes();
     for (const BakedTexture& lut : brdfLut)
         total += lut.bytes();
     return total;
+}
+
+const BakedTexture& BakeResult::irradianceCube() const
+{
+    return irradianceMoments ? irradianceMoments : irradianceImportance ? irradianceImportance : irradianceRiemann;
 }
 
 double BakeResult::phaseMilliseconds(std::string_view phase) const
@@ -68,11 +74,18 @@ void BakeJob::planCubeSlices(const std::string& phase, const std::string& group,
 {
     const int size = std::max(faceSize >> level, 1);
     const double rowCost = double(size) * samplesPerTexel;
-    const int rows = rowsPerStep(double(result_.settings.samplesPerStep), rowCost, size);
-    for (int face = 0; face < 6; ++face)
+    const double budget = double(result_.settings.samplesPerStep);
+    const int rows = rowsPerStep(budget, rowCost, size);
+    // Whole faces fit a step: as many of them per step as the budget allows.
+    const int facesPerStep = rows < size ? 1 : int(std::clamp(budget / (rowCost * size), 1.0, 6.0));
+    for (int face = 0; face < 6; face += facesPerStep)
         for (int row = 0; row < size; row += rows) {
-            const CubeSlice slice{level, face, row, std::min(rows, size - row)};
-            steps_.push_back({phase, group, rowCost * slice.rowCount, [run, slice] { run(slice); }});
+            const CubeSlice slice{.level = level,
+                                  .firstFace = face,
+                                  .faceCount = std::min(facesPerStep, 6 - face),
+                                  .firstRow = row,
+                                  .rowCount = std::min(rows, size - row)};
+            steps_.push_back({phase, group, rowCost * slice.rowCount * slice.faceCount, [run, slice] { run(slice); }});
         }
 }
 
@@ -84,7 +97,12 @@ void BakeJob::plan()
     const int envFace = environmentFaceSize(s.cube, image_.width, image_.height);
     const int envLevels = std::bit_width(unsigned(envFace)); // full chain down to 1x1
 
-    steps_.push_back({"shaders", "", kCompileCost, [this] { passes_.compileAll(); }});
+    const int equirectLevels = BakePasses::equirectLevelsForCube(image_.width, image_.height, envFace);
+    steps_.push_back({"shaders", "", kCompileCost, [this, equirectLevels] {
+                          // The LUTs' program only when no cache could have them.
+                          const LutSettings& lut = result_.settings.lut;
+                          passes_.compileFor(result_.settings, equirectLevels, cache_ == nullptr && (lut.schlickGgx || lut.heightCorrelatedSmith));
+                      }});
     if (cache_)
         steps_.push_back({"cache_lookup", "", sourceTexels, [this] {
                               const MipBuilder buildMips = [this](const BakedTexture& t) { passes_.generateMips(t); };
@@ -94,14 +112,16 @@ void BakeJob::plan()
                               }
                           }});
 
-    steps_.push_back({"upload", kEnvironmentGroup, sourceTexels, [this, format, envFace, envLevels] {
-                          equirect_ = passes_.uploadEquirect(image_);
+    steps_.push_back({"upload", kEnvironmentGroup, sourceTexels, [this, format, envFace, envLevels, equirectLevels] {
+                          equirect_ = passes_.uploadEquirect(image_, equirectLevels);
                           const BakeSettings& st = result_.settings;
                           result_.environmentCube = createCubeTexture(format, envFace, envLevels);
                           if (st.riemann.enabled)
                               result_.irradianceRiemann = createCubeTexture(format, st.riemann.faceSize, 1);
                           if (st.importance.enabled)
                               result_.irradianceImportance = createCubeTexture(format, st.importance.faceSize, 1);
+                          if (st.moments.enabled)
+                              result_.irradianceMoments = createCubeTexture(format, st.moments.faceSize, 1);
                           result_.prefiltered = createCubeTexture(format, st.prefilter.faceSize, st.prefilter.levels);
                       }});
 
@@ -140,6 +160,17 @@ void BakeJob::plan()
                            passes_.irradianceImportance(result_.environmentCube, result_.irradianceImportance, slice,
                                                         result_.settings.importance, result_.settings.exactTexelSolidAngle);
                        });
+
+    if (s.moments.enabled) {
+        steps_.push_back({"irradiance_moments", kEnvironmentGroup, double(envFace) * envFace * 6.0, [this] {
+                              momentTexels_ = passes_.buildIrradianceMoments(result_.environmentCube, result_.settings.moments);
+                          }});
+        const double groups = 6.0 * s.moments.sourceFaceSize * s.moments.sourceFaceSize;
+        // A group costs a few multiply-adds, about a tenth of a filtered texture read.
+        planCubeSlices("irradiance_moments", kEnvironmentGroup, s.moments.faceSize, 0, groups / 10.0, [this](const CubeSlice& slice) {
+            passes_.irradianceMoments(momentTexels_, result_.irradianceMoments, slice);
+        });
+    }
 
     for (int level = 0; level < s.prefilter.levels; ++level)
         planCubeSlices("prefilter", kEnvironmentGroup, s.prefilter.faceSize, level, double(prefilterSamples(s.prefilter, level)),
@@ -227,6 +258,7 @@ bool BakeJob::step()
     if (steps_.empty()) {
         // The intermediates are not part of the result.
         equirect_.reset();
+        momentTexels_ = {};
         image_ = {};
     }
     return !steps_.empty();

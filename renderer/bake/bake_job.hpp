@@ -7,8 +7,8 @@
 //   BakeResult result = job.takeResult();
 //   BakeResult result = BakeJob(shaders, environment, settings).runToCompletion();   // CLI
 //
-// A step is at most one face of one mip (or a band of its rows, settings.samplesPerStep),
-// one SH projection, one cache read or write. Every step ends with glFinish, so per-phase
+// A step is about settings.samplesPerStep texture samples of one pass on one mip (a band of
+// rows of a face, or one or more whole faces), one SH projection, one cache read or write. Every step ends with glFinish, so per-phase
 // timings are wall-clock GPU time (llvmpipe's timer queries are wrong) and a step never
 // leaves work queued behind the caller's frame. Needs the context that was current when the
 // job was made to be current at every call. Step failures (a shader that does not compile,
@@ -72,6 +72,7 @@ private:
     BakeResult result_;
     ImageRGB32F image_;
     gl::Texture equirect_;
+    MomentTexels momentTexels_; // irradiance_moments' groups, between its steps
     std::deque<Step> steps_;
     double totalCost_ = 0.0;
     double doneCost_ = 0.0;

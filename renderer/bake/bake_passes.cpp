@@ -1,12 +1,16 @@
 #include "bake/bake_passes.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "bake/prefilter_lod.hpp"
+#include "bake/source_samples.hpp"
+#include "environment/error.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
 
@@ -17,6 +21,10 @@ constexpr const char* kEquirectToCube = "bake/equirect_to_cube.comp";
 constexpr const char* kSh9Project = "bake/sh9_project.comp";
 constexpr const char* kIrradianceRiemann = "bake/irradiance_riemann.comp";
 constexpr const char* kIrradianceImportance = "bake/irradiance_importance.comp";
+constexpr const char* kIrradianceMomentsBuild = "bake/irradiance_moments_build.comp";
+constexpr const char* kIrradianceMoments = "bake/irradiance_moments.comp";
+// The size of moment_texel.glsl's MomentTexel: 6 vec4.
+constexpr GLsizeiptr kMomentTexelBytes = 6 * 4 * sizeof(float);
 constexpr const char* kPrefilter = "bake/prefilter_ggx.comp";
 constexpr const char* kBrdfLut = "bake/brdf_lut.comp";
 constexpr const char* kDownsample = "bake/downsample.comp";
@@ -53,6 +61,7 @@ void clearPassBindings()
     glBindTextureUnit(1, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
 }
 
 GLuint groupsFor(int n) { return GLuint((n + 7) / 8); }
@@ -74,30 +83,63 @@ int BakePasses::riemannThetaSteps(float sampleDelta)
     return std::max(1, int(std::lround(0.5 * kPi / double(sampleDelta))));
 }
 
-void BakePasses::compileAll()
+void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bool lut)
 {
-    for (const char* file : {kEquirectToCube, kSh9Project, kIrradianceRiemann, kIrradianceImportance, kPrefilter, kBrdfLut})
-        shaders_.program({file});
-    for (const char* cube : {"0", "1"})
-        for (const char* format : {"rgba16f", "rgba32f"})
-            shaders_.program({kDownsample}, {{"CUBE", cube}, {"FORMAT", format}});
+    const GLenum format = settings.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
+    shaders_.program({kEquirectToCube});
+    if (equirectLevels > 1)
+        shaders_.program({kDownsample}, {{"CUBE", "0"}, {"FORMAT", imageFormatName(GL_RGBA32F)}});
+    shaders_.program({kDownsample}, {{"CUBE", "1"}, {"FORMAT", imageFormatName(format)}});
+    if (settings.sh.device == ShDevice::Gpu)
+        shaders_.program({kSh9Project});
+    if (settings.riemann.enabled)
+        shaders_.program({kIrradianceRiemann});
+    if (settings.importance.enabled)
+        shaders_.program({kIrradianceImportance});
+    if (settings.moments.enabled) {
+        shaders_.program({kIrradianceMomentsBuild}, {{"FORMAT", imageFormatName(format)}});
+        momentsProgram(settings.moments.sourceFaceSize);
+    }
+    shaders_.program({kPrefilter});
+    if (lut)
+        shaders_.program({kBrdfLut});
+}
+
+const gl::ShaderProgram& BakePasses::momentsProgram(int groupsPerEdge)
+{
+    return shaders_.program({kIrradianceMoments}, {{"GROUPS", std::to_string(6 * groupsPerEdge * groupsPerEdge)}});
 }
 
 const gl::ShaderProgram& BakePasses::cubeProgram(const char* file) { return shaders_.program({file}); }
 
-gl::Texture BakePasses::uploadEquirect(const ImageRGB32F& image)
+int BakePasses::equirectLevelsForCube(int width, int height, int faceSize)
+{
+    const int full = 1 + int(std::floor(std::log2(double(std::max(width, height)))));
+    const double maxLod = std::log2(2.0 * double(height) / (kPi * double(faceSize)));
+    return std::clamp(1 + int(std::lround(maxLod)), 1, full);
+}
+
+gl::Texture BakePasses::uploadEquirect(const ImageRGB32F& image, int levels)
 {
     // RGBA32F, not RGB32F: the mips are built by image load/store, which RGB formats lack.
-    const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+    const int full = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+    levels = levels > 0 ? std::min(levels, full) : full;
     gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(texture.id(), levels, GL_RGBA32F, image.width, image.height);
     // Padded to RGBA here: the upload is then a copy, where Mesa's RGB -> RGBA conversion
-    // path costs about as much as the rest of the upload and mip chain together.
-    std::vector<glm::vec4> rgba(image.texelCount());
-    for (std::size_t i = 0; i < rgba.size(); ++i)
-        rgba[i] = glm::vec4(image.texels[3 * i], image.texels[3 * i + 1], image.texels[3 * i + 2], 1.0f);
+    // path costs about as much as the rest of the upload and mip chain together. A band of
+    // rows at a time, through one buffer that stays in cache, not a padded copy of the
+    // whole image (whose fresh pages alone cost milliseconds to fault in).
+    const int bandRows = std::max(1, (256 * 1024) / int(sizeof(glm::vec4)) / std::max(image.width, 1));
+    std::vector<glm::vec4> rgba(std::size_t(bandRows) * std::size_t(image.width));
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rgba.data());
+    for (int row = 0; row < image.height; row += bandRows) {
+        const int rows = std::min(bandRows, image.height - row);
+        const float* source = image.texels.data() + std::size_t(row) * std::size_t(image.width) * 3;
+        for (std::size_t i = 0; i < std::size_t(rows) * std::size_t(image.width); ++i)
+            rgba[i] = glm::vec4(source[3 * i], source[3 * i + 1], source[3 * i + 2], 1.0f);
+        glTextureSubImage2D(texture.id(), 0, 0, row, image.width, rows, GL_RGBA, GL_FLOAT, rgba.data());
+    }
     glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -108,6 +150,8 @@ gl::Texture BakePasses::uploadEquirect(const ImageRGB32F& image)
 
 void BakePasses::downsampleChain(GLuint texture, GLenum target, GLenum internalFormat, int width, int height, int levels)
 {
+    if (levels <= 1)
+        return; // nor compile a program it would not run
     const bool cube = target == GL_TEXTURE_CUBE_MAP;
     const gl::ShaderProgram& program =
         shaders_.program({kDownsample}, {{"CUBE", cube ? "1" : "0"}, {"FORMAT", imageFormatName(internalFormat)}});
@@ -129,7 +173,7 @@ void BakePasses::downsampleChain(GLuint texture, GLenum target, GLenum internalF
 
 void BakePasses::dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const
 {
-    program.set("uFace", slice.face);
+    program.set("uFirstFace", slice.firstFace);
     program.set("uFaceSize", out.levelSize(slice.level));
     program.set("uRowOffset", slice.firstRow);
     program.set("uRowCount", slice.rowCount);
@@ -138,7 +182,7 @@ void BakePasses::dispatchCube(const gl::ShaderProgram& program, const BakedTextu
     // Layered: the shader addresses the face as the image's layer.
     glBindImageTexture(0, out.id(), slice.level, GL_TRUE, 0, GL_WRITE_ONLY, out.internalFormat);
     glUseProgram(program.id());
-    glDispatchCompute(groupsFor(out.levelSize(slice.level)), groupsFor(slice.rowCount), 1);
+    glDispatchCompute(groupsFor(out.levelSize(slice.level)), groupsFor(slice.rowCount), GLuint(slice.faceCount));
     // Later passes sample what this one wrote, or read it back, or build mips from it.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     clearPassBindings();
@@ -196,15 +240,23 @@ namespace {
 
 // What every pass that reads the environment cube with PDF-based mip selection needs:
 // the cube on unit 1 and the numbers sourceLodFromPdf[At] takes (prefilter_lod.glsl).
-void bindSource(const gl::ShaderProgram& program, const BakedTexture& environment, bool mipFiltering, float mipBias, bool exactTexelSolidAngle)
+void bindSource(const gl::ShaderProgram& program, const BakedTexture& environment, bool mipFiltering, bool exactTexelSolidAngle)
 {
     program.set("uEnvironment", 1);
     program.set("uMipFiltering", mipFiltering ? 1 : 0);
-    program.set("uMipBias", mipBias);
     program.set("uSourceFaceSize", float(environment.size));
     program.set("uExactTexelSolidAngle", exactTexelSolidAngle ? 1 : 0);
     program.set("uMaxSourceLod", float(environment.levels - 1));
     glBindTextureUnit(1, environment.id());
+}
+
+// A pass's sample table (source_samples.glsl) on storage-buffer binding 0, for one dispatch.
+gl::Buffer bindSampleTable(const std::vector<glm::vec4>& table)
+{
+    gl::Buffer buffer = gl::createBuffer();
+    glNamedBufferStorage(buffer.id(), GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+    return buffer;
 }
 
 } // namespace
@@ -216,7 +268,8 @@ void BakePasses::irradianceRiemann(const BakedTexture& environment, const BakedT
     const gl::ShaderProgram& program = cubeProgram(kIrradianceRiemann);
     program.set("uPhiSteps", riemannPhiSteps(settings.sampleDelta));
     program.set("uThetaSteps", riemannThetaSteps(settings.sampleDelta));
-    bindSource(program, environment, settings.mipFiltering, settings.mipBias, exactTexelSolidAngle);
+    program.set("uMipBias", settings.mipBias);
+    bindSource(program, environment, settings.mipFiltering, exactTexelSolidAngle);
     dispatchCube(program, out, slice);
 }
 
@@ -225,24 +278,92 @@ void BakePasses::irradianceImportance(const BakedTexture& environment, const Bak
 {
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kIrradianceImportance);
-    program.set("uSampleCount", settings.samples);
-    bindSource(program, environment, settings.mipFiltering, settings.mipBias, exactTexelSolidAngle);
+    const gl::Buffer table = bindSampleTable(cosineSampleTable(settings.samples, settings.mipBias));
+    bindSource(program, environment, settings.mipFiltering, exactTexelSolidAngle);
+    dispatchCube(program, out, slice);
+}
+
+MomentTexels BakePasses::buildIrradianceMoments(const BakedTexture& environment, const MomentIrradianceSettings& settings)
+{
+    const int groups = std::min(settings.sourceFaceSize, environment.size);
+    // A group's moment is exact for the texels it reads; 16 x 16 of them per group put any
+    // point of light within 1/32 of a group of where it is (32 x 32 changed no error in the
+    // third digit on the bundled maps).
+    int fineLevel = 0;
+    while (environment.levelSize(fineLevel) > 16 * groups && fineLevel + 1 < environment.levels)
+        ++fineLevel;
+    const gl::ShaderProgram& program =
+        shaders_.program({kIrradianceMomentsBuild}, {{"FORMAT", imageFormatName(environment.internalFormat)}});
+    const GLsizeiptr bytes = kMomentTexelBytes * 6 * groups * groups;
+    GLint maxBlockBytes = 0;
+    glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &maxBlockBytes);
+    if (bytes > maxBlockBytes)
+        throw Error("moment irradiance", std::to_string(6 * groups * groups) + " groups need a " + std::to_string(bytes) +
+                                             "-byte uniform block; this GL driver allows " + std::to_string(maxBlockBytes) +
+                                             " (lower moments.sourceFaceSize)");
+    gl::Buffer buffer = gl::createBuffer();
+    glNamedBufferStorage(buffer.id(), bytes, nullptr, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+    glBindImageTexture(1, environment.id(), fineLevel, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
+    program.set("uGroupFaceSize", groups);
+    program.set("uFineFaceSize", environment.levelSize(fineLevel));
+    glUseProgram(program.id());
+    glDispatchCompute(groupsFor(groups), groupsFor(groups), 6);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, environment.internalFormat);
+    clearPassBindings();
+    return {std::move(buffer), groups};
+}
+
+void BakePasses::irradianceMoments(const MomentTexels& groups, const BakedTexture& out, const CubeSlice& slice)
+{
+    const gl::ShaderProgram& program = momentsProgram(groups.groupsPerEdge);
+    program.set("uGroupCount", 6 * groups.groupsPerEdge * groups.groupsPerEdge);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, groups.buffer.id());
     dispatchCube(program, out, slice);
 }
 
 void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                            const PrefilterSettings& settings, bool exactTexelSolidAngle)
 {
+    if (copyMirrorLevel(environment, out, slice, settings))
+        return;
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kPrefilter);
-    program.set("uRoughness", prefilterMipRoughness(settings, slice.level));
+    const float roughness = prefilterMipRoughness(settings, slice.level);
+    const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, prefilterSamples(settings, slice.level), settings.mipBias);
+    float weightSum = 0.0f;
+    for (const glm::vec4& sample : samples)
+        weightSum += sample.z;
+    const gl::Buffer table = bindSampleTable(samples);
+    program.set("uRoughness", roughness);
+    program.set("uWeightSum", weightSum);
     program.set("uMirrorCopy", settings.mirrorCopy ? 1 : 0);
-    program.set("uSampleCount", prefilterSamples(settings, slice.level));
-    bindSource(program, environment, settings.mipFiltering, settings.mipBias, exactTexelSolidAngle);
+    // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop
+    // of a bake without the mirror copy does).
+    bindSource(program, environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
     const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
     program.set("uCopyLod", std::clamp(copyLod, 0.0f, float(environment.levels - 1)));
     dispatchCube(program, out, slice);
+}
+
+bool BakePasses::copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
+                                 const PrefilterSettings& settings)
+{
+    // The mirror level reads the source mip with its own texel size at texel centres, which
+    // is that mip's texels themselves: a copy, when the formats and sizes match.
+    if (!settings.mirrorCopy || prefilterMipRoughness(settings, slice.level) > 0.0f || environment.internalFormat != out.internalFormat)
+        return false;
+    int sourceLevel = 0;
+    while (sourceLevel + 1 < environment.levels && environment.levelSize(sourceLevel) > out.levelSize(slice.level))
+        ++sourceLevel;
+    if (environment.levelSize(sourceLevel) != out.levelSize(slice.level))
+        return false;
+    glCopyImageSubData(environment.id(), GL_TEXTURE_CUBE_MAP, sourceLevel, 0, slice.firstRow, slice.firstFace, out.id(),
+                       GL_TEXTURE_CUBE_MAP, slice.level, 0, slice.firstRow, slice.firstFace, out.levelSize(slice.level),
+                       slice.rowCount, slice.faceCount);
+    return true;
 }
 
 std::vector<glm::vec3> BakePasses::samplePrefiltered(const BakedTexture& prefiltered, RoughnessLayout layout,

@@ -1,6 +1,6 @@
 #pragma once
 // The GPU passes of a bake, each a compute dispatch over a slice of its output (a band of
-// rows of one face of one mip) so that a job can cut the work into short steps. Each pass
+// rows of one or more faces of one mip) so that a job can cut the work into short steps. Each pass
 // sets the GL state it needs (program, texture and image units, seamless cube filtering)
 // and leaves those bindings as it found them (seamless filtering) or cleared (units).
 #include <cstdint>
@@ -17,12 +17,20 @@
 
 namespace iblab::bake {
 
-// A band of rows of one face of one mip.
+// A band of rows of faces [firstFace, firstFace + faceCount) of one mip.
 struct CubeSlice {
     int level = 0;
-    int face = 0;
+    int firstFace = 0;
+    int faceCount = 1;
     int firstRow = 0;
     int rowCount = 0;
+};
+
+// The groups of environment texels the moment irradiance sums over, in a uniform buffer
+// of moment_texel.glsl's MomentTexel.
+struct MomentTexels {
+    gl::Buffer buffer;
+    int groupsPerEdge = 0; // 6 groupsPerEdge^2 groups
 };
 
 // Largest finite value the texture's format stores (half: 65504).
@@ -32,12 +40,21 @@ class BakePasses {
 public:
     explicit BakePasses(gl::ShaderLibrary& shaders) : shaders_(shaders) {}
 
-    // Compiles every program the passes use (Mesa caches compiled shaders on disk: the
-    // first run on a machine is cold, later ones warm).
-    void compileAll();
+    // Compiles the programs a bake with these settings runs (Mesa caches compiled shaders on
+    // disk: the first run on a machine is cold, later ones warm), the BRDF LUT's only with
+    // `lut` (a bake compiles it when it misses the LUT cache), the 2D downsample only for an
+    // equirect of more than one level. Each program compiled costs a few milliseconds even
+    // when cached, so a bake compiles no program it does not run.
+    void compileFor(const BakeSettings& settings, int equirectLevels, bool lut);
 
-    // The equirect as a mip-mapped RGBA32F 2D texture (REPEAT in s, CLAMP_TO_EDGE in t).
-    gl::Texture uploadEquirect(const ImageRGB32F& image);
+    // The equirect levels equirectToCube reads for a cube of faceSize texels per edge: its
+    // footprint's minor axis is at most a face-centre texel, 2/f rad, against an equirect
+    // row's pi/H, so its lod is at most log2(2H / (pi f)); levels are built up to that lod
+    // rounded to the nearest (a footprint of under 1.5 texels is read bilinearly at lod 0).
+    static int equirectLevelsForCube(int width, int height, int faceSize);
+    // The equirect as an RGBA32F 2D texture (REPEAT in s, CLAMP_TO_EDGE in t) with `levels`
+    // mips (0: the full chain).
+    gl::Texture uploadEquirect(const ImageRGB32F& image, int levels = 0);
     void equirectToCube(GLuint equirect, const BakedTexture& cube, const CubeSlice& slice);
     // Levels 1.. from level 0 by 2x2 box averages (downsample.comp), per face for cubes.
     void generateMips(const BakedTexture& texture);
@@ -51,6 +68,14 @@ public:
                            const RiemannIrradianceSettings& settings, bool exactTexelSolidAngle);
     void irradianceImportance(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                               const ImportanceIrradianceSettings& settings, bool exactTexelSolidAngle);
+    // The environment's texels in groups (the texels of a settings.sourceFaceSize^2 cube),
+    // each with its flux and first moment per channel (irradiance_moments_build.comp), read
+    // from the finest level that has at most 32 x 32 texels per group.
+    // (At most one group per texel: an environment face smaller than sourceFaceSize has
+    // that many groups per edge.)
+    MomentTexels buildIrradianceMoments(const BakedTexture& environment, const MomentIrradianceSettings& settings);
+    // Irradiance from those groups (irradiance_moments.comp).
+    void irradianceMoments(const MomentTexels& groups, const BakedTexture& out, const CubeSlice& slice);
     void prefilter(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice, const PrefilterSettings& settings,
                    bool exactTexelSolidAngle);
     // What shading reads for each query (xyz = direction, w = roughness): textureLod at the
@@ -65,6 +90,11 @@ public:
 
 private:
     const gl::ShaderProgram& cubeProgram(const char* file);
+    const gl::ShaderProgram& momentsProgram(int groupsPerEdge);
+    // The prefilter's mirror level (roughness 0 with mirrorCopy) as a texel copy of the
+    // environment's mip of the same size, where there is one; false: nothing done.
+    bool copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
+                         const PrefilterSettings& settings);
     void downsampleChain(GLuint texture, GLenum target, GLenum internalFormat, int width, int height, int levels);
     void dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const;
 

@@ -32,7 +32,7 @@ BakeSettings tutorialPreset()
     s.preset = "tutorial";
     s.cube.faceSize = 512;
     s.riemann = {.enabled = true, .faceSize = 32, .sampleDelta = 0.025f, .mipFiltering = false, .mipBias = 0.0f};
-    s.importance.enabled = false;
+    s.moments.enabled = false;
     // LearnOpenGL's prefilter samples every mip, the mirror level included (below).
     s.prefilter = {.faceSize = 128,
                    .levels = 5,
@@ -59,7 +59,7 @@ BakeSettings filamentPreset()
     s.preset = "filament";
     s.exactTexelSolidAngle = false;
     s.cube.faceSize = 256;
-    s.importance.enabled = false;
+    s.moments.enabled = false;
     s.prefilter = {.faceSize = 256,
                    .levels = 5,
                    .layout = RoughnessLayout::Quadratic,
@@ -85,6 +85,7 @@ BakeSettings gltfViewerPreset()
     s.exactTexelSolidAngle = false;
     s.cube.faceSize = 256;
     s.importance = {.enabled = true, .faceSize = 32, .samples = 2048, .mipFiltering = true, .mipBias = 1.8257f};
+    s.moments.enabled = false;
     s.prefilter = {.faceSize = 256,
                    .levels = 5,
                    .layout = RoughnessLayout::Linear,
@@ -154,6 +155,9 @@ void validate(const BakeSettings& s)
     require(s.importance.samples >= 1 && s.importance.samples <= 65536, "importance.samples",
             "must be 1..65536, " + got(s.importance.samples));
     require(std::isfinite(s.importance.mipBias), "importance.mipBias", "must be finite");
+    require(s.moments.faceSize >= 1 && s.moments.faceSize <= 1024, "moments.faceSize", "must be 1..1024, " + got(s.moments.faceSize));
+    require(s.moments.sourceFaceSize >= 1 && s.moments.sourceFaceSize <= 64, "moments.sourceFaceSize",
+            "must be 1..64, " + got(s.moments.sourceFaceSize));
     require(isPow2(s.prefilter.faceSize) && s.prefilter.faceSize <= 4096, "prefilter.faceSize",
             "must be a power of two up to 4096, " + got(s.prefilter.faceSize));
     const int maxLevels = std::bit_width(unsigned(std::max(s.prefilter.faceSize, 1)));
@@ -187,6 +191,8 @@ std::string toJsonText(const BakeSettings& s, int indent)
                                   {"samples", s.importance.samples},
                                   {"mip_filtering", s.importance.mipFiltering},
                                   {"mip_bias", s.importance.mipBias}};
+    j["irradiance_moments"] = {
+        {"enabled", s.moments.enabled}, {"face_size", s.moments.faceSize}, {"source_face_size", s.moments.sourceFaceSize}};
     j["prefilter"] = {{"face_size", s.prefilter.faceSize},
                       {"levels", s.prefilter.levels},
                       {"samples", s.prefilter.samples},

@@ -60,18 +60,27 @@ struct RiemannIrradianceSettings {
     float mipBias = 0.0f;
 };
 
-// Cosine-weighted importance sampling with PDF-based source-mip selection.
+// Cosine-weighted importance sampling with PDF-based source-mip selection. (Not in the
+// default any more: read where shading reads it, between texel centres, a 6^2 face is 7%
+// off on courtyard.exr, and a face large enough to interpolate well costs 10-50x the moment
+// cube below for the same sampling noise; docs/bake.md.)
 struct ImportanceIrradianceSettings {
-    bool enabled = true;
-    // Irradiance is so smooth that a 6^2 face read bilinearly stays within 0.65% of the exact
-    // value on courtyard.exr (2.7% on the sun-lit sunset.exr, where sampling noise dominates);
-    // the samples go into each texel instead: 6^2 x 8192 has less error than 16^2 x 1024
-    // (0.18% vs 0.60% mean on the courtyard) and than the tutorial's Riemann cube (0.26%) at
-    // 1/50 of its cost (docs/bake.md).
+    bool enabled = false;
     int faceSize = 6;
     int samples = 8192;
     bool mipFiltering = true;
     float mipBias = 0.0f;
+};
+
+// Irradiance as a sum over groups of environment texels, each group's flux and first moment
+// per channel (irradiance_moments.comp): exact for every group above the horizon, smoothed
+// across it, no sampling noise. The groups are the texels of a sourceFaceSize^2 cube; the
+// output has the tutorial's 32^2 faces, which bilinear shading interpolates to within the
+// tutorial's own error (docs/bake.md).
+struct MomentIrradianceSettings {
+    bool enabled = true;
+    int faceSize = 32;
+    int sourceFaceSize = 8;
 };
 
 struct PrefilterSettings {
@@ -124,12 +133,16 @@ struct BakeSettings {
     ShSettings sh;
     RiemannIrradianceSettings riemann;
     ImportanceIrradianceSettings importance;
+    MomentIrradianceSettings moments;
     PrefilterSettings prefilter;
     LutSettings lut;
-    // Work per bake step, in texture samples (about 20 ms on llvmpipe per million); each
-    // step is one face x one mip, or a band of its rows when that is more than this.
+    // Work per bake step, in texture samples (about 20 ms on llvmpipe per million): a step
+    // is a band of rows of one face of one mip, or as many whole faces as fit.
+    // kUnslicedBake makes each pass one step per mip, for callers with no frame to keep.
     std::int64_t samplesPerStep = 1 << 20;
 };
+
+inline constexpr std::int64_t kUnslicedBake = std::int64_t(1) << 62;
 
 inline constexpr std::array<GeometryTerm, 2> kGeometryTerms{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith};
 

@@ -9,10 +9,13 @@ namespace iblab::shared {
 }
 
 namespace iblab::bake {
+using shared::cubeAverageTexelSolidAngle;
 using shared::cubeTexelSolidAngle;
 using shared::prefilterMipFromRoughness;
 using shared::prefilterRoughnessFromMip;
 using shared::sourceLodFromPdf;
 using shared::sourceLodFromPdfAt;
+using shared::sourceLodFromSampleTerm;
 using shared::sourceLodFromSolidAngle;
+using shared::sourceLodSampleTerm;
 }

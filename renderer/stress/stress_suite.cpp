@@ -279,7 +279,8 @@ BakeHealth measureBakeHealth(const std::string& name, const bake::BakeResult& re
 {
     BakeHealth health;
     health.environment = name;
-    for (const bake::BakedTexture* t : {&result.environmentCube, &result.prefiltered, &result.irradianceImportance, &result.irradianceRiemann}) {
+    for (const bake::BakedTexture* t : {&result.environmentCube, &result.prefiltered, &result.irradianceImportance, &result.irradianceRiemann,
+                                        &result.irradianceMoments}) {
         if (!*t) continue;
         for (int level = 0; level < t->levels; ++level) countInvalid(bake::readCubeLevel(*t, level).texels, health);
     }
@@ -676,8 +677,8 @@ StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
                        kSeamWarn, kSeamFail, "jump across cube edges / step inside faces");
             report.seams.push_back(seam);
         }
-        if (result->irradianceImportance) {
-            SeamReading seam = measureSeams(bake::readCubeLevel(result->irradianceImportance, 0));
+        if (result->irradianceCube()) {
+            SeamReading seam = measureSeams(bake::readCubeLevel(result->irradianceCube(), 0));
             seam.environment = env.name;
             seam.texture = "irradiance";
             addFinding(report.findings, {"seams", env.name, "splitsum-irradiance-cube", "irradiance cube", seam.ratio, "", Verdict::Pass}, kSeamWarn,

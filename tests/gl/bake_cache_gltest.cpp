@@ -46,6 +46,7 @@ void expectSameResults(const bake::BakeResult& a, const bake::BakeResult& b)
     expectSameTexels(a.environmentCube, b.environmentCube, "environment cube");
     expectSameTexels(a.irradianceRiemann, b.irradianceRiemann, "Riemann irradiance");
     expectSameTexels(a.irradianceImportance, b.irradianceImportance, "importance irradiance");
+    expectSameTexels(a.irradianceMoments, b.irradianceMoments, "moment irradiance");
     expectSameTexels(a.prefiltered, b.prefiltered, "prefiltered");
     for (GeometryTerm term : bake::kGeometryTerms)
         expectSameTexels(a.lut(term), b.lut(term), std::string(geometryTermName(term)));
@@ -205,7 +206,7 @@ TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
     // Each texel is computed by the same code from the same inputs whichever dispatch it is in.
     expectSameResults(sliced, unsliced);
     for (const char* phase : {"shaders", "upload", "environment_cube", "sh9", "irradiance_riemann", "irradiance_importance",
-                              "prefilter", "brdf_lut"})
+                              "irradiance_moments", "prefilter", "brdf_lut"})
         EXPECT_GT(sliced.phaseMilliseconds(phase), 0.0) << phase;
     EXPECT_GT(sliced.gpuBytes(), 0u);
 }

@@ -19,6 +19,7 @@ inline bake::BakeSettings smallBakeSettings()
     bake::BakeSettings s = bake::defaultPreset();
     s.riemann = {.enabled = true, .faceSize = 8, .sampleDelta = 0.05f, .mipFiltering = false, .mipBias = 0.0f};
     s.importance = {.enabled = true, .faceSize = 8, .samples = 256, .mipFiltering = true, .mipBias = 0.0f};
+    s.moments = {.enabled = true, .faceSize = 8, .sourceFaceSize = 4};
     s.prefilter = {.faceSize = 16,
                    .levels = 5,
                    .layout = bake::RoughnessLayout::Linear,

@@ -55,9 +55,10 @@ void main()
         return;
     vec2 st = outputTexelFaceUv(texel);
     float halfTexel = 0.5 / float(uFaceSize);
-    vec3 d = cubeFaceUvToDirection(uFace, st);
+    int face = outputFace();
+    vec3 d = cubeFaceUvToDirection(face, st);
     // The texel's edges as direction changes (central differences across the texel).
-    vec3 ds = cubeFaceUvToDirection(uFace, st + vec2(halfTexel, 0.0)) - cubeFaceUvToDirection(uFace, st - vec2(halfTexel, 0.0));
-    vec3 dt = cubeFaceUvToDirection(uFace, st + vec2(0.0, halfTexel)) - cubeFaceUvToDirection(uFace, st - vec2(0.0, halfTexel));
+    vec3 ds = cubeFaceUvToDirection(face, st + vec2(halfTexel, 0.0)) - cubeFaceUvToDirection(face, st - vec2(halfTexel, 0.0));
+    vec3 dt = cubeFaceUvToDirection(face, st + vec2(0.0, halfTexel)) - cubeFaceUvToDirection(face, st - vec2(0.0, halfTexel));
     storeOutput(texel, sampleFootprint(directionToEquirectUv(d), equirectUvDifferential(d, ds), equirectUvDifferential(d, dt)));
 }

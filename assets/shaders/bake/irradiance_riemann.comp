@@ -13,23 +13,12 @@
 // source, and needs the tutorial's fine grid on a smooth one).
 #include "common/conventions.glsl"
 #include "common/sampling.glsl"
-#include "common/prefilter_lod.glsl"
 #include "bake/cube_texel.glsl"
+#include "bake/source_read.glsl"
 
-uniform samplerCube uEnvironment;
 uniform int uPhiSteps;
 uniform int uThetaSteps;
-uniform int uMipFiltering;
 uniform float uMipBias;
-uniform float uSourceFaceSize;
-uniform int uExactTexelSolidAngle; // 1: the texel read (sourceLodFromPdfAt), 0: the face average
-uniform float uMaxSourceLod;
-
-float texelSolidAngle(vec3 l)
-{
-    return uExactTexelSolidAngle != 0 ? cubeTexelSolidAngle(l, uSourceFaceSize)
-                                      : 12.566370614359172 / (6.0 * uSourceFaceSize * uSourceFaceSize);
-}
 
 void main()
 {
@@ -49,14 +38,12 @@ void main()
         float cosTheta = cos(theta);
         // The cell's solid angle: integral of sin(theta) dtheta dphi.
         float cellSolidAngle = (cos(float(t) * dTheta) - cos(float(t + 1) * dTheta)) * dPhi;
+        float cellLodTerm = sourceLodSampleTerm(cellSolidAngle, uMipBias);
         vec3 ring = vec3(0.0);
         for (int p = 0; p < uPhiSteps; ++p) {
             float phi = (float(p) + 0.5) * dPhi;
             vec3 l = frame * vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
-            float lod = 0.0;
-            if (uMipFiltering != 0)
-                lod = clamp(sourceLodFromSolidAngle(cellSolidAngle, texelSolidAngle(l), uMipBias), 0.0, uMaxSourceLod);
-            ring += textureLod(uEnvironment, l, lod).rgb;
+            ring += readSource(cellLodTerm, l);
         }
         irradiance += ring * weight;
     }

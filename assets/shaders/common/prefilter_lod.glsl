@@ -45,12 +45,31 @@ IBL_FN float cubeTexelSolidAngle(vec3 d, float faceSize)
     return 4.0f * m * m * m / (faceSize * faceSize);
 }
 
+// The face average, 4 pi / (6 f^2): what LearnOpenGL and Filament use for every texel.
+IBL_FN float cubeAverageTexelSolidAngle(float faceSize)
+{
+    return 12.566370614359172f / (6.0f * faceSize * faceSize);
+}
+
 // The source lod whose texels are as large as a sample's share of the sphere: a mip texel
 // covers 4^lod base texels, so lod = log4(Omega_s / Omega_p) = 0.5 log2(Omega_s / Omega_p),
 // plus a bias. Negative means finer than mip 0; the caller clamps to the chain.
+// Split in a sample's term and a texel's term, so that a pass whose samples come from a
+// table (renderer/bake/source_samples.hpp) computes the first once per sample on the host
+// and only the second per texel read.
+IBL_FN float sourceLodSampleTerm(float sampleSolidAngle, float bias)
+{
+    return 0.5f * log2(sampleSolidAngle) + bias;
+}
+
+IBL_FN float sourceLodFromSampleTerm(float sampleTerm, float texelSolidAngle)
+{
+    return sampleTerm - 0.5f * log2(texelSolidAngle);
+}
+
 IBL_FN float sourceLodFromSolidAngle(float sampleSolidAngle, float texelSolidAngle, float bias)
 {
-    return 0.5f * log2(sampleSolidAngle / texelSolidAngle) + bias;
+    return sourceLodFromSampleTerm(sourceLodSampleTerm(sampleSolidAngle, bias), texelSolidAngle);
 }
 
 // PDF-based source-mip selection ("filtered importance sampling", Krivanek & Colbert 2008,
@@ -61,8 +80,7 @@ IBL_FN float sourceLodFromSolidAngle(float sampleSolidAngle, float texelSolidAng
 // texels, more blur).
 IBL_FN float sourceLodFromPdf(float pdf, float sampleCount, float sourceFaceSize, float bias)
 {
-    return sourceLodFromSolidAngle(1.0f / (sampleCount * pdf), 12.566370614359172f / (6.0f * sourceFaceSize * sourceFaceSize),
-                                   bias);
+    return sourceLodFromSolidAngle(1.0f / (sampleCount * pdf), cubeAverageTexelSolidAngle(sourceFaceSize), bias);
 }
 
 // The same with Omega_p the solid angle of the texel the sample actually reads, in direction

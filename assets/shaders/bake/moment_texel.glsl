@@ -1,0 +1,14 @@
+// One group of environment texels as the moment irradiance reads it (irradiance_moments.comp
+// uses it, irradiance_moments_build.comp makes it; renderer/bake/bake_passes.cpp sizes the
+// buffer from it: 6 vec4, 96 bytes). Per channel c the flux Phi_c = integral of L_c dOmega
+// over the group and the first moment mu_c = (integral of L_c w dOmega) / Phi_c; for the
+// luminance Y the first moment mu_Y and the second, S = (integral of Y w w^T dOmega) / Phi_Y,
+// from which the spread of n.w over the group follows: var = n^T S n - (n . mu_Y)^2.
+struct MomentTexel {
+    vec4 flux;               // rgb: Phi_c
+    vec4 momentRAndSxx;      // xyz: mu_r; w: S_xx
+    vec4 momentGAndSyy;
+    vec4 momentBAndSzz;
+    vec4 momentYAndSxy;      // xyz: mu_Y; w: S_xy
+    vec4 secondMomentXzYz;   // x: S_xz; y: S_yz
+};

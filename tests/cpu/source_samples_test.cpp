@@ -1,0 +1,71 @@
+// The bake's sample tables (renderer/bake/source_samples.hpp) against the samplers they are
+// built from: each entry is the sampler's direction, and its lod term, completed with the
+// texel's term, is the PDF-based lod prefilter_lod.glsl computes from the pdf directly.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/glm.hpp>
+
+#include "bake/prefilter_lod.hpp"
+#include "bake/source_samples.hpp"
+#include "ibl/sampling.hpp"
+
+namespace iblab::bake {
+namespace {
+
+constexpr float kFaceSize = 256.0f;
+constexpr float kBias = 0.5f;
+
+// A frame that is not the identity, so the texel term depends on the world direction.
+const Frame kFrame = tangentFrame(glm::normalize(glm::dvec3(0.3, 0.8, -0.5)));
+
+TEST(SourceSamples, CosineTableIsTheSamplerWithItsLod)
+{
+    const int n = 64;
+    const std::vector<glm::vec4> table = cosineSampleTable(n, kBias);
+    ASSERT_EQ(table.size(), std::size_t(n));
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec3 l = sampleCosineHemisphere(hammersley(std::uint32_t(i), std::uint32_t(n)));
+        const glm::vec4 e = table[std::size_t(i)];
+        EXPECT_NEAR(glm::length(glm::dvec3(glm::vec3(e)) - l), 0.0, 1e-6) << i;
+        const glm::vec3 world(kFrame.toWorld(l));
+        const float direct = sourceLodFromPdfAt(world, float(pdfCosineHemisphere(l)), float(n), kFaceSize, kBias);
+        EXPECT_NEAR(sourceLodFromSampleTerm(e.w, cubeTexelSolidAngle(world, kFaceSize)), direct, 1e-4f) << i;
+    }
+}
+
+TEST(SourceSamples, GgxTableKeepsTheSamplesAboveTheHorizonWithTheirLod)
+{
+    const int n = 256;
+    const float roughness = 0.8f; // wide enough that some reflected directions fall below
+    const double alpha = double(roughness) * roughness;
+    const std::vector<glm::vec4> table = ggxReflectedSampleTable(roughness, n, kBias);
+    std::size_t next = 0;
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec3 h = sampleGgxHalfVector(hammersley(std::uint32_t(i), std::uint32_t(n)), alpha);
+        const glm::dvec3 l = 2.0 * h.z * h - glm::dvec3(0.0, 0.0, 1.0);
+        if (l.z <= 0.0)
+            continue;
+        ASSERT_LT(next, table.size());
+        const glm::vec4 e = table[next++];
+        EXPECT_NEAR(glm::length(glm::dvec3(glm::vec3(e)) - l), 0.0, 1e-6) << i;
+        const glm::vec3 world(kFrame.toWorld(l));
+        // The lod counts all n samples drawn, the dropped ones included.
+        const float pdf = float(pdfGgxReflected(pdfGgxHalfVector(h, alpha), h.z));
+        EXPECT_NEAR(sourceLodFromSampleTerm(e.w, cubeTexelSolidAngle(world, kFaceSize)),
+                    sourceLodFromPdfAt(world, pdf, float(n), kFaceSize, kBias), 1e-4f) << i;
+    }
+    EXPECT_EQ(next, table.size());
+    EXPECT_LT(table.size(), std::size_t(n)) << "roughness 0.8 drops some samples below the horizon";
+}
+
+TEST(SourceSamples, RoughnessZeroIsEverySampleOnTheNormal)
+{
+    const std::vector<glm::vec4> table = ggxReflectedSampleTable(0.0f, 16, kBias);
+    ASSERT_EQ(table.size(), 16u);
+    for (const glm::vec4& e : table)
+        EXPECT_EQ(glm::vec3(e), glm::vec3(0.0f, 0.0f, 1.0f));
+}
+
+} // namespace
+} // namespace iblab::bake
