@@ -18,10 +18,12 @@ e = json.load(sys.stdin)["errors"]
 mips = " ".join("%.3g (r %.2f)" % (m["relative_rmse"], m["roughness"]) for m in e["prefilter"])
 shaded = [m["relative_rmse"] for m in e["prefilter_shaded"]]
 irr = "; ".join("%s %.2g / %.2g" % (k, v["mean_relative"], v["max_relative"]) for k, v in e["irradiance"].items() if isinstance(v, dict))
+shaded_irr = "; ".join("%s %.2g / %.2g" % (k, v["mean_relative"], v["max_relative"]) for k, v in e["irradiance_shaded"].items())
 lut = "; ".join("%s %.2g" % (k, v) for k, v in e["lut_max_abs"].items())
 print("    per mip: %s" % mips)
 print("    as shaded, roughness 0, 0.1 .. 1: %s | RMS %.3g, max %.3g" % (" ".join("%.3f" % x for x in shaded), e["prefilter_shaded_rms"], max(shaded)))
-print("    diffuse mean / max: %s | LUT max abs: %s" % (irr, lut))'
+print("    diffuse mean / max at texel centres: %s" % irr)
+print("    diffuse mean / max as shaded: %s | LUT max abs: %s" % (shaded_irr, lut))'
 }
 for env in "$@"; do
   [ -f "$env" ] || { echo "measure-bake: $env: no such file" >&2; exit 2; }

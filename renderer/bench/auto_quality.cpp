@@ -332,6 +332,9 @@ bake::BakeSettings appliedBakeSettings(const AutoChoice& choice, bake::BakeSetti
     current.riemann.enabled = false;
     current.importance = readsCube(p) ? p.bake.importance : current.importance;
     current.importance.enabled = readsCube(p);
+    // Its candidates measure the importance-sampled cube, which shading reads only without
+    // the moment cube (BakeResult::irradianceCube).
+    current.moments.enabled = false;
     return current;
 }
 

@@ -59,6 +59,7 @@ bake::BakeSettings benchBaseBake(bool quick)
     b.preset = quick ? "bench-quick" : "bench";
     b.riemann.enabled = false;
     b.importance.enabled = false;
+    b.moments.enabled = false;
     b.lut.schlickGgx = SamplingSettings{}.geometry == GeometryTerm::SchlickGGX;
     b.lut.heightCorrelatedSmith = !b.lut.schlickGgx;
     if (quick) {
@@ -147,6 +148,19 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
         points.push_back(p);
     }
+    for (int groups : quick ? std::vector<int>{4} : std::vector<int>{4, 8}) {
+        SweepPoint p;
+        p.family = "diffuse";
+        p.series = "moment cube";
+        p.label = "diffuse irradiance cube, moments of " + std::to_string(groups) + "^2 texel groups per face";
+        p.parameter = groups;
+        p.bake = base;
+        p.bake.moments.enabled = true;
+        p.bake.moments.sourceFaceSize = groups;
+        if (quick) p.bake.moments.faceSize = 16;
+        p.sampling.diffuse = DiffuseSource::IrradianceCube;
+        points.push_back(p);
+    }
     return points;
 }
 
@@ -185,6 +199,7 @@ std::vector<std::string> bakePhasesRead(const SweepPoint& point)
     std::vector<std::string> phases{"upload", "environment_cube"};
     if (point.sampling.method == ShadingMethod::SplitSum) phases.push_back("prefilter");
     if (point.sampling.diffuse == DiffuseSource::Sh9 || point.sampling.method == ShadingMethod::Sampled) phases.push_back("sh9");
+    else if (point.bake.moments.enabled) phases.push_back("irradiance_moments");
     else if (point.bake.importance.enabled) phases.push_back("irradiance_importance");
     else phases.push_back("irradiance_riemann");
     return phases;

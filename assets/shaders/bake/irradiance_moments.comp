@@ -20,7 +20,7 @@
 // reads the same group at the same time, which llvmpipe serves from a uniform block three
 // times faster than from a storage buffer (7 vs 23 ms for the default cube).
 layout(std140, binding = 0) uniform MomentTexels {
-    MomentTexel momentTexels[GROUPS];
+    vec4 momentTexels[GROUPS * kMomentTexelVec4s];
 };
 // The same number as a uniform: a constant loop bound would have the compiler unroll all
 // GROUPS iterations, which costs milliseconds to load in every process.
@@ -43,7 +43,9 @@ void main()
     vec3 cross2 = 2.0 * vec3(n.x * n.y, n.x * n.z, n.y * n.z);
     vec3 irradiance = vec3(0.0);
     for (int j = 0; j < uGroupCount; ++j) {
-        MomentTexel t = momentTexels[j];
+        int base = j * kMomentTexelVec4s;
+        MomentTexel t = MomentTexel(momentTexels[base], momentTexels[base + 1], momentTexels[base + 2], momentTexels[base + 3],
+                                    momentTexels[base + 4], momentTexels[base + 5]);
         float secondMoment = dot(nn, vec3(t.momentRAndSxx.w, t.momentGAndSyy.w, t.momentBAndSzz.w)) +
                              dot(cross2, vec3(t.momentYAndSxy.w, t.secondMomentXzYz.xy));
         float meanY = dot(n, t.momentYAndSxy.xyz);

@@ -15,7 +15,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(FORMAT, binding = 1) readonly uniform imageCube uEnvironment;
 
 layout(std430, binding = 0) writeonly buffer MomentTexels {
-    MomentTexel momentTexels[];
+    vec4 momentTexels[];
 };
 
 uniform int uGroupFaceSize;
@@ -58,12 +58,11 @@ void main()
     fluxY = max(fluxY, 1e-30);
     vec3 sDiagonal = secondDiagonal / fluxY;
     vec3 sOff = secondOff / fluxY;
-    MomentTexel t;
-    t.flux = vec4(flux, 0.0);
-    t.momentRAndSxx = vec4(momentR / safe.r, sDiagonal.x);
-    t.momentGAndSyy = vec4(momentG / safe.g, sDiagonal.y);
-    t.momentBAndSzz = vec4(momentB / safe.b, sDiagonal.z);
-    t.momentYAndSxy = vec4(momentY / fluxY, sOff.x);
-    t.secondMomentXzYz = vec4(sOff.y, sOff.z, 0.0, 0.0);
-    momentTexels[(group.z * uGroupFaceSize + group.y) * uGroupFaceSize + group.x] = t;
+    int base = ((group.z * uGroupFaceSize + group.y) * uGroupFaceSize + group.x) * kMomentTexelVec4s;
+    momentTexels[base] = vec4(flux, 0.0);                               // flux
+    momentTexels[base + 1] = vec4(momentR / safe.r, sDiagonal.x);       // momentRAndSxx
+    momentTexels[base + 2] = vec4(momentG / safe.g, sDiagonal.y);       // momentGAndSyy
+    momentTexels[base + 3] = vec4(momentB / safe.b, sDiagonal.z);       // momentBAndSzz
+    momentTexels[base + 4] = vec4(momentY / fluxY, sOff.x);             // momentYAndSxy
+    momentTexels[base + 5] = vec4(sOff.y, sOff.z, 0.0, 0.0);            // secondMomentXzYz
 }
