@@ -151,8 +151,8 @@ inline constexpr std::array<GeometryTerm, 2> kGeometryTerms{GeometryTerm::Schlic
 // (Schlick-GGX only, as the tutorial). SH9 is computed as well (it costs milliseconds).
 BakeSettings tutorialPreset();
 // The fast and accurate choice (docs/bake.md has the measurements): cube sized from the
-// source, SH9 for diffuse plus a 6^2 irradiance cube by cosine importance sampling (8192
-// samples, PDF source-mip filtering), prefilter 256 x 6 mips in Filament's quadratic layout
+// source, SH9 for diffuse plus a 32^2 moment irradiance cube over 8^2 texel groups per face,
+// prefilter 256 x 6 mips in Filament's quadratic layout
 // with PDF source-mip filtering (bias 0), 8 samples at mip 1 tripling per mip, LUTs 128^2 x
 // 2048 for both geometry terms (cached: they depend on no environment).
 BakeSettings defaultPreset();
