@@ -16,7 +16,7 @@ constexpr std::array kConventions{
     ConventionPreset{"filament", "Filament", "filament", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::Sh9},
     ConventionPreset{"gltf-viewer", "glTF Sample Viewer", "gltf-viewer", GeometryTerm::HeightCorrelatedSmith, true, false,
                      DiffuseSource::IrradianceCube},
-    ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::Sh9},
+    ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::IrradianceCube},
 };
 
 std::string formatted(const char* format, double value)
@@ -77,7 +77,10 @@ std::vector<std::pair<std::string, std::string>> conventionChoices(const Convent
     rows.emplace_back("LUT", std::to_string(bake.lut.size) + "^2 x " + std::to_string(bake.lut.samples) + " samples");
     rows.emplace_back("Fresnel on LUT", convention.roughFresnelOnLut ? "F_roughness(n.v) A + B" : "F0 A + B");
     rows.emplace_back("energy compensation", convention.multiscatter ? "on" : "off");
-    rows.emplace_back("diffuse", convention.diffuse == DiffuseSource::Sh9 ? "SH9" : bake.riemann.enabled ? "Riemann cube" : "cosine-sampled cube");
+    rows.emplace_back("diffuse", convention.diffuse == DiffuseSource::Sh9 ? "SH9"
+                                : bake.moments.enabled            ? "moment cube"
+                                : bake.riemann.enabled            ? "Riemann cube"
+                                                                  : "cosine-sampled cube");
     return rows;
 }
 

@@ -126,7 +126,10 @@ std::string describeSettings(const SweepPoint& p)
                std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth) + " per mip)";
     text += pdfFiltered(p) ? ", PDF mips" : ", no PDF mips";
     if (readsCube(p)) {
-        if (p.bake.importance.enabled)
+        if (p.bake.moments.enabled)
+            text += ", moment irradiance cube " + std::to_string(p.bake.moments.faceSize) + "^2 over " +
+                    std::to_string(p.bake.moments.sourceFaceSize) + "^2 groups per face";
+        else if (p.bake.importance.enabled)
             text += ", irradiance cube " + std::to_string(p.bake.importance.faceSize) + "^2 x " + std::to_string(p.bake.importance.samples) + " samples";
         else text += ", Riemann irradiance cube " + std::to_string(p.bake.riemann.faceSize) + "^2, delta " + formatNumber(p.bake.riemann.sampleDelta);
     } else text += ", SH9";
@@ -312,8 +315,9 @@ std::vector<SweepPoint> presetPoints(bool quick)
             p.bake.prefilter.faceSize = std::min(p.bake.prefilter.faceSize, 64);
             p.bake.riemann.faceSize = std::min(p.bake.riemann.faceSize, 16);
         }
-        // The tutorial reads its Riemann irradiance cube; the default preset's SH9 is what the lab shows by default.
-        if (tutorial) p.sampling.diffuse = DiffuseSource::IrradianceCube;
+        // Each preset as the lab shades it: the tutorial reads its Riemann irradiance cube, the
+        // default its moment cube.
+        p.sampling.diffuse = DiffuseSource::IrradianceCube;
         p.series = "presets";
         p.scatter = true;
         p.mark = tutorial ? "tutorial" : "default";

@@ -45,7 +45,13 @@ struct SweepPoint {
     std::string series; // "split-sum 64 PDF", "sampled no mip filter", "Riemann cube"
     std::string label;  // the whole setting in words, for tooltips and tables
     double parameter = 0.0;
-    SamplingSettings sampling;
+    // SH9 diffuse unless the point says otherwise: a specular point's error must not depend
+    // on which irradiance cube its bake happens to have.
+    SamplingSettings sampling = [] {
+        SamplingSettings s;
+        s.diffuse = DiffuseSource::Sh9;
+        return s;
+    }();
     bake::BakeSettings bake;
     bool plainSh = false; // the bake's SH9 irradiance without the window
     bool scatter = false; // its series varies more than one setting: no curve joins its points
