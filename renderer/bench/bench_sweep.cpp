@@ -466,7 +466,7 @@ namespace {
 std::string diffuseName(const SweepPoint& p)
 {
     if (p.sampling.diffuse == DiffuseSource::Sh9 || p.sampling.method == ShadingMethod::Sampled) return p.plainSh ? "sh9" : "sh9-windowed";
-    return p.bake.importance.enabled ? "importance-cube" : "riemann-cube";
+    return p.bake.moments.enabled ? "moment-cube" : p.bake.importance.enabled ? "importance-cube" : "riemann-cube";
 }
 
 bool pdfFiltering(const SweepPoint& p)
