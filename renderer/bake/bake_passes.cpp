@@ -239,7 +239,7 @@ SH9Color BakePasses::projectSh9(GLuint equirect, int width, int height)
 namespace {
 
 // What every pass that reads the environment cube with PDF-based mip selection needs:
-// the cube on unit 1 and the numbers sourceLodFromPdf[At] takes (prefilter_lod.glsl).
+// the cube on unit 1 and the uniforms of bake/source_read.glsl.
 void bindSource(const gl::ShaderProgram& program, const BakedTexture& environment, bool mipFiltering, bool exactTexelSolidAngle)
 {
     program.set("uEnvironment", 1);
