@@ -1,6 +1,7 @@
 #include "bake/bake_passes.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -66,6 +67,9 @@ void clearPassBindings()
 
 GLuint groupsFor(int n) { return GLuint((n + 7) / 8); }
 
+// Levels of a full mip chain down to 1 texel on the longer side.
+int fullMipLevels(int width, int height) { return std::bit_width(unsigned(std::max({width, height, 1}))); }
+
 } // namespace
 
 float storeMax(GLenum internalFormat)
@@ -114,7 +118,7 @@ const gl::ShaderProgram& BakePasses::cubeProgram(const char* file) { return shad
 
 int BakePasses::equirectLevelsForCube(int width, int height, int faceSize)
 {
-    const int full = 1 + int(std::floor(std::log2(double(std::max(width, height)))));
+    const int full = fullMipLevels(width, height);
     const double maxLod = std::log2(2.0 * double(height) / (kPi * double(faceSize)));
     return std::clamp(1 + int(std::lround(maxLod)), 1, full);
 }
@@ -122,7 +126,7 @@ int BakePasses::equirectLevelsForCube(int width, int height, int faceSize)
 gl::Texture BakePasses::uploadEquirect(const ImageRGB32F& image, int levels)
 {
     // RGBA32F, not RGB32F: the mips are built by image load/store, which RGB formats lack.
-    const int full = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+    const int full = fullMipLevels(image.width, image.height);
     levels = levels > 0 ? std::min(levels, full) : full;
     gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(texture.id(), levels, GL_RGBA32F, image.width, image.height);

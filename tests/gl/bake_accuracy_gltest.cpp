@@ -65,6 +65,30 @@ TEST_F(GlTest, EnvironmentCubeIsTheEquirectSeenFromEachTexel)
     EXPECT_LT(worst, 1e-2);
 }
 
+TEST_F(GlTest, ASmallCubeAveragesTheEquirectInsteadOfAliasing)
+{
+    // A checkerboard of single texels, 0 and 2, averages to 1 over any 2 x 2 block. Baked into
+    // an 8^2 cube, each cube texel spans 10 and more equirect texels, so its footprint reads the
+    // equirect's mips (equirectLevelsForCube: 4 levels here) and gets 1. Read at mip 0 only, it
+    // would alias: texels of 0, 2 or anything between.
+    ASSERT_EQ(bake::BakePasses::equirectLevelsForCube(256, 128, 8), 4);
+    ASSERT_EQ(bake::BakePasses::equirectLevelsForCube(1024, 512, 256), 1); // footprints of 1.3 texels: bilinear
+    ImageRGB32F checker(256, 128);
+    for (int y = 0; y < checker.height; ++y)
+        for (int x = 0; x < checker.width; ++x)
+            checker.set(x, y, glm::vec3((x + y) % 2 == 0 ? 2.0f : 0.0f));
+    auto shaders = testing::bakeShaderLibrary();
+    bake::BakeSettings settings = smallBakeSettings();
+    settings.precision = bake::Precision::Float;
+    settings.cube.faceSize = 8;
+    const bake::BakeResult result = runBake(shaders, environmentFromImage(checker, "checker"), settings);
+    ASSERT_EQ(result.environmentCube.size, 8);
+    const bake::CubeImage cube = bake::readCubeLevel(result.environmentCube, 0);
+    for (const glm::vec4& t : cube.texels)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(t[c], 1.0f, 1e-3f);
+}
+
 TEST_F(GlTest, PrefilteredMipsMatchTheExactReference)
 {
     auto shaders = testing::bakeShaderLibrary();
