@@ -1,6 +1,5 @@
 # Every dependency is a Debian 12 package; README.md lists the apt line.
 find_package(PkgConfig REQUIRED)
-find_package(OpenImageIO CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(glfw3 CONFIG REQUIRED)
 find_package(glm CONFIG REQUIRED)
@@ -11,16 +10,15 @@ pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 
-# Debian's OpenImageIO config lists /usr/include/opencv4 as an include directory even
-# though OpenImageIO's public headers never need OpenCV; CMake refuses a missing
-# include directory on an imported target, so drop it instead of pulling in OpenCV.
-foreach(prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
-  get_target_property(dirs OpenImageIO::OpenImageIO ${prop})
-  if(dirs)
-    list(FILTER dirs EXCLUDE REGEX "opencv4")
-    set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${prop} "${dirs}")
-  endif()
-endforeach()
+# OpenImageIO through its pkg-config file, not its CMake config. Debian splits the
+# packages so that the CMake configs name files that libopenimageio-dev and libimath-dev
+# do not install: OpenImageIOTargets.cmake imports the command-line tools (/usr/bin/iconvert,
+# ... in openimageio-tools), ImathTargets.cmake (pulled in by it) imports libPyImath (in
+# python3-imath), and the OpenImageIO target names /usr/include/opencv4 (libopencv-dev).
+# Installing those would add Python and OpenCV to build a C++ program that uses none of
+# them; the .pc file names exactly the two libraries we link, with nothing missing.
+pkg_check_modules(OPENIMAGEIO REQUIRED IMPORTED_TARGET OpenImageIO)
+add_library(OpenImageIO::OpenImageIO ALIAS PkgConfig::OPENIMAGEIO)
 
 # Debian ships Dear ImGui's platform backends as sources only; compile the two we use.
 set(IMGUI_BACKEND_DIR /usr/share/doc/libimgui-dev/examples/backends)

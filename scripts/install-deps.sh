@@ -1,15 +1,23 @@
 #!/usr/bin/env bash
-# Installs every build, test and run dependency of iblab from Debian 12 packages.
+# Installs every Debian 12 package that iblab's build, tests, fuzzers and GUI need, and
+# nothing else; scripts/fresh-check.sh proves the list on a freshly bootstrapped root.
 # Idempotent; runs apt as root (directly, or through sudo when not root).
 set -euo pipefail
 packages=(
-  cmake g++ make pkg-config git
-  libimgui-dev libstb-dev libglfw3-dev libglm-dev libepoxy-dev
-  libopenimageio-dev libimath-dev libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libx11-dev zlib1g-dev
+  # The build: CMake drives make and g++; pkg-config finds epoxy, EGL, imgui, OpenImageIO.
+  cmake make g++ pkg-config
+  # Libraries the code includes (ImGui ships its GLFW/OpenGL3 backends as sources we compile).
+  libimgui-dev libglfw3-dev libepoxy-dev libglm-dev libcli11-dev nlohmann-json3-dev
+  # Images: OpenImageIO reads/writes EXR, HDR, PNG; its headers include Imath's.
+  libopenimageio-dev libimath-dev
+  # glTF: tiny_gltf.h includes stb_image.h and stb_image_write.h from libstb-dev.
+  libtinygltf-dev libstb-dev
+  # Tests: GoogleTest; zlib for the CRCs of the malformed-PNG corpus the tests write.
+  libgtest-dev zlib1g-dev
+  # OpenGL through Mesa: EGL headers (headless), the EGL and GLX vendors, llvmpipe's driver.
+  libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14.
   clang-14 libclang-rt-14-dev
-  # OpenGL through Mesa: EGL (headless) and GLX (windows), llvmpipe as the software driver.
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0
 )
 as_root=()
 [ "$(id -u)" -eq 0 ] || as_root=(sudo)
