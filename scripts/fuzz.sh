@@ -9,8 +9,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
-if ! command -v clang++-14 >/dev/null || ! dpkg-query -W libclang-rt-14-dev >/dev/null 2>&1; then
-  echo "fuzz.sh: needs clang and libFuzzer: apt-get install clang-14 libclang-rt-14-dev" >&2
+if ! command -v clang++-14 >/dev/null || ! dpkg-query -W libclang-rt-14-dev >/dev/null 2>&1 || [ ! -x /usr/lib/llvm-14/bin/llvm-symbolizer ]; then
+  echo "fuzz.sh: needs clang, libFuzzer and llvm-symbolizer: scripts/install-deps.sh (clang-14 libclang-rt-14-dev llvm-14)" >&2
   exit 2
 fi
 build_dir=${IBLAB_BUILD_DIR:-build-fuzz}
@@ -24,6 +24,8 @@ cp tests/fuzz/corpus/gltf/* "$build_dir/corpus/gltf/"
 # the same formats and compressions (scanline and tiled EXR, DWAB, PIZ, ZIP, RLE, B44, HDR,
 # PNG) in about a kilobyte each.
 cp assets/models/*.glb "$build_dir/corpus/gltf/"
+# The suppressions name functions: leak stacks must be symbolized, by clang 14's own symbolizer.
+export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
 for target in environment gltf; do

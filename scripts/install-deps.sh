@@ -16,8 +16,10 @@ packages=(
   libgtest-dev zlib1g-dev
   # OpenGL through Mesa: EGL headers (headless), the EGL and GLX vendors, llvmpipe's driver.
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
-  # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14.
-  clang-14 libclang-rt-14-dev
+  # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14, and its
+  # llvm-symbolizer (llvm-14): tests/sanitizer/lsan.supp matches function names, which a
+  # leak report only has when its stack is symbolized.
+  clang-14 libclang-rt-14-dev llvm-14
 )
 as_root=()
 [ "$(id -u)" -eq 0 ] || as_root=(sudo)

@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 build_dir=${IBLAB_BUILD_DIR:-build-asan}
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBLAB_SANITIZE=ON
 cmake --build "$build_dir" -j"$(nproc)"
+# The suppressions name functions: leak stacks must be symbolized (llvm-14, install-deps.sh).
+export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
 # CPU suites: every sanitizer, leaks included. Slow (exact) unwinding on malloc, because the
