@@ -35,7 +35,9 @@ std::vector<ui::ParetoChart> benchCharts(const bench::BenchReport& report, Chart
         }
         bool any = false;
         for (const bench::BenchPoint& p : points) {
-            if (p.environment != e.name) continue;
+            // A point without an error has no place on the error axis; the report says why
+            // (bench::unmeasuredEnvironments).
+            if (p.environment != e.name || !bench::measured(p)) continue;
             any = true;
             const std::size_t index = std::size_t(std::find(seriesOrder.begin(), seriesOrder.end(), p.setting.series) - seriesOrder.begin());
             char text[512];

@@ -31,7 +31,7 @@ struct BenchCommandOptions {
     int width = 0;  // 0: the sweep's default (bench_sweep.cpp)
     int height = 0;
     int repeats = 0;
-    int referenceWidth = 0;
+    int referenceWidth = 0; // 0: per environment from the scene (bench::referenceWidthFor)
     int costFrames = 1;
     bool autoQuality = false;
     double autoTargetSteps = bench::kDefaultAutoTargetSteps;
@@ -112,7 +112,6 @@ int runBench(const BenchCommandOptions& o)
                 one.environments = {environment};
                 one.points = candidates.points;
                 for (bench::SweepPoint& preset : bench::presetPoints(o.quick)) one.points.push_back(std::move(preset));
-                if (o.referenceWidth <= 0) one.referenceWidth = candidates.referenceWidth;
                 bench::BenchReport measured = runReported(renderer, one);
                 bench::AutoChoice choice = bench::chooseAuto(measured, o.autoTargetSteps, candidates);
                 bench::markChosen(measured.points, choice);
@@ -133,9 +132,14 @@ int runBench(const BenchCommandOptions& o)
         writeChartsPng((dir / "pareto.png").string(), o.autoQuality ? benchCharts(report, ChartError::DisplayP99, o.autoTargetSteps) : benchCharts(report), o.chartWidth, o.chartHeight, 2);
         if (gl.debug.errorCount() > 0) return failCommand("bench", std::to_string(gl.debug.errorCount()) + " GL error(s) drawing the chart, the first: " + gl.debug.firstError());
 
+        // The files stand (their costs are measured), but a run that could not measure an
+        // environment it was given has not done what it was asked: it says why and fails.
+        const std::vector<std::string> unmeasured = bench::unmeasuredEnvironments(report);
+        for (const std::string& line : unmeasured) std::fprintf(stderr, "iblab bench: %s\n", line.c_str());
+        const int status = unmeasured.empty() ? 0 : 1;
         if (o.json) {
             std::printf("%s\n", json.c_str());
-            return 0;
+            return status;
         }
         for (const bench::AutoChoice& c : choices)
             if (!c.found) std::printf("auto %s: nothing measured: %s\n", c.chosen.environment.c_str(), c.reasons.back().c_str());
@@ -143,7 +147,7 @@ int runBench(const BenchCommandOptions& o)
                         c.meetsTarget ? "met" : c.found ? "out of reach" : "nothing measured", c.targetSteps, bench::describeSettings(c.chosen.setting).c_str(),
                         c.chosen.costMilliseconds, c.chosen.display.p99Steps, c.chosen.display.rmsSteps, c.chosen.error.relativeRmse);
         std::printf("%s\n", (dir / "bench.csv").string().c_str());
-        return 0;
+        return status;
     } catch (const std::exception& e) {
         return failCommand("bench", e.what());
     }
@@ -174,7 +178,8 @@ Command addBenchCommand(CLI::App& app, ProcessClock::time_point)
     c->add_option("--width", o->width, "Image width (default 128, quick 48)")->check(CLI::Range(8, 4096));
     c->add_option("--height", o->height, "Image height (default 128, quick 48)")->check(CLI::Range(8, 4096));
     c->add_option("--repeats", o->repeats, "Timed frames per point, median reported (default 5, quick 3)")->check(CLI::Range(1, 1000));
-    c->add_option("--reference-width", o->referenceWidth, "Width of the environment the reference sums over (default 256, quick 64)")
+    c->add_option("--reference-width", o->referenceWidth, "Width of the environment the reference sums over (default: from 64, doubled until it resolves the scene's smoothest "
+                                             "surface, up to 512, quick 128, and the map's width)")
         ->check(CLI::Range(8, 4096));
     c->add_option("--cost-frames", o->costFrames, "cost = bake + this many frames")->capture_default_str()->check(CLI::Range(0, 1000000));
     c->add_flag("--auto", o->autoQuality,

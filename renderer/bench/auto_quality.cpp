@@ -30,16 +30,14 @@ constexpr double kLobeWidthPerAlpha = 2.6;
 struct CandidateSpace {
     std::vector<int> faces, levels, prefilterSamples, sampledN;
     int cubeSamples = 0; // the irradiance cube's cosine importance samples per texel
-    int maxReferenceWidth = 0;
 };
 
 CandidateSpace candidateSpace(bool quick)
 {
     // Quick: a few seconds on llvmpipe for the GUI and the tests. Levels 5 and 6 are
     // LearnOpenGL's and iblab's (Filament's quadratic layout over 6 levels) mip counts.
-    // The reference is capped where its cost (texels x pixels) stays in seconds.
-    if (quick) return {{32, 64}, {5, 6}, {4, 16}, {1, 4, 16, 64}, 64, 128};
-    return {{32, 64, 128}, {5, 6}, {4, 16, 64, 256}, {1, 4, 16, 64, 256}, 1024, 512};
+    if (quick) return {{32, 64}, {5, 6}, {4, 16}, {1, 4, 16, 64}, 64};
+    return {{32, 64, 128}, {5, 6}, {4, 16, 64, 256}, {1, 4, 16, 64, 256}, 1024};
 }
 
 // The prefilter face whose mip, at the smoothest roughness the scene shows, has two texels
@@ -114,6 +112,21 @@ SceneFacts sceneFacts(const FrameSettings& frame, const ImageRGB32F& environment
         break;
     }
     return f;
+}
+
+int maxReferenceWidth(bool quick) { return quick ? 128 : 512; }
+
+int referenceWidthFor(double smoothestRoughness, int widest)
+{
+    int width = std::min(64, widest);
+    while (width * 2 <= widest && referenceMinResolvedRoughness(width) > smoothestRoughness) width *= 2;
+    return width;
+}
+
+int referenceWidthFor(const SceneFacts& facts, bool quick)
+{
+    const int cap = maxReferenceWidth(quick);
+    return referenceWidthFor(facts.minRoughness, facts.environmentWidth > 0 ? std::min(cap, facts.environmentWidth) : cap);
 }
 
 std::string describeSettings(const SweepPoint& p)
@@ -227,11 +240,7 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
                               " mips) up: no candidate face is larger, none dropped");
     if (droppedCubes) out.reasons.push_back("metallic: every surface is metal, no diffuse term: " + std::to_string(droppedCubes) + " irradiance cube candidates dropped");
 
-    // The reference resolves roughness down to referenceMinResolvedRoughness(width): as wide
-    // as the smoothest surface asks, within what the run can afford.
-    const int widest = facts.environmentWidth > 0 ? std::min(space.maxReferenceWidth, facts.environmentWidth) : space.maxReferenceWidth;
-    out.referenceWidth = std::min(64, widest);
-    while (out.referenceWidth * 2 <= widest && referenceMinResolvedRoughness(out.referenceWidth) > facts.minRoughness) out.referenceWidth *= 2;
+    out.referenceWidth = referenceWidthFor(facts, quick);
     return out;
 }
 
@@ -384,7 +393,9 @@ std::string benchJsonTextWithAuto(const BenchReport& report, const std::vector<A
 {
     nlohmann::ordered_json j = nlohmann::ordered_json::parse(benchJsonText(report));
     j["auto"] = nlohmann::ordered_json::array();
-    for (const AutoChoice& c : choices)
+    for (const AutoChoice& c : choices) {
+        // Nothing chosen has no numbers: zeros would read as a free and exact choice.
+        const auto chosen = [&](double value) { return c.found ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr); };
         j["auto"].push_back({{"environment", c.chosen.environment},
                              {"target_p99_steps", c.targetSteps},
                              {"found", c.found},
@@ -392,11 +403,12 @@ std::string benchJsonTextWithAuto(const BenchReport& report, const std::vector<A
                              {"candidates_measured", c.candidates},
                              {"candidates_meeting", c.meeting},
                              {"chosen", c.found ? c.chosen.setting.label : ""},
-                             {"cost_ms", c.chosen.costMilliseconds},
-                             {"display_p99_steps", c.chosen.display.p99Steps},
-                             {"display_rms_steps", c.chosen.display.rmsSteps},
-                             {"relative_rmse", c.chosen.error.relativeRmse},
+                             {"cost_ms", chosen(c.chosen.costMilliseconds)},
+                             {"display_p99_steps", chosen(c.chosen.display.p99Steps)},
+                             {"display_rms_steps", chosen(c.chosen.display.rmsSteps)},
+                             {"relative_rmse", chosen(c.chosen.error.relativeRmse)},
                              {"reasons", c.reasons}});
+    }
     return j.dump(2);
 }
 

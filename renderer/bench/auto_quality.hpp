@@ -45,10 +45,25 @@ SceneFacts sceneFacts(const FrameSettings& frame, const ImageRGB32F& environment
 // angle; 1 for an empty or black map.
 double environmentDynamicRange(const ImageRGB32F& environment);
 
+// The widest reference a run affords. The reference costs texels x pixels and is a run's
+// largest single step: the quick run (the Study panel, the tests) stops at 128, which keeps it
+// in seconds on llvmpipe and still resolves roughness >= 0.27 (the material sliders' default
+// sphere is 0.3); the full run at 512 (>= 0.14). A width given by hand is not capped.
+int maxReferenceWidth(bool quick);
+// The reference width for a scene whose smoothest surface has this roughness: from 64 (or
+// `widest`, if narrower), doubled while referenceMinResolvedRoughness says it does not resolve
+// that surface and the double stays within `widest`. So `widest` when no width within it
+// resolves the surface (none resolves a mirror).
+int referenceWidthFor(double smoothestRoughness, int widest);
+// The same within the run's cap and the map's width: the width of the reference the auto
+// quality mode, `iblab bench` and the Study panel's sweep measure against when none is given
+// (BenchOptions::referenceWidth 0). Call it with sceneFacts(frame, map) to know it beforehand.
+int referenceWidthFor(const SceneFacts& facts, bool quick);
+
 struct AutoCandidates {
     SceneFacts facts;                 // what they were pruned by
     std::vector<SweepPoint> points;   // family "split-sum" or "sampled"; each a whole configuration
-    int referenceWidth = 0;           // wide enough to resolve the scene's smoothest surface, within a cap and the map's width
+    int referenceWidth = 0;           // referenceWidthFor(facts, quick)
     std::vector<std::string> reasons; // what was pruned and why
 };
 

@@ -5,15 +5,18 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include <epoxy/gl.h>
 #include <nlohmann/json.hpp>
 
 #include "bake/bake_job.hpp"
+#include "bench/auto_quality.hpp"
 #include "camera.hpp"
 #include "environment/error.hpp"
 #include "gl/context_info.hpp"
+#include "ibl/reference.hpp"
 #include "ibl/tonemap.hpp"
 #include "scene/gltf_model.hpp"
 #include "stress/stress_suite.hpp"
@@ -22,6 +25,10 @@ namespace iblab::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The error of a measurement over no pixel: NaN, which never reads as 0 (exact), and which
+// compares false both ways, so that such a point neither dominates nor is dominated.
+constexpr double kNoError = std::numeric_limits<double>::quiet_NaN();
 
 double millisecondsSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
 
@@ -34,19 +41,47 @@ std::string formatNumber(double v, const char* format = "%g")
 
 std::string onOff(bool on, const char* what) { return std::string(on ? "" : "no ") + what; }
 
+bool surfacePixel(const FrameReadback& normalLayer, std::size_t i) { return normalLayer.rgba[i * 4 + 3] != 0.0f; }
+double roughnessAt(const FrameReadback& viewLayer, std::size_t i) { return double(viewLayer.rgba[i * 4 + 3]); }
+
 // Surface pixels (coverage in the normal layer's alpha) the reference resolves (roughness
 // in the view layer's alpha at least minRoughness).
+std::vector<std::uint8_t> resolvedPixels(const FrameReadback& normalLayer, const FrameReadback& viewLayer, double minRoughness)
+{
+    const std::size_t pixels = std::size_t(normalLayer.width) * std::size_t(normalLayer.height);
+    if (normalLayer.rgba.size() != pixels * 4 || viewLayer.rgba.size() != pixels * 4)
+        throw std::invalid_argument("bench error measure: the reference's layers differ in size");
+    std::vector<std::uint8_t> include(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) include[i] = surfacePixel(normalLayer, i) && roughnessAt(viewLayer, i) >= minRoughness;
+    return include;
+}
+
 std::vector<std::uint8_t> resolvedPixels(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
                                          const FrameReadback& viewLayer, double minRoughness)
 {
-    const std::size_t pixels = std::size_t(frame.width) * std::size_t(frame.height);
-    if (frame.rgba.size() != pixels * 4 || reference.rgba.size() != pixels * 4 || normalLayer.rgba.size() != pixels * 4 ||
-        viewLayer.rgba.size() != pixels * 4)
+    if (frame.rgba.size() != normalLayer.rgba.size() || reference.rgba.size() != normalLayer.rgba.size())
         throw std::invalid_argument("bench error measure: the frame, the reference and its layers differ in size");
-    std::vector<std::uint8_t> include(pixels);
-    for (std::size_t i = 0; i < pixels; ++i)
-        include[i] = normalLayer.rgba[i * 4 + 3] != 0.0f && double(viewLayer.rgba[i * 4 + 3]) >= minRoughness;
-    return include;
+    return resolvedPixels(normalLayer, viewLayer, minRoughness);
+}
+
+// Why the reference resolves none of the frame's surface pixels, naming what would; empty
+// when it resolves some. `surfaces` says where the scene's roughness comes from (SceneFacts).
+std::string unmeasuredReason(const FrameReadback& normalLayer, const FrameReadback& viewLayer, const ReferenceSummary& reference,
+                             const std::string& surfaces, int mapWidth)
+{
+    const std::vector<std::uint8_t> include = resolvedPixels(normalLayer, viewLayer, reference.minResolvedRoughness);
+    if (std::find(include.begin(), include.end(), std::uint8_t(1)) != include.end()) return "";
+    double roughest = -1.0;
+    for (std::size_t i = 0; i < include.size(); ++i)
+        if (surfacePixel(normalLayer, i)) roughest = std::max(roughest, roughnessAt(viewLayer, i));
+    if (roughest < 0.0) return "no surface in the frame (" + surfaces + ")";
+    std::string why = "no surface pixel has roughness >= " + formatNumber(reference.minResolvedRoughness, "%.3g") + ", the smallest the " +
+                      std::to_string(reference.environmentWidth) + "-wide reference resolves; the roughest is " + formatNumber(roughest, "%.3g") +
+                      " (" + surfaces + ")";
+    const int wider = referenceWidthFor(roughest, mapWidth);
+    if (referenceMinResolvedRoughness(wider) > roughest)
+        return why + ", which no reference over the " + std::to_string(mapWidth) + "-wide map resolves";
+    return why + ": a reference " + std::to_string(wider) + " wide resolves it (--reference-width " + std::to_string(wider) + ")";
 }
 
 } // namespace
@@ -183,14 +218,12 @@ BenchOptions defaultBenchOptions(bool quick, const std::string& assetDirectory)
     if (quick) {
         o.width = o.height = 48;
         o.repeats = 3;
-        o.referenceWidth = 64;
         o.environments.push_back({"sky", "builtin:sky?width=64", nullptr});
     } else {
         for (const std::string& path : galleryEnvironments(assetDirectory))
             o.environments.push_back({std::filesystem::path(path).stem().string(), path, nullptr});
         for (BenchEnvironment& e : builtinBenchEnvironments(512)) o.environments.push_back(std::move(e));
     }
-    o.frame.view.referenceWidth = o.referenceWidth;
     return o;
 }
 
@@ -208,7 +241,9 @@ std::vector<std::string> bakePhasesRead(const SweepPoint& point)
 ErrorMetrics measureResolvedError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
                                   const FrameReadback& viewLayer, double minRoughness)
 {
-    return computeErrorMetrics(frame.rgba, reference.rgba, resolvedPixels(frame, reference, normalLayer, viewLayer, minRoughness));
+    ErrorMetrics m = computeErrorMetrics(frame.rgba, reference.rgba, resolvedPixels(frame, reference, normalLayer, viewLayer, minRoughness));
+    if (m.pixels == 0) m.relativeRmse = m.meanRelative = m.maxRelative = m.p99Relative = kNoError;
+    return m;
 }
 
 DisplayError measureResolvedDisplayError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
@@ -230,7 +265,10 @@ DisplayError measureResolvedDisplayError(const FrameReadback& frame, const Frame
         e.maxSteps = std::max(e.maxSteps, s);
     }
     e.pixels = steps.size();
-    if (steps.empty()) return e;
+    if (steps.empty()) {
+        e.p99Steps = e.rmsSteps = e.maxSteps = kNoError;
+        return e;
+    }
     e.rmsSteps = std::sqrt(sumSquares / double(steps.size()));
     const std::size_t rank = std::size_t(std::ceil(0.99 * double(steps.size()))) - 1;
     std::nth_element(steps.begin(), steps.begin() + std::ptrdiff_t(rank), steps.end());
@@ -238,6 +276,17 @@ DisplayError measureResolvedDisplayError(const FrameReadback& frame, const Frame
     return e;
 }
 
+bool measured(const BenchPoint& point) { return !std::isnan(point.error.relativeRmse); }
+
+std::vector<std::string> unmeasuredEnvironments(const BenchReport& report)
+{
+    std::vector<std::string> lines;
+    for (const ReferenceSummary& r : report.references)
+        if (!r.unmeasured.empty()) lines.push_back(r.environment + ": not measured: " + r.unmeasured);
+    return lines;
+}
+
+// NaN compares false both ways: a point without an error is neither dominated nor dominates.
 void markDominated(std::vector<BenchPoint>& points, double (*error)(const BenchPoint&))
 {
     for (BenchPoint& p : points)
@@ -268,6 +317,7 @@ struct BenchJob::State {
     // The LUT depends on no environment: baked by the first point, handed on to the next.
     std::array<bake::BakedTexture, 2> lut;
     ReferenceSummary reference;
+    std::string surfaces; // SceneFacts::surfaces, for the reason when nothing can be measured
     FrameReadback referenceFrame, normalLayer, viewLayer;
 
     explicit State(Renderer& r) : renderer(r) {}
@@ -294,7 +344,6 @@ BenchJob::BenchJob(Renderer& renderer, BenchOptions options) : state_(std::make_
     options.repeats = std::max(options.repeats, 1);
     options.frame.view.mode = ViewMode::Final;
     options.frame.view.split = false;
-    options.frame.view.referenceWidth = options.referenceWidth;
     for (const SweepPoint& p : options.points) bake::validate(p.bake);
     if (options.frame.scene.kind == SceneKind::Model) renderer.setModel(loadGltfModel(options.frame.scene.modelPath), options.frame.scene.modelPath);
     report_.renderer = gl::describeCurrentContext();
@@ -356,6 +405,9 @@ bool BenchJob::step()
         s.renderer.setEnvironment(s.loaded->image);
         s.frame = o.frame;
         s.frame.environment.source = s.loaded->source;
+        const SceneFacts facts = sceneFacts(o.frame, s.loaded->image);
+        s.frame.view.referenceWidth = o.referenceWidth > 0 ? o.referenceWidth : referenceWidthFor(facts, o.quick);
+        s.surfaces = facts.surfaces;
         if (o.frameCamera) {
             const SceneInfo scene = s.renderer.sceneInfo(s.frame);
             frameBox(s.frame.camera, scene.centre, scene.halfExtents, float(o.width) / float(o.height));
@@ -390,6 +442,7 @@ bool BenchJob::step()
         s.referenceFrame = s.renderer.readReferenceFrame();
         s.normalLayer = s.renderer.readReferenceLayer(ReferenceLayer::Normal);
         s.viewLayer = s.renderer.readReferenceLayer(ReferenceLayer::View);
+        s.reference.unmeasured = unmeasuredReason(s.normalLayer, s.viewLayer, s.reference, s.surfaces, s.loaded->image.width);
         report_.references.push_back(s.reference);
         s.phase = State::Phase::Measure;
         return true;
@@ -503,6 +556,8 @@ std::string benchCsvText(const BenchReport& report)
     for (const BenchPoint& p : report.points) {
         const SweepPoint& s = p.setting;
         const bool splitSum = s.sampling.method == ShadingMethod::SplitSum;
+        // Empty, not 0, where nothing was measured: 0 would read as exact.
+        const auto error = [&](double value, const char* format) { return measured(p) ? formatNumber(value, format) : std::string(); };
         const std::vector<std::string> row{csvField(p.environment),
                                            s.family,
                                            csvField(s.series),
@@ -518,15 +573,15 @@ std::string benchCsvText(const BenchReport& report)
                                            formatNumber(p.bakeMilliseconds, "%.3f"),
                                            formatNumber(p.frameMilliseconds, "%.3f"),
                                            formatNumber(p.costMilliseconds, "%.3f"),
-                                           formatNumber(p.error.relativeRmse, "%.6g"),
-                                           formatNumber(p.error.meanRelative, "%.6g"),
-                                           formatNumber(p.error.p99Relative, "%.6g"),
-                                           formatNumber(p.error.maxRelative, "%.6g"),
-                                           std::to_string(p.error.fireflies),
+                                           error(p.error.relativeRmse, "%.6g"),
+                                           error(p.error.meanRelative, "%.6g"),
+                                           error(p.error.p99Relative, "%.6g"),
+                                           error(p.error.maxRelative, "%.6g"),
+                                           measured(p) ? std::to_string(p.error.fireflies) : "",
                                            std::to_string(p.error.pixels),
-                                           formatNumber(p.display.p99Steps, "%.4g"),
-                                           formatNumber(p.display.rmsSteps, "%.4g"),
-                                           formatNumber(p.display.maxSteps, "%.4g"),
+                                           error(p.display.p99Steps, "%.4g"),
+                                           error(p.display.rmsSteps, "%.4g"),
+                                           error(p.display.maxSteps, "%.4g"),
                                            p.dominated ? "1" : "0",
                                            p.chosen ? "1" : "0"};
         for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
@@ -546,17 +601,21 @@ std::string benchJsonText(const BenchReport& report)
                     {"width", o.width},
                     {"height", o.height},
                     {"repeats", o.repeats},
-                    {"reference_width", o.referenceWidth},
+                    // null: chosen per environment from the scene (the references' environment_width)
+                    {"reference_width", o.referenceWidth > 0 ? nlohmann::ordered_json(o.referenceWidth) : nlohmann::ordered_json(nullptr)},
                     {"cost", "bake_ms + " + std::to_string(o.costFrames) + " x frame_ms"},
-                    {"error", "relative RMSE, linear HDR, surface pixels with roughness >= min_resolved_roughness"},
+                    {"error", "relative RMSE, linear HDR, surface pixels with roughness >= min_resolved_roughness; null where there is none (references' not_measured)"},
                     {"display_error", "largest channel difference after exposure, tone mapping and sRGB encoding, in 8-bit steps, same pixels"},
                     {"tone_map", std::string(toneMapOperatorName(o.frame.toneMap.op)) + ", exposure " + formatNumber(o.frame.toneMap.exposureEv) + " EV"}};
     for (const BenchEnvironment& e : o.environments) j["environments"].push_back({{"name", e.name}, {"spec", e.spec}});
-    for (const ReferenceSummary& r : report.references)
-        j["references"].push_back({{"environment", r.environment},
-                                   {"environment_width", r.environmentWidth},
-                                   {"min_resolved_roughness", r.minResolvedRoughness},
-                                   {"milliseconds", r.milliseconds}});
+    for (const ReferenceSummary& r : report.references) {
+        nlohmann::ordered_json reference{{"environment", r.environment},
+                                         {"environment_width", r.environmentWidth},
+                                         {"min_resolved_roughness", r.minResolvedRoughness},
+                                         {"milliseconds", r.milliseconds}};
+        if (!r.unmeasured.empty()) reference["not_measured"] = r.unmeasured;
+        j["references"].push_back(reference);
+    }
     for (const BenchPoint& p : report.points) {
         const SweepPoint& s = p.setting;
         nlohmann::ordered_json point{{"environment", p.environment},
@@ -575,13 +634,16 @@ std::string benchJsonText(const BenchReport& report)
         point["bake_ms"] = p.bakeMilliseconds;
         point["frame_ms"] = p.frameMilliseconds;
         point["cost_ms"] = p.costMilliseconds;
-        point["error"] = {{"relative_rmse", p.error.relativeRmse},
-                          {"mean_relative", p.error.meanRelative},
-                          {"p99_relative", p.error.p99Relative},
-                          {"max_relative", p.error.maxRelative},
-                          {"fireflies", p.error.fireflies},
+        // null, not 0, where nothing was measured: 0 would read as exact.
+        const auto error = [&](auto value) { return measured(p) ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr); };
+        point["error"] = {{"relative_rmse", error(p.error.relativeRmse)},
+                          {"mean_relative", error(p.error.meanRelative)},
+                          {"p99_relative", error(p.error.p99Relative)},
+                          {"max_relative", error(p.error.maxRelative)},
+                          {"fireflies", error(p.error.fireflies)},
                           {"pixels", p.error.pixels}};
-        point["display_error"] = {{"p99_steps", p.display.p99Steps}, {"rms_steps", p.display.rmsSteps}, {"max_steps", p.display.maxSteps}};
+        point["display_error"] = {
+            {"p99_steps", error(p.display.p99Steps)}, {"rms_steps", error(p.display.rmsSteps)}, {"max_steps", error(p.display.maxSteps)}};
         point["dominated"] = p.dominated;
         if (p.chosen) point["auto_chosen"] = true;
         j["points"].push_back(point);
@@ -594,28 +656,31 @@ std::string benchMarkdown(const BenchReport& report)
 {
     struct Environment {
         std::string name;
-        std::vector<const BenchPoint*> points, front;
+        std::vector<const BenchPoint*> points, front; // front: measured and not dominated
         double cheapest = 0.0;
+        std::string unmeasured; // ReferenceSummary::unmeasured
         // The lowest error of a family and what it costs.
         const BenchPoint* best(const std::string& family) const
         {
             const BenchPoint* found = nullptr;
             for (const BenchPoint* p : points)
-                if (p->setting.family == family && (!found || p->error.relativeRmse < found->error.relativeRmse)) found = p;
+                if (measured(*p) && p->setting.family == family && (!found || p->error.relativeRmse < found->error.relativeRmse)) found = p;
             return found;
         }
     };
     std::vector<Environment> environments;
     for (const BenchEnvironment& e : report.options.environments) {
-        Environment env{e.name, {}, {}, 0.0};
+        Environment env{e.name, {}, {}, 0.0, {}};
         for (const BenchPoint& p : report.points) {
             if (p.environment != e.name) continue;
             env.points.push_back(&p);
-            if (!p.dominated) env.front.push_back(&p);
+            if (!p.dominated && measured(p)) env.front.push_back(&p);
         }
-        if (env.front.empty()) continue;
+        if (env.points.empty()) continue;
+        for (const ReferenceSummary& r : report.references)
+            if (r.environment == e.name) env.unmeasured = r.unmeasured;
         std::sort(env.front.begin(), env.front.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->costMilliseconds < b->costMilliseconds; });
-        env.cheapest = std::max(env.front.front()->costMilliseconds, 1e-9);
+        if (!env.front.empty()) env.cheapest = std::max(env.front.front()->costMilliseconds, 1e-9);
         environments.push_back(std::move(env));
     }
 
@@ -629,14 +694,22 @@ std::string benchMarkdown(const BenchReport& report)
            "multiple of the environment's cheapest setting.\n\n";
     out << "| environment | not dominated | split-sum: lowest error | sampled: lowest error | diffuse variants: error range |\n|---|---|---|---|---|\n";
     for (const Environment& env : environments) {
+        if (env.front.empty()) {
+            out << "| " << env.name << " | not measured | n/a | n/a | n/a |\n";
+            continue;
+        }
         double lo = 1e300, hi = 0.0;
         for (const BenchPoint* p : env.points)
-            if (p->setting.family == "diffuse") lo = std::min(lo, p->error.relativeRmse), hi = std::max(hi, p->error.relativeRmse);
+            if (measured(*p) && p->setting.family == "diffuse") lo = std::min(lo, p->error.relativeRmse), hi = std::max(hi, p->error.relativeRmse);
         out << "| " << env.name << " | " << env.front.size() << " of " << env.points.size() << " | " << bestCell(env, "split-sum") << " | "
             << bestCell(env, "sampled") << " | " << (hi > 0.0 ? formatNumber(lo, "%.3g") + " - " + formatNumber(hi, "%.3g") : "-") << " |\n";
     }
     out << "\n";
     for (const Environment& env : environments) {
+        if (env.front.empty()) {
+            out << "**" << env.name << "**: not measured: " << env.unmeasured << "\n\n";
+            continue;
+        }
         out << "**" << env.name << "**: " << env.front.size() << " of " << env.points.size() << " settings are not dominated\n\n";
         out << "| setting | cost / cheapest | relative RMSE | bake ms | frame ms |\n|---|---|---|---|---|\n";
         for (const BenchPoint* p : env.front)

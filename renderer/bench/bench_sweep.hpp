@@ -67,7 +67,10 @@ struct BenchOptions {
     int width = 128;
     int height = 128;
     int repeats = 5;         // timed frames per point; the median is reported
-    int referenceWidth = 256;
+    // The width of the map the reference sums over. 0: per environment, the narrowest that
+    // resolves the scene's smoothest surface within the run's cap, referenceWidthFor(sceneFacts(
+    // frame, map), quick) (auto_quality.hpp). Given: used as it is, uncapped.
+    int referenceWidth = 0;
     // cost = bake + frames x frame: the time to this many frames after the environment changed.
     int costFrames = 1;
     std::vector<SweepPoint> points;
@@ -80,7 +83,8 @@ std::vector<SweepPoint> sweepPoints(bool quick);
 // The bake every sweep point starts from: the default preset without the irradiance cubes,
 // only the default geometry term's LUT, and (quick) small enough for tens of milliseconds.
 bake::BakeSettings benchBaseBake(bool quick);
-// Defaults of `iblab bench`: the grid, the bundled maps and three stress environments.
+// Defaults of `iblab bench`: the grid, the bundled maps and three stress environments, the
+// reference width left to the scene (referenceWidth 0).
 BenchOptions defaultBenchOptions(bool quick, const std::string& assetDirectory);
 
 // The stress environments the default run adds, at `width` (stress_suite.hpp's specs).
@@ -102,6 +106,8 @@ struct BenchPoint {
     double bakeMilliseconds = 0.0;  // the phases the frame reads (see bakePhasesRead)
     double frameMilliseconds = 0.0; // median of the repeats, steady clock around glFinish
     double costMilliseconds = 0.0;  // bake + costFrames x frame
+    // NaN where the reference resolved no surface pixel (measured() is false): not 0, which
+    // would read as exact. The pixel counts are 0 then.
     ErrorMetrics error;             // linear HDR, resolved surface pixels (measureResolvedError)
     DisplayError display;           // the same pixels after tone mapping (measureResolvedDisplayError)
     bool dominated = false;
@@ -113,6 +119,10 @@ struct ReferenceSummary {
     int environmentWidth = 0;
     double minResolvedRoughness = 0.0;
     double milliseconds = 0.0;
+    // Why it resolves none of the frame's surface pixels, so that no point of the environment
+    // has an error: the roughness it resolves, the roughest surface pixel, and the width that
+    // would resolve it. Empty when it resolves some.
+    std::string unmeasured;
 };
 
 struct BenchReport {
@@ -123,6 +133,13 @@ struct BenchReport {
     double seconds = 0.0;
 };
 
+// False when the point has no error (NaN): its environment's reference resolved no surface
+// pixel. It still has its cost.
+bool measured(const BenchPoint& point);
+// One line per environment whose points could not be measured, "courtyard: not measured: "
+// and ReferenceSummary::unmeasured; there as soon as its reference is done, before its points.
+std::vector<std::string> unmeasuredEnvironments(const BenchReport& report);
+
 // The bake phases a frame of this setting reads: the upload and environment cube always,
 // then the prefilter (split-sum), SH9 or the irradiance cube that was baked. Not the
 // shaders (compiled once per process) nor the LUTs (no environment in them; cached).
@@ -132,15 +149,18 @@ std::vector<std::string> bakePhasesRead(const SweepPoint& point);
 // G-buffer's normal layer has coverage in alpha) whose perceptual roughness (the view
 // layer's alpha) is at least minRoughness: below it the reference's midpoint rule is not
 // converged, and its error would swamp the estimators' (referenceMinResolvedRoughness).
+// With no such pixel, every error field is NaN and `pixels` 0.
 ErrorMetrics measureResolvedError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
                                   const FrameReadback& viewLayer, double minRoughness);
 
-// The same pixels as measureResolvedError, compared after `toneMap` in 8-bit steps.
+// The same pixels as measureResolvedError, compared after `toneMap` in 8-bit steps (NaN
+// steps when there are none).
 DisplayError measureResolvedDisplayError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
                                          const FrameReadback& viewLayer, double minRoughness, const ToneMapSettings& toneMap);
 
 // A point is dominated when another point of the same environment is both cheaper and
-// more accurate (strictly: lower cost and lower relative RMSE).
+// more accurate (strictly: lower cost and lower relative RMSE). A point without an error
+// (NaN) is neither dominated nor dominates.
 void markDominated(std::vector<BenchPoint>& points);
 // The same by another error (the auto quality chart's display p99).
 void markDominated(std::vector<BenchPoint>& points, double (*error)(const BenchPoint&));
@@ -174,14 +194,16 @@ private:
     BenchReport report_;
 };
 
-// CSV (one row per point, header first) and JSON (options, references, points).
+// CSV (one row per point, header first) and JSON (options, references, points). A point
+// without an error has empty error fields in the CSV and nulls in the JSON (docs/bench.md).
 std::string benchCsvText(const BenchReport& report);
 std::string benchJsonText(const BenchReport& report);
 // The CSV's column names, in order.
 const std::vector<std::string>& benchCsvColumns();
 // Markdown: a summary table (per environment, each family's lowest error and its cost), then
 // per environment the points no other point dominates. Cost as a ratio to the environment's
-// cheapest setting: ratios carry over to other machines, milliseconds do not.
+// cheapest setting: ratios carry over to other machines, milliseconds do not. An environment
+// that could not be measured has n/a in the table and its reason below it.
 std::string benchMarkdown(const BenchReport& report);
 
 } // namespace iblab::bench

@@ -411,6 +411,38 @@ TEST_F(Cli, BenchQuickAutoChoosesTheCheapestWithinTheTarget)
     EXPECT_FALSE(js.at("auto").at(0).at("meets_target").get<bool>());
 }
 
+// `iblab bench --scene sphere` (the material's roughness 0.3) on a map wide enough measures
+// the sphere: the reference is widened for it. Given a reference too narrow for it, the
+// command still writes its files, but says in one line why nothing was measured and what
+// would be, shows no error instead of 0, and fails.
+TEST_F(Cli, BenchOnASphereMeasuresItOrFailsSayingWhy)
+{
+    const std::string common = "bench --quick --scene sphere --env builtin:sky?width=256 --width 32 --height 32 --repeats 1";
+    const Result wide = run(common + " --out wide");
+    ASSERT_EQ(wide.exitCode, 0) << wide.err;
+    const nlohmann::json measured = nlohmann::json::parse(std::ifstream(dir / "wide" / "bench.json"));
+    ASSERT_FALSE(measured.at("points").empty());
+    for (const nlohmann::json& p : measured.at("points")) {
+        EXPECT_GT(p.at("error").at("pixels").get<int>(), 0) << p.at("label");
+        EXPECT_GT(p.at("error").at("relative_rmse").get<double>(), 0.0) << p.at("label");
+    }
+
+    const Result narrow = run(common + " --reference-width 64 --out narrow");
+    EXPECT_EQ(narrow.exitCode, 1);
+    EXPECT_EQ(lineCount(narrow.err), 2) << "the environment's name as it starts, then why: " << narrow.err;
+    EXPECT_NE(narrow.err.find("iblab bench: sky: not measured: no surface pixel has roughness >= 0.384, the smallest the 64-wide reference resolves; "
+                              "the roughest is 0.3 (the sphere"),
+              std::string::npos)
+        << narrow.err;
+    EXPECT_NE(narrow.err.find("(--reference-width 128)"), std::string::npos) << narrow.err;
+    const nlohmann::json unmeasured = nlohmann::json::parse(std::ifstream(dir / "narrow" / "bench.json"));
+    ASSERT_FALSE(unmeasured.at("points").empty());
+    for (const nlohmann::json& p : unmeasured.at("points")) {
+        EXPECT_EQ(p.at("error").at("pixels"), 0) << p.at("label");
+        EXPECT_TRUE(p.at("error").at("relative_rmse").is_null()) << p.at("label");
+    }
+}
+
 // The error view's numbers in the JSON report: one block for the frame, or one per side of
 // the split; the reference's environment size and the roughness it resolves with it.
 TEST_F(Cli, ErrorViewReportsMetricsAsJson)

@@ -2,7 +2,7 @@
 // the cheapest candidate within the target, the most accurate when none is (with how far the
 // target is out of reach), presets and unmeasured points never chosen; and the pruning of the
 // candidate space by the environment's dynamic range, the scene's roughness and metallic
-// ranges, with the reasons it gives.
+// ranges, with the reasons it gives; and the reference width rule it shares with the bench.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -157,6 +157,28 @@ TEST(AutoQuality, TheReferenceIsAsWideAsTheSmoothestSurfaceNeeds)
     // The reference sums over no more texels than the map has.
     sphere.environmentWidth = 64;
     EXPECT_EQ(autoCandidates(true, sphere).referenceWidth, 64);
+}
+
+// One rule widens the reference for the auto mode and the bench: the narrowest from 64 that
+// resolves the smoothest surface, within the run's cap and the map. The bench's defaults
+// leave the width to it (0) instead of fixing one that a smooth scene has nothing above.
+TEST(AutoQuality, TheBenchAndTheAutoModeWidenTheReferenceByOneRule)
+{
+    EXPECT_EQ(referenceWidthFor(0.5, 4096), 64);
+    EXPECT_EQ(referenceWidthFor(0.3, 4096), 128);
+    EXPECT_EQ(referenceWidthFor(0.2, 4096), 256);
+    EXPECT_EQ(referenceWidthFor(0.0, 512), 512) << "no width resolves a mirror: the widest allowed";
+    EXPECT_EQ(referenceWidthFor(0.3, 32), 32) << "never past the map";
+    for (const bool quick : {true, false})
+        for (const double roughness : {0.0, 0.2, 0.3, 0.5}) {
+            SceneFacts facts = grid(2.0);
+            facts.minRoughness = roughness;
+            EXPECT_EQ(autoCandidates(quick, facts).referenceWidth, referenceWidthFor(facts, quick)) << quick << " " << roughness;
+            EXPECT_LE(referenceWidthFor(facts, quick), maxReferenceWidth(quick));
+        }
+    EXPECT_EQ(maxReferenceWidth(true), 128) << "the quick run resolves the default sphere (0.3)";
+    EXPECT_EQ(defaultBenchOptions(true, "").referenceWidth, 0);
+    EXPECT_EQ(defaultBenchOptions(false, "").referenceWidth, 0);
 }
 
 TEST(AutoQuality, ReasonsSayWhichSurfacesTheReferenceResolved)

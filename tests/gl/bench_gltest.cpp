@@ -1,10 +1,11 @@
 // The bench sweep (renderer/bench) on its quick run (a 64-wide sky, 48x48 grid, every
 // family): errors are real measurements against the reference, more prefilter samples do
 // not make a smooth environment worse, more runtime samples make it better, the error
-// measure is zero for the reference itself and exact for a known bias. Then, on hand-made
-// points: dominance follows its definition, and the CSV and JSON say what the header
-// promises. ctest runs every test in a process of its own, so the quick run (a few seconds)
-// is made by one test only.
+// measure is zero for the reference itself and exact for a known bias. On a sphere: the
+// reference is widened until it resolves it, and one it cannot resolve is reported as not
+// measured, never as exact. Then, on hand-made points: dominance follows its definition, and
+// the CSV and JSON say what the header promises. ctest runs every test in a process of its
+// own, so the quick grid run (a few seconds) is made by one test only.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -123,6 +124,93 @@ TEST_F(Bench, QuickSweepMeasuresEveryPointAgainstTheReference)
     for (const BenchPoint& p : r.points) EXPECT_GT(p.display.rmsSteps, 0.0) << p.setting.label;
     EXPECT_LT(rough.pixels, self.pixels);
     EXPECT_GT(rough.pixels, self.pixels / 4);
+}
+
+// The Study panel's quick sweep on its default scene, a copper sphere of roughness 0.3, on a
+// map wide enough: the reference is widened until it resolves the sphere (128, where the quick
+// grid's sky gets 64), so every point is measured on the sphere's pixels, with an error.
+TEST_F(Bench, QuickSweepOnASmoothSphereMeasuresEveryPoint)
+{
+    BenchOptions options = defaultBenchOptions(/*quick=*/true, IBLAB_ASSET_DIR);
+    options.environments = {{"sky", "builtin:sky?width=256", nullptr}};
+    options.frame.scene.kind = SceneKind::Sphere;
+    options.frame.material.roughness = 0.3f;
+    Renderer renderer(shaderDirectory());
+    const BenchReport r = BenchJob(renderer, options).runToCompletion();
+
+    ASSERT_EQ(r.references.size(), 1u);
+    EXPECT_EQ(r.references.front().environmentWidth, 128);
+    EXPECT_LE(r.references.front().minResolvedRoughness, 0.3);
+    ASSERT_EQ(r.points.size(), options.points.size());
+    for (const BenchPoint& p : r.points) {
+        SCOPED_TRACE(p.setting.label);
+        EXPECT_GT(p.error.pixels, 100u);
+        EXPECT_TRUE(std::isfinite(p.error.relativeRmse));
+        EXPECT_GT(p.error.relativeRmse, 0.0);
+        EXPECT_EQ(p.display.pixels, p.error.pixels);
+        EXPECT_TRUE(std::isfinite(p.display.p99Steps));
+    }
+}
+
+// A mirror sphere against a 64-wide reference given by hand (used as given, not widened):
+// no pixel can be measured. Every point keeps its cost but has no error (NaN, never the 0
+// that reads as exact); the report says why as soon as the reference is done; the CSV, the
+// JSON and the markdown show the error as missing.
+TEST_F(Bench, AnUnmeasurableSceneHasNoErrorAndSaysWhy)
+{
+    BenchOptions options = defaultBenchOptions(/*quick=*/true, IBLAB_ASSET_DIR);
+    options.environments = {{"sky", "builtin:sky?width=256", nullptr}};
+    options.frame.scene.kind = SceneKind::Sphere;
+    options.frame.material.roughness = 0.0f;
+    options.referenceWidth = 64;
+    options.points = {options.points.front(), options.points.back()};
+    options.repeats = 1;
+    Renderer renderer(shaderDirectory());
+    BenchJob job(renderer, options);
+    while (job.report().references.empty() && job.step()) {
+    }
+    ASSERT_EQ(job.report().references.size(), 1u);
+    const std::vector<std::string> why = unmeasuredEnvironments(job.report());
+    ASSERT_EQ(why.size(), 1u) << "before any point is measured";
+    EXPECT_TRUE(job.report().points.empty());
+    EXPECT_EQ(why.front().rfind("sky: not measured: no surface pixel has roughness >= 0.384, the smallest the 64-wide reference resolves; the roughest is 0 ", 0), 0u)
+        << why.front();
+    EXPECT_NE(why.front().find("no reference over the 256-wide map resolves"), std::string::npos) << why.front();
+
+    const BenchReport r = job.runToCompletion();
+    EXPECT_EQ(r.references.front().environmentWidth, 64);
+    ASSERT_EQ(r.points.size(), 2u);
+    for (const BenchPoint& p : r.points) {
+        SCOPED_TRACE(p.setting.label);
+        EXPECT_FALSE(measured(p));
+        EXPECT_EQ(p.error.pixels, 0u);
+        EXPECT_TRUE(std::isnan(p.error.relativeRmse));
+        EXPECT_TRUE(std::isnan(p.error.p99Relative));
+        EXPECT_TRUE(std::isnan(p.display.p99Steps));
+        EXPECT_GT(p.costMilliseconds, 0.0);
+        EXPECT_FALSE(p.dominated);
+    }
+
+    std::istringstream csv(benchCsvText(r));
+    std::string line;
+    ASSERT_TRUE(std::getline(csv, line));
+    const auto& columns = benchCsvColumns();
+    const auto column = [&](const std::string& name) { return std::size_t(std::find(columns.begin(), columns.end(), name) - columns.begin()); };
+    while (std::getline(csv, line)) {
+        const std::vector<std::string> fields = csvFields(line);
+        ASSERT_EQ(fields.size(), columns.size()) << line;
+        for (const char* name : {"relative_rmse", "p99_relative", "fireflies", "display_p99_steps"}) EXPECT_EQ(fields[column(name)], "") << name;
+        EXPECT_EQ(fields[column("pixels")], "0");
+    }
+    const nlohmann::json j = nlohmann::json::parse(benchJsonText(r));
+    for (const nlohmann::json& p : j.at("points")) {
+        EXPECT_TRUE(p.at("error").at("relative_rmse").is_null());
+        EXPECT_TRUE(p.at("display_error").at("p99_steps").is_null());
+    }
+    EXPECT_EQ(j.at("references").at(0).at("not_measured"), r.references.front().unmeasured);
+    const std::string markdown = benchMarkdown(r);
+    EXPECT_NE(markdown.find("| sky | not measured | n/a | n/a | n/a |"), std::string::npos) << markdown;
+    EXPECT_NE(markdown.find("**sky**: not measured: " + r.references.front().unmeasured), std::string::npos) << markdown;
 }
 
 TEST_F(Bench, DominanceIsCheaperAndMoreAccurateWithinOneEnvironment)
