@@ -375,6 +375,7 @@ std::vector<Method> methods(const std::vector<std::pair<std::string, LobeFitTabl
 // One measured image: per method, the per-pixel relative errors of total and specular-only.
 struct Errors {
     std::vector<double> total, specular;
+    std::vector<double> NdotV; // per pixel, for --bins
 };
 
 double rmse(const std::vector<double>& e)
@@ -435,6 +436,8 @@ void evaluatePixels(const EnvCase& env, const std::vector<Pixel>& pixels, const 
             out[m].total.push_back(row[m].first);
             out[m].specular.push_back(row[m].second);
         }
+    for (std::size_t m = 0; m < ms.size(); ++m)
+        for (const Pixel& p : pixels) out[m].NdotV.push_back(std::max(glm::dot(p.n, p.v), 0.0));
 }
 
 struct Args {
@@ -484,6 +487,22 @@ LobeFitTable readTable(const std::string& path)
     return t;
 }
 
+// --bins: the copper spheres' total relative RMSE by n.v band, to see where an error lives.
+constexpr int kBins = 5;
+using Bins = std::array<std::array<double, 2>, kBins>; // per band: sum of squares, count
+std::map<std::string, std::vector<Bins>> bins;
+bool gBins = false;
+
+void addBins(std::vector<Bins>& perMethod, std::size_t methods, std::size_t m, const Errors& e)
+{
+    if (perMethod.size() < methods) perMethod.resize(methods, Bins{});
+    for (std::size_t i = 0; i < e.total.size(); ++i) {
+        const int b = std::clamp(int(e.NdotV[i] * kBins), 0, kBins - 1);
+        perMethod[m][std::size_t(b)][0] += e.total[i] * e.total[i];
+        perMethod[m][std::size_t(b)][1] += 1.0;
+    }
+}
+
 int evalCommand(const Args& a, const std::vector<std::pair<std::string, LobeFitTable>>& extraTables)
 {
     const auto t0 = Clock::now();
@@ -524,6 +543,7 @@ int evalCommand(const Args& a, const std::vector<std::pair<std::string, LobeFitT
                 for (std::size_t m = 0; m < ms.size(); ++m) {
                     spheres[m].total.insert(spheres[m].total.end(), one[m].total.begin(), one[m].total.end());
                     spheres[m].specular.insert(spheres[m].specular.end(), one[m].specular.begin(), one[m].specular.end());
+                    if (metallic > 0.5) addBins(bins[env.name], ms.size(), m, one[m]);
                     if (csv)
                         csv << env.name << ',' << set << ",sphere," << (metallic > 0.5 ? "copper" : "dielectric") << ',' << r << ',' << ms[m].name
                             << ',' << rmse(one[m].total) << ',' << rmse(one[m].specular) << ',' << one[m].total.size() << '\n';
@@ -568,6 +588,19 @@ int evalCommand(const Args& a, const std::vector<std::pair<std::string, LobeFitT
             std::printf(" %.2f |", w);
         }
         std::printf("\n");
+    }
+    if (gBins) {
+        std::printf("\n### Copper spheres (all roughnesses), relative RMSE by n.v band\n\n| environment | method |");
+        for (int b = 0; b < kBins; ++b) std::printf(" n.v %.1f-%.1f |", double(b) / kBins, double(b + 1) / kBins);
+        std::printf("\n|---|---|");
+        for (int b = 0; b < kBins; ++b) std::printf("---|");
+        std::printf("\n");
+        for (const Row& r : rows)
+            for (std::size_t m = 0; m < ms.size(); ++m) {
+                std::printf("| %s | %s |", r.env.c_str(), ms[m].name.c_str());
+                for (const auto& band : bins[r.env][m]) std::printf(" %.3f |", band[1] > 0.0 ? std::sqrt(band[0] / band[1]) : 0.0);
+                std::printf("\n");
+            }
     }
     std::fprintf(stderr, "eval took %.1f s\n", secondsSince(t0));
     return 0;
@@ -789,6 +822,7 @@ int main(int argc, char** argv)
         else if (k == "--min-roughness") a.minRoughness = std::stod(next());
         else if (k == "--out") a.out = next();
         else if (k == "--exact-prefilter") gExactPrefilter = true;
+        else if (k == "--bins") gBins = true;
         else if (k == "--roughness") gRoughnesses = parseList(next());
         else if (k == "--seed") a.seed = unsigned(std::stoul(next()));
         else {

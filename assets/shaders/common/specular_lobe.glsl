@@ -54,3 +54,18 @@ IBL_FN float lobeTapWeight(vec4 p, int taps, int k)
     if (taps == 1) return 1.0f;
     return k == 0 ? 1.0f - p.w : p.w;
 }
+
+// The recommended method (docs/accuracy-study.md), one tap: p is the fitted table's texel at
+// (n.v, roughness), read with bilinear filtering and clamp to edge (LobeFitTable's layout:
+// x = n.v, y = perceptual roughness, texel centres (i + 0.5) / 16). The prefiltered cube is
+// read at this direction with lod prefilterMipFromRoughness(fittedLobeRoughness(p), ...),
+// and multiplied by (F0 A + B) and the energy compensation exactly as the split sum is.
+IBL_FN vec3 fittedLobeDirection(vec3 N, vec3 V, vec4 p)
+{
+    return lobeTapDirection(N, reflect(-V, N), p.x);
+}
+
+IBL_FN float fittedLobeRoughness(vec4 p)
+{
+    return clamp(p.y, 0.0f, 1.0f);
+}
