@@ -3,8 +3,9 @@
 //
 //   accuracy_study eval [--width 256] [--sphere 64] [--grid 128] [--set bundled,unseen,procedural]
 //                       [--env PATH|builtin:SPEC ...] [--csv FILE] [--table FILE.inc ...]
-//   accuracy_study fit  [--width 128] [--taps 1|2] [--frames 48] [--size 16] [--out FILE.inc]
-//                       [--min-roughness 0.15]
+//   accuracy_study fit  [--width 256] [--taps 1|2|3] [--frames 96] [--size 16] [--out FILE.inc]
+//                       [--min-roughness 0.15] [--mixed-objective] [--init ONE_TAP.inc] [--seed 14]
+//   (diagnostics for eval: --bins, --exact-prefilter, --roughness 0.2,0.3,...)
 //
 // eval renders, per environment, the bench's scenes as the GPU shades them -- a unit sphere
 // from the default camera (fov 45, distance 3.5) in copper (metallic 1) and a dielectric
@@ -17,7 +18,11 @@
 // The prefiltered cube is emulated (PrefilteredChain: exact prefilter per mip, 6 mips in
 // the quadratic layout, trilinear) and the LUT is the bake's 128^2 x 2048, read bilinearly.
 //
-// fit refits the lobe table on the 8 bundled maps only and writes it as a C++ include.
+// fit refits the lobe table on the 8 bundled maps only and writes it as a C++ include; the
+// committed table (renderer/ibl/specular_lobe_fit.inc) is reproduced by
+//   accuracy_study fit --taps 1 --out /tmp/one-tap.inc
+//   accuracy_study fit --taps 3 --mixed-objective --init /tmp/one-tap.inc
+// (docs/accuracy-study.md). Caches: build/accuracy_cache (delete it to recompute).
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -338,6 +343,9 @@ std::vector<Pixel> gridPixels(int size)
 // Diagnostics: read the exact prefilter at the requested roughness (O(texels) per read)
 // instead of the emulated mip chain, to separate the chain's discrete levels from the lobe.
 bool gExactPrefilter = false;
+// fit --mixed-objective: also the dielectric's specular alone, so that a read that only
+// the dielectric's diffuse hides (a dark dielectric would show it) is not rewarded.
+bool gMixedObjective = false;
 std::vector<double> gRoughnesses{0.2, 0.3, 0.5, 0.7, 0.9};
 
 std::vector<double> parseList(const std::string& text)
@@ -451,10 +459,11 @@ struct Args {
     std::vector<std::string> tables;
     // fit
     int taps = 1;
-    int frames = 48;
+    int frames = 96;
     int size = 16;
     double minRoughness = 0.15;
     std::string out;
+    std::string init; // fit --taps 3: the one-tap table to start from
     unsigned seed = 14;
 };
 
@@ -674,6 +683,11 @@ int fitCommand(const Args& a)
     for (const auto& [spec, set] : environmentList("bundled", {})) envs.push_back(loadCase(spec, set, a.width, true));
     std::fprintf(stderr, "fit on %zu bundled maps at %d wide (%.1f s to load and prefilter)\n", envs.size(), a.width, secondsSince(t0));
 
+    LobeFitTable initTable;
+    if (!a.init.empty()) {
+        initTable = readTable(a.init);
+        if (initTable.taps != 1) throw std::runtime_error("--init needs a one-tap table");
+    }
     LobeFitTable table;
     table.taps = a.taps;
     table.nvSize = a.size;
@@ -682,7 +696,7 @@ int fitCommand(const Args& a)
     for (int row = 0; row < a.size; ++row)
         for (int col = 0; col < a.size; ++col) {
             const float r = (float(row) + 0.5f) / float(a.size);
-            table.at(col, row) = a.taps == 1 ? glm::vec4(0.0f, r, 0.0f, 0.0f) : glm::vec4(0.0f, 0.0f, r, 0.0f);
+            table.at(col, row) = a.taps == 1 ? glm::vec4(0.0f, r, 0.0f, 0.0f) : a.taps == 2 ? glm::vec4(0.0f, 0.0f, r, 0.0f) : glm::vec4(0.0f, r, 0.0f, r);
         }
     std::vector<std::array<double, 2>> gain(table.cells.size(), {0.0, 0.0}); // split-sum objective, fitted objective
     std::mutex print;
@@ -717,19 +731,34 @@ int fitCommand(const Args& a)
             double e = 0.0;
             for (const FitSample& s : samples) {
                 const glm::dvec3 R = 2.0 * glm::dot(s.n, s.v) * s.n - s.v;
+                if (table.taps == 3) {
+                    // Fresnel split: F0 A read_A + B read_B.
+                    const glm::dvec3 preA = s.env->chain->lookup(glm::mix(R, s.n, double(p.x)), p.y);
+                    const glm::dvec3 preB = s.env->chain->lookup(glm::mix(R, s.n, double(p.z)), p.w);
+                    const double ec = pixelError(kCopper * ab.x * preA + ab.y * preB, s.refCopper);
+                    const glm::dvec3 specD = kDielectricF0 * ab.x * preA + ab.y * preB;
+                    const double ed = pixelError(specD + s.diffuseDielectric, s.refDielectric);
+                    const double es = gMixedObjective ? pixelError(specD, s.refDielectric - s.diffuseDielectric) : 0.0;
+                    e += ec * ec + ed * ed + es * es;
+                    continue;
+                }
                 glm::dvec3 pre(0.0);
                 for (int k = 0; k < table.taps; ++k) {
                     const glm::dvec3 d = glm::mix(R, s.n, double(shared::lobeTapTowardsNormal(p, table.taps, k)));
-                    pre += double(shared::lobeTapWeight(p, table.taps, k)) * s.env->chain->lookup(d, shared::lobeTapRoughness(p, table.taps));
+                    pre += double(shared::lobeTapWeight(p, table.taps, k)) * s.env->chain->lookup(d, shared::lobeTapRoughness(p, table.taps, k));
                 }
                 const double ec = pixelError(pre * albedoCopper, s.refCopper);
                 const double ed = pixelError(pre * albedoDielectric + s.diffuseDielectric, s.refDielectric);
-                e += ec * ec + ed * ed;
+                const double es = gMixedObjective ? pixelError(pre * albedoDielectric, s.refDielectric - s.diffuseDielectric) : 0.0;
+                e += ec * ec + ed * ed + es * es;
             }
             return e / double(samples.size());
         };
         auto clampParams = [&](const std::vector<double>& x) {
             if (table.taps == 1) return glm::vec4(float(std::clamp(x[0], -0.5, 1.0)), float(std::clamp(x[1], 0.0, 1.0)), 0.0f, 0.0f);
+            if (table.taps == 3)
+                return glm::vec4(float(std::clamp(x[0], -0.5, 1.0)), float(std::clamp(x[1], 0.0, 1.0)), float(std::clamp(x[2], -0.5, 1.0)),
+                                 float(std::clamp(x[3], 0.0, 1.0)));
             return glm::vec4(float(std::clamp(x[0], -1.0, 1.0)), float(std::clamp(x[1], -1.0, 1.0)), float(std::clamp(x[2], 0.0, 1.0)),
                              float(std::clamp(x[3], 0.0, 1.0)));
         };
@@ -738,7 +767,15 @@ int fitCommand(const Args& a)
         const double base = objective(identity);
         glm::vec4 best = identity;
         double bestValue = base;
-        if (table.taps == 1) {
+        if (table.taps == 3) {
+            // Start from the one-tap table of --init (both reads where it reads) and from the split sum.
+            const glm::dvec4 one = initTable.empty() ? glm::dvec4(0.0, roughness, 0.0, 0.0) : initTable.sample(NdotV, roughness);
+            for (const std::vector<double>& x0 : {std::vector<double>{one.x, one.y, one.x, one.y}, std::vector<double>{0.0, roughness, 0.0, roughness}}) {
+                const std::vector<double> x = nelderMead(f, x0, {0.15, 0.1, 0.15, 0.1}, 200);
+                const double v = f(x);
+                if (v < bestValue) bestValue = v, best = clampParams(x);
+            }
+        } else if (table.taps == 1) {
             for (double t0s : {0.0, 0.3, 0.6}) {
                 const std::vector<double> x = nelderMead(f, {t0s, roughness}, {0.15, 0.1}, 80);
                 const double v = f(x);
@@ -761,10 +798,12 @@ int fitCommand(const Args& a)
 
     std::ostringstream o;
     o << "// Generated by `accuracy_study fit --taps " << a.taps << " --width " << a.width << " --frames " << a.frames << " --size " << a.size
-      << " --min-roughness " << a.minRoughness << "` on the 8 bundled maps\n"
+      << " --min-roughness " << a.minRoughness << (gMixedObjective ? " --mixed-objective" : "")
+      << (a.init.empty() ? std::string() : " --init " + fs::path(a.init).filename().string()) << "` on the 8 bundled maps\n"
       << "// (assets/environments), " << a.frames << " random (n, v) per map and cell; objective: the mean squared per-pixel\n"
       << "// relative error (common/error_metrics.glsl) of copper's specular plus that of a dielectric's specular + diffuse\n"
-      << "// (F0 0.04, copper base colour). Do not edit: refit.\n"
+      << "// (F0 0.04, copper base colour)" << (gMixedObjective ? " and of the dielectric's specular alone (--mixed-objective)" : "")
+      << ". Do not edit: refit.\n"
       << "// Layout: specular_approximations.hpp, LobeFitTable; rows = roughness (i + 0.5) / size, columns = n.v.\n"
       << "constexpr int kLobeFitTaps = " << a.taps << ";\n"
       << "constexpr int kLobeFitNvSize = " << a.size << ";\n"
@@ -802,7 +841,6 @@ int main(int argc, char** argv)
         return 2;
     }
     a.command = argv[1];
-    if (a.command == "fit") a.width = 128;
     for (int i = 2; i < argc; ++i) {
         const std::string k = argv[i];
         auto next = [&]() -> std::string {
@@ -821,8 +859,10 @@ int main(int argc, char** argv)
         else if (k == "--size") a.size = std::stoi(next());
         else if (k == "--min-roughness") a.minRoughness = std::stod(next());
         else if (k == "--out") a.out = next();
+        else if (k == "--init") a.init = next();
         else if (k == "--exact-prefilter") gExactPrefilter = true;
         else if (k == "--bins") gBins = true;
+        else if (k == "--mixed-objective") gMixedObjective = true;
         else if (k == "--roughness") gRoughnesses = parseList(next());
         else if (k == "--seed") a.seed = unsigned(std::stoul(next()));
         else {

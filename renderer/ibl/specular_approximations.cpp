@@ -92,10 +92,11 @@ std::vector<LobeTap> fittedLobeTaps(const LobeFitTable& fit, glm::dvec3 n, glm::
     const glm::vec4 p(fit.sample(NdotV, roughness));
     const glm::vec3 N(n), R(reflectView(n, v));
     std::vector<LobeTap> taps;
-    for (int k = 0; k < fit.taps; ++k) {
+    const int reads = fit.taps == 1 ? 1 : 2;
+    for (int k = 0; k < reads; ++k) {
         LobeTap tap;
         tap.direction = glm::dvec3(shared::lobeTapDirection(N, R, shared::lobeTapTowardsNormal(p, fit.taps, k)));
-        tap.roughness = shared::lobeTapRoughness(p, fit.taps);
+        tap.roughness = shared::lobeTapRoughness(p, fit.taps, k);
         tap.weight = shared::lobeTapWeight(p, fit.taps, k);
         taps.push_back(tap);
     }
@@ -118,8 +119,12 @@ glm::dvec3 shadeSpecularApproximation(SpecularMethod method, const SpecularShadi
     case SpecularMethod::FilamentDominant:
         return prefiltered(glm::mix(R, in.n, double(shared::filamentDominantTowardsNormal(float(alpha)))), in.roughness) * albedo;
     case SpecularMethod::FittedLobe: {
+        const LobeFitTable& table = fit ? *fit : fittedLobeTable();
+        const std::vector<LobeTap> taps = fittedLobeTaps(table, in.n, in.v, in.roughness);
+        if (table.taps == 3)
+            return in.F0 * in.lut.x * prefiltered(taps[0].direction, taps[0].roughness) + in.lut.y * prefiltered(taps[1].direction, taps[1].roughness);
         glm::dvec3 sum(0.0);
-        for (const LobeTap& tap : fittedLobeTaps(fit ? *fit : fittedLobeTable(), in.n, in.v, in.roughness))
+        for (const LobeTap& tap : taps)
             if (tap.weight != 0.0) sum += tap.weight * prefiltered(tap.direction, tap.roughness);
         return sum * albedo;
     }

@@ -47,11 +47,12 @@ struct SpecularShadingInputs {
 // prefilterMipFromRoughness does on the GPU).
 using PrefilteredLookup = std::function<glm::dvec3(glm::dvec3 direction, double roughness)>;
 
-// A fitted lobe: per (n.v, roughness) cell, kLobeTaps reads of the prefiltered cube, tap k at
-// direction normalize(mix(R, N, t_k)) and roughness r_k with weight w_k (sum 1). Stored as
-// one RGBA texel per cell, as a GPU texture would hold it (specular_lobe.glsl decodes it):
-//   taps = 1: (t, r_eff, -, -)
-//   taps = 2: (t_0, t_1, r_eff, w_1)  both taps read r_eff, w_0 = 1 - w_1
+// A fitted lobe: per (n.v, roughness) cell, one or two reads of the prefiltered cube, tap k at
+// direction normalize(mix(R, N, t_k)) and roughness r_k. Stored as one RGBA texel per cell,
+// as a GPU texture would hold it (specular_lobe.glsl decodes it); `taps` is the layout:
+//   1: (t, r_eff, -, -)                 one read
+//   2: (t_0, t_1, r_eff, w_1)           sum_k w_k read_k, w_0 = 1 - w_1
+//   3: (t_A, r_A, t_B, r_B)             Fresnel split: F0 A read_A + B read_B
 // Axes as the split-sum LUT's (brdf_lut.hpp): x = n.v, y = perceptual roughness, texel
 // centres at (i + 0.5) / size, bilinear with clamp to edge.
 struct LobeFitTable {
@@ -76,12 +77,14 @@ enum class SpecularMethod {
 };
 std::string_view specularMethodName(SpecularMethod method);
 
-// The specular radiance of one method: sum_k w_k prefiltered(d_k, r_k) (F0 A + B). `fit` is
+// The specular radiance of one method: sum_k w_k prefiltered(d_k, r_k) (F0 A + B), or for
+// the Fresnel-split layout F0 A prefiltered(d_A, r_A) + B prefiltered(d_B, r_B). `fit` is
 // used by FittedLobe only (fittedLobeTable() when null).
 glm::dvec3 shadeSpecularApproximation(SpecularMethod method, const SpecularShadingInputs& in, const PrefilteredLookup& prefiltered,
                                       const LobeFitTable* fit = nullptr);
 
-// The fitted lobe's taps for one pixel (directions unit length), from a table texel.
+// The fitted lobe's taps for one pixel (directions unit length), from a table texel. For the
+// Fresnel split, tap 0 multiplies F0 A and tap 1 multiplies B, both with weight 1.
 struct LobeTap {
     glm::dvec3 direction{0.0};
     double roughness = 0.0;

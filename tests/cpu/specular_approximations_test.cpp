@@ -4,6 +4,7 @@
 // (the fitted lobe) against the split sum -- closer to the full integral on an environment
 // of this test's own (no bundled map, which the fit saw), and exactly as energy-neutral in
 // the white furnace.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -127,8 +128,8 @@ TEST(SpecularApproximations, FittedLobeIsCloserToTheFullIntegralThanTheSplitSum)
             }
     const double splitRmse = std::sqrt(splitSquares / cases), fittedRmse = std::sqrt(fittedSquares / cases);
     std::printf("fitted lobe %.3f, split sum %.3f (relative RMSE of %d cases), fitted better in %d\n", fittedRmse, splitRmse, cases, fittedWins);
-    // Measured with the committed table: fitted 0.17, split sum 0.59 (0.29x), the fitted lobe
-    // closer in 37 of 48 cases. The study's bar is half the split sum's error.
+    // Measured with the committed table (Fresnel split): fitted 0.18, split sum 0.59 (0.30x),
+    // the fitted lobe closer in 37 of 48 cases. The study's bar is half the split sum's error.
     EXPECT_LT(fittedRmse, 0.5 * splitRmse) << "fitted " << fittedRmse << " split sum " << splitRmse;
     EXPECT_GE(fittedWins, cases * 3 / 4) << fittedWins << " of " << cases;
 }
@@ -168,6 +169,7 @@ TEST(SpecularApproximations, WhiteFurnaceMatchesTheSplitSum)
     const PrefilteredChain chain(env);
     const PrefilteredLookup lookup = [&](glm::dvec3 d, double r) { return chain.lookup(d, r); };
     const glm::dvec3 F0(1.0);
+    double largest = 0.0;
     for (double roughness : {0.05, 0.2, 0.35, 0.5, 0.75, 1.0})
         for (double NdotV : {0.02, 0.1, 0.3, 0.6, 0.9, 1.0}) {
             const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, 0.9, -0.3));
@@ -183,18 +185,21 @@ TEST(SpecularApproximations, WhiteFurnaceMatchesTheSplitSum)
             const glm::dvec3 split = shadeSpecularApproximation(SpecularMethod::SplitSum, in, lookup) * compensation;
             for (SpecularMethod m : {SpecularMethod::FittedLobe, SpecularMethod::FrostbiteDominant, SpecularMethod::FilamentDominant}) {
                 const glm::dvec3 value = shadeSpecularApproximation(m, in, lookup) * compensation;
-                for (int c = 0; c < 3; ++c)
+                for (int c = 0; c < 3; ++c) {
                     EXPECT_NEAR(value[c], split[c], 1e-3 * split[c]) << specularMethodName(m) << " roughness " << roughness << " n.v " << NdotV;
+                    largest = std::max(largest, std::abs(value[c] / split[c] - 1.0));
+                }
             }
             EXPECT_NEAR(split.x, 1.0, 1e-3);
         }
+    std::printf("white furnace: largest relative difference from the split sum %.2g\n", largest);
 }
 
 TEST(SpecularApproximations, FittedTableIsWellFormed)
 {
     const LobeFitTable& t = fittedLobeTable();
     ASSERT_FALSE(t.empty());
-    EXPECT_TRUE(t.taps == 1 || t.taps == 2);
+    EXPECT_TRUE(t.taps == 1 || t.taps == 2 || t.taps == 3);
     const glm::dvec3 n(0.0, 0.0, 1.0);
     for (double NdotV : {0.01, 0.25, 0.5, 1.0})
         for (double roughness : {0.0, 0.2, 0.5, 1.0}) {
@@ -208,7 +213,8 @@ TEST(SpecularApproximations, FittedTableIsWellFormed)
                 EXPECT_NEAR(glm::length(tap.direction), 1.0, 1e-6);
                 EXPECT_GE(tap.direction.z, -1e-6) << "a tap below the surface";
             }
-            EXPECT_NEAR(weights, 1.0, 1e-6);
+            // Mixed reads sum to 1; the Fresnel split's two reads each carry one LUT term.
+            EXPECT_NEAR(weights, t.taps == 3 ? 2.0 : 1.0, 1e-6);
         }
 }
 

@@ -35,23 +35,29 @@ IBL_FN vec3 lobeTapDirection(vec3 N, vec3 R, float towardsNormal)
     return normalize(mix(R, N, towardsNormal));
 }
 
-// The fitted lobe's table texel (specular_approximations.hpp, LobeFitTable) decoded:
-// one tap:  p = (t, r_eff, -, -);
-// two taps: p = (t_0, t_1, r_eff, w_1), w_0 = 1 - w_1.
-IBL_FN float lobeTapTowardsNormal(vec4 p, int taps, int k)
+// The fitted lobe's table texel (specular_approximations.hpp, LobeFitTable) decoded, by
+// layout:
+//  1, one tap:       p = (t, r_eff, -, -);
+//  2, two taps:      p = (t_0, t_1, r_eff, w_1), w_0 = 1 - w_1, radiance sum_k w_k read_k;
+//  3, Fresnel split: p = (t_A, r_A, t_B, r_B): tap 0 is the read that multiplies F0 A, tap 1
+//     the one that multiplies B (the LUT's two terms get lobes of their own); weights 1.
+IBL_FN float lobeTapTowardsNormal(vec4 p, int layout, int k)
 {
-    if (taps == 1) return p.x;
+    if (layout == 1) return p.x;
+    if (layout == 3) return k == 0 ? p.x : p.z;
     return k == 0 ? p.x : p.y;
 }
 
-IBL_FN float lobeTapRoughness(vec4 p, int taps)
+IBL_FN float lobeTapRoughness(vec4 p, int layout, int k)
 {
-    return taps == 1 ? p.y : p.z;
+    if (layout == 1) return p.y;
+    if (layout == 3) return k == 0 ? p.y : p.w;
+    return p.z;
 }
 
-IBL_FN float lobeTapWeight(vec4 p, int taps, int k)
+IBL_FN float lobeTapWeight(vec4 p, int layout, int k)
 {
-    if (taps == 1) return 1.0f;
+    if (layout != 2) return 1.0f;
     return k == 0 ? 1.0f - p.w : p.w;
 }
 
