@@ -5,12 +5,13 @@
 // (reference.hpp) can be measured without GL. The research behind them, the tables and the
 // recommendation: docs/accuracy-study.md; the measuring tool: tools/accuracy_study.cpp.
 //
-// Every method here is "prefiltered radiance, read somewhere, times (F0 A + B)": the
-// split-sum LUT stays as it is, and what changes is WHERE the prefiltered cube is read
-// (the lookup direction), HOW WIDE a lobe is read (the lookup roughness, i.e. the lod) and,
-// for the multi-tap methods, how several reads are mixed (weights that sum to 1). So in a
-// uniform environment every method returns exactly the split sum's value: no method adds
-// or removes energy in the white furnace.
+// Every method here is prefiltered radiance times the split-sum LUT's terms: the LUT stays
+// as it is, and what changes is WHERE the prefiltered cube is read (the lookup direction),
+// HOW WIDE a lobe is read (the lookup roughness, i.e. the lod) and, for the two-read
+// methods, how the reads combine: mixed with weights that sum to 1 and multiplied by
+// (F0 A + B), or (the recommended Fresnel split) one read multiplying F0 A and the other B.
+// A uniform environment reads the same radiance everywhere, so every method returns exactly
+// the split sum's value there: none adds or removes energy in the white furnace.
 //
 // The per-pixel formulas are written once in assets/shaders/common/specular_lobe.glsl (the
 // common subset of GLSL and C++, included below), so a shader can include them unchanged.
@@ -73,7 +74,7 @@ enum class SpecularMethod {
     FrostbiteDominant, // read at Frostbite's dominant direction, alpha convention
     FrostbitePerceptual, // the same formula fed perceptual roughness (as e.g. Blender's EEVEE does)
     FilamentDominant,  // read at mix(R, N, alpha^2) (Filament's getReflectedVector)
-    FittedLobe,        // read per the fitted table (one or two taps)
+    FittedLobe,        // read per the fitted table (fittedLobeTable(): the Fresnel split, layout 3)
 };
 std::string_view specularMethodName(SpecularMethod method);
 

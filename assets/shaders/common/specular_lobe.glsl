@@ -36,42 +36,34 @@ IBL_FN vec3 lobeTapDirection(vec3 N, vec3 R, float towardsNormal)
 }
 
 // The fitted lobe's table texel (specular_approximations.hpp, LobeFitTable) decoded, by
-// layout:
+// layout (`fitLayout`: `layout` is a GLSL keyword):
 //  1, one tap:       p = (t, r_eff, -, -);
 //  2, two taps:      p = (t_0, t_1, r_eff, w_1), w_0 = 1 - w_1, radiance sum_k w_k read_k;
 //  3, Fresnel split: p = (t_A, r_A, t_B, r_B): tap 0 is the read that multiplies F0 A, tap 1
 //     the one that multiplies B (the LUT's two terms get lobes of their own); weights 1.
-IBL_FN float lobeTapTowardsNormal(vec4 p, int layout, int k)
+IBL_FN float lobeTapTowardsNormal(vec4 p, int fitLayout, int k)
 {
-    if (layout == 1) return p.x;
-    if (layout == 3) return k == 0 ? p.x : p.z;
+    if (fitLayout == 1) return p.x;
+    if (fitLayout == 3) return k == 0 ? p.x : p.z;
     return k == 0 ? p.x : p.y;
 }
 
-IBL_FN float lobeTapRoughness(vec4 p, int layout, int k)
+IBL_FN float lobeTapRoughness(vec4 p, int fitLayout, int k)
 {
-    if (layout == 1) return p.y;
-    if (layout == 3) return k == 0 ? p.y : p.w;
+    if (fitLayout == 1) return p.y;
+    if (fitLayout == 3) return k == 0 ? p.y : p.w;
     return p.z;
 }
 
-IBL_FN float lobeTapWeight(vec4 p, int layout, int k)
+IBL_FN float lobeTapWeight(vec4 p, int fitLayout, int k)
 {
-    if (layout != 2) return 1.0f;
+    if (fitLayout != 2) return 1.0f;
     return k == 0 ? 1.0f - p.w : p.w;
 }
 
-// The recommended method (docs/accuracy-study.md), one tap: p is the fitted table's texel at
-// (n.v, roughness), read with bilinear filtering and clamp to edge (LobeFitTable's layout:
-// x = n.v, y = perceptual roughness, texel centres (i + 0.5) / 16). The prefiltered cube is
-// read at this direction with lod prefilterMipFromRoughness(fittedLobeRoughness(p), ...),
-// and multiplied by (F0 A + B) and the energy compensation exactly as the split sum is.
-IBL_FN vec3 fittedLobeDirection(vec3 N, vec3 V, vec4 p)
-{
-    return lobeTapDirection(N, reflect(-V, N), p.x);
-}
-
-IBL_FN float fittedLobeRoughness(vec4 p)
-{
-    return clamp(p.y, 0.0f, 1.0f);
-}
+// The recommended method (docs/accuracy-study.md) is layout 3, the Fresnel split: with p the
+// table texel at (n.v, roughness) (bilinear, clamp to edge; x = n.v, y = perceptual
+// roughness, texel centres (i + 0.5) / 16),
+//   specular = F0 A read(lobeTapDirection(N, R, p.x), p.y) + B read(lobeTapDirection(N, R, p.z), p.w)
+// times the energy compensation, where read(d, r) = textureLod(prefiltered, d,
+// prefilterMipFromRoughness(r, levels, layout)) and A, B are the split-sum LUT's.
