@@ -14,3 +14,8 @@ endforeach()
 iblab_add_cpu_test(split_sum_bias_test ${CMAKE_CURRENT_SOURCE_DIR}/split_sum_bias_test.cpp)
 target_link_libraries(split_sum_bias_test PRIVATE iblab_environment)
 target_compile_definitions(split_sum_bias_test PRIVATE IBLAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
+# The real-time specular approximations against the full integral (issue #14); reads
+# builtin:white through iblab_environment.
+iblab_add_cpu_test(specular_approximations_test ${CMAKE_CURRENT_SOURCE_DIR}/specular_approximations_test.cpp)
+target_link_libraries(specular_approximations_test PRIVATE iblab_environment)

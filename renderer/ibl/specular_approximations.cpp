@@ -1,0 +1,257 @@
+#include "ibl/specular_approximations.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include <glm/geometric.hpp>
+
+#include "ibl/equirect.hpp"
+
+namespace iblab {
+
+namespace {
+
+#include "ibl/specular_lobe_fit.inc"
+
+template <typename Fn>
+void parallelRows(int rows, const Fn& fn)
+{
+    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(std::max(rows, 1))));
+    if (threads <= 1) {
+        fn(0, rows);
+        return;
+    }
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back([&, t] { fn(rows * t / threads, rows * (t + 1) / threads); });
+    for (auto& th : pool) th.join();
+}
+
+glm::dvec3 reflectView(glm::dvec3 n, glm::dvec3 v)
+{
+    return 2.0 * glm::dot(n, v) * n - v;
+}
+
+} // namespace
+
+// ---- LobeFitTable ----------------------------------------------------------------------
+
+glm::dvec4 LobeFitTable::sample(double NdotV, double roughness) const
+{
+    if (cells.empty()) throw std::logic_error("LobeFitTable::sample on an empty table");
+    auto axis = [](double x, int size, int& i0, int& i1, double& t) {
+        const double f = std::clamp(x, 0.0, 1.0) * size - 0.5;
+        const double fl = std::floor(f);
+        t = f - fl;
+        i0 = std::clamp(int(fl), 0, size - 1);
+        i1 = std::clamp(int(fl) + 1, 0, size - 1);
+    };
+    int x0, x1, y0, y1;
+    double tx, ty;
+    axis(NdotV, nvSize, x0, x1, tx);
+    axis(roughness, roughnessSize, y0, y1, ty);
+    auto cell = [&](int x, int y) { return glm::dvec4(cells[std::size_t(y) * std::size_t(nvSize) + std::size_t(x)]); };
+    return (cell(x0, y0) * (1.0 - tx) + cell(x1, y0) * tx) * (1.0 - ty) + (cell(x0, y1) * (1.0 - tx) + cell(x1, y1) * tx) * ty;
+}
+
+const LobeFitTable& fittedLobeTable()
+{
+    static const LobeFitTable table = [] {
+        LobeFitTable t;
+        t.taps = kLobeFitTaps;
+        t.nvSize = kLobeFitNvSize;
+        t.roughnessSize = kLobeFitRoughnessSize;
+        const std::size_t n = std::size_t(t.nvSize) * std::size_t(t.roughnessSize);
+        static_assert(sizeof(kLobeFitCells) / sizeof(float) == std::size_t(kLobeFitNvSize) * kLobeFitRoughnessSize * 4);
+        for (std::size_t i = 0; i < n; ++i)
+            t.cells.emplace_back(kLobeFitCells[4 * i], kLobeFitCells[4 * i + 1], kLobeFitCells[4 * i + 2], kLobeFitCells[4 * i + 3]);
+        return t;
+    }();
+    return table;
+}
+
+// ---- The methods -----------------------------------------------------------------------
+
+std::string_view specularMethodName(SpecularMethod method)
+{
+    switch (method) {
+    case SpecularMethod::SplitSum: return "split-sum";
+    case SpecularMethod::FrostbiteDominant: return "frostbite-dd";
+    case SpecularMethod::FrostbitePerceptual: return "frostbite-dd-perceptual";
+    case SpecularMethod::FilamentDominant: return "filament-dd";
+    case SpecularMethod::FittedLobe: return "fitted-lobe";
+    }
+    return "?";
+}
+
+std::vector<LobeTap> fittedLobeTaps(const LobeFitTable& fit, glm::dvec3 n, glm::dvec3 v, double roughness)
+{
+    const double NdotV = std::max(glm::dot(n, v), 1e-4);
+    const glm::vec4 p(fit.sample(NdotV, roughness));
+    const glm::vec3 N(n), R(reflectView(n, v));
+    std::vector<LobeTap> taps;
+    const int reads = fit.taps == 1 ? 1 : 2;
+    for (int k = 0; k < reads; ++k) {
+        LobeTap tap;
+        tap.direction = glm::dvec3(shared::lobeTapDirection(N, R, shared::lobeTapTowardsNormal(p, fit.taps, k)));
+        tap.roughness = shared::lobeTapRoughness(p, fit.taps, k);
+        tap.weight = shared::lobeTapWeight(p, fit.taps, k);
+        taps.push_back(tap);
+    }
+    return taps;
+}
+
+glm::dvec3 shadeSpecularApproximation(SpecularMethod method, const SpecularShadingInputs& in, const PrefilteredLookup& prefiltered,
+                                      const LobeFitTable* fit)
+{
+    const glm::dvec3 albedo = in.F0 * in.lut.x + in.lut.y;
+    const glm::dvec3 R = reflectView(in.n, in.v);
+    const double alpha = in.roughness * in.roughness;
+    switch (method) {
+    case SpecularMethod::SplitSum:
+        return prefiltered(R, in.roughness) * albedo;
+    case SpecularMethod::FrostbiteDominant:
+        return prefiltered(glm::mix(in.n, R, double(shared::frostbiteDominantLerp(float(alpha)))), in.roughness) * albedo;
+    case SpecularMethod::FrostbitePerceptual:
+        return prefiltered(glm::mix(in.n, R, double(shared::frostbiteDominantLerp(float(in.roughness)))), in.roughness) * albedo;
+    case SpecularMethod::FilamentDominant:
+        return prefiltered(glm::mix(R, in.n, double(shared::filamentDominantTowardsNormal(float(alpha)))), in.roughness) * albedo;
+    case SpecularMethod::FittedLobe: {
+        const LobeFitTable& table = fit ? *fit : fittedLobeTable();
+        const std::vector<LobeTap> taps = fittedLobeTaps(table, in.n, in.v, in.roughness);
+        if (table.taps == 3)
+            return in.F0 * in.lut.x * prefiltered(taps[0].direction, taps[0].roughness) + in.lut.y * prefiltered(taps[1].direction, taps[1].roughness);
+        glm::dvec3 sum(0.0);
+        for (const LobeTap& tap : taps)
+            if (tap.weight != 0.0) sum += tap.weight * prefiltered(tap.direction, tap.roughness);
+        return sum * albedo;
+    }
+    }
+    return glm::dvec3(0.0);
+}
+
+// ---- Prefiltered chain emulation ---------------------------------------------------------
+
+ImageRGB32F prefilterEquirect(const ImageRGB32F& env, double roughness, int width)
+{
+    if (env.empty() || width < 2 || width % 2 != 0) throw std::invalid_argument("prefilterEquirect: need an environment and an even width");
+    struct Texel {
+        glm::dvec3 direction;
+        glm::dvec3 radiance;
+        double solidAngle;
+    };
+    std::vector<Texel> texels;
+    texels.reserve(env.texelCount());
+    for (int y = 0; y < env.height; ++y) {
+        const double dOmega = equirectTexelSolidAngle(y, env.width, env.height);
+        for (int x = 0; x < env.width; ++x) texels.push_back({equirectTexelDirection(x, y, env.width, env.height), glm::dvec3(env.at(x, y)), dOmega});
+    }
+    const int height = width / 2;
+    ImageRGB32F out(width, height);
+    const double alpha = roughness * roughness;
+    parallelRows(height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < width; ++x) {
+                const glm::dvec3 n = equirectTexelDirection(x, y, width, height);
+                if (roughness <= 0.0) {
+                    out.set(x, y, sampleEquirectBilinear(env, n));
+                    continue;
+                }
+                // With v = n the half vector's cosine needs no normalisation:
+                // (n.h)^2 = (1 + n.l) / 2, and ggxD only needs (n.h)^2 (its denominator is
+                // a2 (n.h)^2 + 1 - (n.h)^2), so the weight D(h) (n.l) costs one division.
+                const double a2 = alpha * alpha;
+                glm::dvec3 sum(0.0);
+                double weight = 0.0;
+                for (const Texel& t : texels) {
+                    const double NdotL = glm::dot(n, t.direction);
+                    if (NdotL <= 0.0) continue;
+                    const double c = 0.5 * (1.0 + NdotL);
+                    const double d = a2 * c + (1.0 - c);
+                    const double w = NdotL * t.solidAngle / (d * d); // a2 / pi cancels in the ratio
+                    sum += t.radiance * w;
+                    weight += w;
+                }
+                out.set(x, y, weight > 0.0 ? glm::vec3(sum / weight) : sampleEquirectBilinear(env, n));
+            }
+    });
+    return out;
+}
+
+PrefilteredChain::PrefilteredChain(const ImageRGB32F& env, int levels, int layout) : layout_(layout)
+{
+    if (levels < 1) throw std::invalid_argument("PrefilteredChain: levels >= 1");
+    mips_.push_back(env);
+    for (int m = 1; m < levels; ++m) {
+        const double roughness = shared::prefilterRoughnessFromMip(float(m), float(levels), layout);
+        const int width = std::max(32, std::min(env.width, 256 >> (m - 1)));
+        mips_.push_back(prefilterEquirect(env, roughness, width));
+    }
+}
+
+PrefilteredChain PrefilteredChain::fromMips(std::vector<ImageRGB32F> mips, int layout)
+{
+    if (mips.empty()) throw std::invalid_argument("PrefilteredChain::fromMips: no mips");
+    PrefilteredChain c;
+    c.mips_ = std::move(mips);
+    c.layout_ = layout;
+    return c;
+}
+
+glm::dvec3 PrefilteredChain::lookupLod(glm::dvec3 direction, double lod) const
+{
+    const double l = std::clamp(lod, 0.0, double(mips_.size() - 1));
+    const int m0 = int(std::floor(l));
+    const int m1 = std::min(m0 + 1, int(mips_.size()) - 1);
+    const double t = l - m0;
+    const glm::dvec3 a(sampleEquirectBilinear(mips_[std::size_t(m0)], direction));
+    if (t <= 0.0 || m1 == m0) return a;
+    const glm::dvec3 b(sampleEquirectBilinear(mips_[std::size_t(m1)], direction));
+    return a * (1.0 - t) + b * t;
+}
+
+glm::dvec3 PrefilteredChain::lookup(glm::dvec3 direction, double roughness) const
+{
+    return lookupLod(direction, shared::prefilterMipFromRoughness(float(roughness), float(mips_.size()), layout_));
+}
+
+// ---- Full integral -----------------------------------------------------------------------
+
+ReferenceSums::ReferenceSums(const ImageRGB32F& env) : width_(env.width)
+{
+    if (env.empty()) throw std::invalid_argument("ReferenceSums: empty environment");
+    texels_.reserve(env.texelCount());
+    for (int y = 0; y < env.height; ++y) {
+        const double dOmega = equirectTexelSolidAngle(y, env.width, env.height);
+        for (int x = 0; x < env.width; ++x) texels_.push_back({equirectTexelDirection(x, y, env.width, env.height), glm::dvec3(env.at(x, y)) * dOmega});
+    }
+}
+
+FullIntegral ReferenceSums::evaluate(glm::dvec3 n, glm::dvec3 v, double roughness, GeometryTerm term, bool withIrradiance) const
+{
+    FullIntegral r;
+    const double NdotVRaw = glm::dot(n, v);
+    const double NdotV = std::max(NdotVRaw, 1e-4);
+    const double alpha = std::max(roughness * roughness, 1e-3);
+    // h = (v + l) / |v + l| with |v + l| = sqrt(2 + 2 v.l): n.h and v.h without forming h.
+    for (const Texel& t : texels_) {
+        const double NdotL = glm::dot(n, t.direction);
+        if (NdotL <= 0.0) continue;
+        if (withIrradiance) r.irradiance += t.radianceTimesSolidAngle * NdotL;
+        const double VdotL = glm::dot(v, t.direction);
+        const double len2 = 2.0 + 2.0 * VdotL;
+        if (!(len2 > 0.0)) continue; // l = -v: h undefined, and n.l > 0 with n.v > 0 cannot hold
+        const double inv = 1.0 / std::sqrt(len2);
+        const double NdotH = std::max(0.0, (NdotVRaw + NdotL) * inv);
+        const double VdotH = std::max(0.0, (1.0 + VdotL) * inv);
+        const double w = ggxSpecularBrdf(term, NdotH, NdotV, NdotL, alpha) * NdotL;
+        const double Fc = schlickWeight(VdotH);
+        r.Ia += t.radianceTimesSolidAngle * (w * (1.0 - Fc));
+        r.Ib += t.radianceTimesSolidAngle * (w * Fc);
+    }
+    return r;
+}
+
+} // namespace iblab
