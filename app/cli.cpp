@@ -91,6 +91,8 @@ void addSamplingOptions(CLI::App& command, SamplingSettings& sampling, const std
                      helpPrefix + "Split sum as LearnOpenGL: F_roughness(n.v) * A + B instead of F0 * A + B");
     command.add_flag(prefix + "normalize-accepted", sampling.normalizeByAccepted,
                      helpPrefix + "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N");
+    command.add_flag(prefix + "freeze-samples", sampling.freezeSampleSet,
+                     helpPrefix + "Sampled method: keep exactly N samples per pixel (no rotated sample sets added over frames)");
 }
 
 } // namespace
@@ -163,6 +165,9 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
     addNamedOption(command, "--background", "Background: environment|irradiance|prefilter-mip|solid", settings.view.background, parseBackgroundMode,
                    backgroundModeName);
     command.add_option("--background-mip", settings.view.backgroundMip, "Prefiltered mip shown by --background prefilter-mip")->capture_default_str();
+    command.add_option("--msaa", settings.view.msaaSamples, "Multisample anti-aliasing of the lit frame: samples per pixel, 1 (off), 2, 4 or 8")
+        ->capture_default_str()
+        ->check(CLI::IsMember({1, 2, 4, 8}));
     command.add_option("--distance", settings.camera.distance, "Camera distance from its target")->default_str("0: frame the scene");
     // Speed against accuracy: the error view against the reference, and the A/B split.
     addNamedOption(command, "--error-space", "--view error compares: linear (HDR, before tone mapping)|display (after)", settings.view.errorSpace,

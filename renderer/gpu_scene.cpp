@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "gl/texture_upload.hpp"
 #include "scene/sphere.hpp"
@@ -16,6 +17,9 @@ MeshData unitSphere(SceneKind kind)
 {
     return kind == SceneKind::Sphere ? makeUvSphere(1.0f, 64, 32) : makeUvSphere(1.0f, 32, 16);
 }
+
+// Between the centres of the strips' neighbouring unit spheres: a gap of half a diameter.
+constexpr float kStripSpacing = 2.5f;
 
 Bounds sphereBounds(const glm::mat4& model)
 {
@@ -62,28 +66,26 @@ GpuScene buildProceduralScene(const SceneSettings& settings)
         // diameters: one more unit to the left keeps the two from overlapping.
         for (GridLabel& label : scene.labels)
             if (label.axisTitle && label.position.x < grid.spheres.front().transform[3].x) label.position.x -= 1.0f;
-        // Frame the axis labels too.
-        for (const GridLabel& label : scene.labels) {
-            const float halfWidth = label.axisTitle ? 2.0f : 0.6f;
-            scene.bounds.extend(label.position - glm::vec3(halfWidth, 0.4f, 0.0f));
-            scene.bounds.extend(label.position + glm::vec3(halfWidth, 0.4f, 0.0f));
-        }
         break;
     }
     case SceneKind::Counting: {
         const int k = std::clamp(settings.countingSpheres, 1, 64);
-        const std::vector<glm::mat4> strip = countingStrip(k, 2.5f);
+        const std::vector<glm::mat4> strip = countingStrip(k, kStripSpacing);
+        std::vector<std::string> texts;
         for (int i = 0; i < k; ++i) {
             SceneDraw draw;
             draw.sampleCount = i + 1; // sphere i shows i reflections of a single light
             draw.forceSampled = true;
             add(strip[std::size_t(i)], draw);
+            texts.push_back("N = " + std::to_string(draw.sampleCount));
         }
+        scene.labels = stripLabels(texts, kStripSpacing);
         break;
     }
     case SceneKind::Sweep: {
         const int k = std::clamp(settings.countingSpheres, 2, 64);
-        const std::vector<glm::mat4> strip = countingStrip(k, 2.5f);
+        const std::vector<glm::mat4> strip = countingStrip(k, kStripSpacing);
+        std::vector<std::string> texts;
         for (int i = 0; i < k; ++i) {
             SceneDraw draw;
             draw.material.metallicFactor = 1.0f;
@@ -91,7 +93,9 @@ GpuScene buildProceduralScene(const SceneSettings& settings)
             draw.materialFromScene = true;
             draw.forceSampled = true;
             add(strip[std::size_t(i)], draw);
+            texts.push_back("r = " + tickText(draw.material.roughnessFactor));
         }
+        scene.labels = stripLabels(texts, kStripSpacing);
         break;
     }
     case SceneKind::None:
@@ -102,6 +106,12 @@ GpuScene buildProceduralScene(const SceneSettings& settings)
     case SceneKind::Model: // no model loaded yet: show the sphere
         add(glm::mat4(1.0f), SceneDraw{});
         break;
+    }
+    // Frame the labels too.
+    for (const GridLabel& label : scene.labels) {
+        const float halfWidth = label.axisTitle ? 2.0f : 0.6f;
+        scene.bounds.extend(label.position - glm::vec3(halfWidth, 0.4f, 0.0f));
+        scene.bounds.extend(label.position + glm::vec3(halfWidth, 0.4f, 0.0f));
     }
     for (const GpuMesh& mesh : scene.meshes) scene.gpuBytes += mesh.byteSize();
     return scene;

@@ -32,7 +32,7 @@ struct GpuScene {
     std::vector<gl::Texture> textures; // sRGB or linear per TextureImage::srgb, mipmapped
     std::vector<SceneDraw> draws;
     Bounds bounds;
-    std::vector<GridLabel> labels;     // grid axis labels in world space, drawn by the UI
+    std::vector<GridLabel> labels;     // grid axes, strip captions (N, roughness) in world space, drawn by the UI
     std::size_t gpuBytes = 0;
 };
 

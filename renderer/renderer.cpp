@@ -52,6 +52,24 @@ std::vector<float> mipRoughnessOf(const bake::BakeResult& bake)
     return roughness;
 }
 
+// What an image was made from, compared by value: its settings (reduced to those it
+// depends on), its size, and the revision of what the setters gave the renderer.
+struct FrameKey {
+    FrameSettings settings;
+    int width = 0;
+    int height = 0;
+    std::uint64_t revision = 0;
+    bool operator==(const FrameKey&) const = default;
+};
+
+// The split view's right side: the frame's settings with the comparison's sampling.
+FrameSettings compareSide(const FrameSettings& settings)
+{
+    FrameSettings b = settings;
+    b.sampling = settings.view.compare;
+    return b;
+}
+
 } // namespace
 
 struct Renderer::Impl {
@@ -66,26 +84,35 @@ struct Renderer::Impl {
     SceneSettings builtFor;
     gl::Buffer hammersley = gl::createBuffer();
     int hammersleyCount = 0;
-    gl::RenderTarget hdrFrame;     // RGBA16F + depth: the linear frame the tone mapper reads
+    // The linear frame. Its alpha is coverage: surfaces write 1 and the sky 0, so that after
+    // the MSAA resolve it is the fraction of a pixel's samples on surfaces.
+    gl::RenderTarget hdrFrame;          // RGBA16F + depth: the resolved frame the tone mapper reads
+    gl::MultisampleTarget msaaFrame;    // RGBA16F + depth, ViewSettings::msaaSamples per pixel
+    int frameSamples = 1;               // of the last frame
     gl::RenderTarget displayFrame; // RGBA8: exposure, tone curve and sRGB applied
     gl::RenderTarget accumulation; // RGBA32F running mean of hdrFrame over accumulated frames
-    std::string accumulationKey;   // settings and size the running mean belongs to
+    std::optional<FrameKey> accumulationKey; // what the running mean belongs to
     int accumulatedFrames = 0;
-    bool sampledDraws = false; // the last frame drew with the sampled method
+    bool sampledDraws = false; // the last frame drew with the sampled method and rotating sample sets
     const gl::RenderTarget* resolved = &hdrFrame; // what the tone mapper read last
-    std::string frameKey; // referenceKey() of the last frame, to match it with the reference
+    std::optional<FrameKey> frameKey; // referenceKeyFor() the last frame, to match it with the reference
 
-    // The reference renderer. Generations count the environments and models set, so that
-    // a reference never outlives what it was computed from.
+    // Revisions of what the setters change, so that no image outlives what it was made
+    // from: contentRevision counts every change of what a frame shows (environment, bakes,
+    // model); referenceRevision only those the reference integrates (the loaded map and the
+    // meshes: it never reads a bake, so a re-bake keeps it).
+    std::uint64_t contentRevision = 0;
+    std::uint64_t referenceRevision = 0;
+
+    // The reference renderer.
     ImageRGB32F environmentSource; // the loaded map, the reference environment's parent
-    int environmentGeneration = 0;
-    int sceneGeneration = 0;
+    int environmentGeneration = 0; // environments set, for the cache of its downsampled copy
     ImageRGB32F referenceEnvironment;
     std::pair<int, int> referenceEnvironmentFor{-1, -1}; // (generation, requested width)
     GBuffer gbuffer;
     ReferenceIntegral reference;
     gl::RenderTarget referenceFrame; // RGBA32F + depth: the sky, then the resolved surfaces
-    std::string referenceKey;
+    std::optional<FrameKey> referenceKey;
     ReferenceSlicing referenceSlicing;
     GeometryTerm referenceGeometry = GeometryTerm::HeightCorrelatedSmith;
     bool referenceResolved = false;
@@ -250,6 +277,8 @@ struct Renderer::Impl {
     {
         if (!active) return;
         ensureScene(settings.scene);
+        const bool rotating = !keepsExactSampleCount(settings);
+        if (!rotating) sampleRotation = glm::vec2(0.0f);
         const glm::mat4 viewProjection = cameraProjection(settings.camera, aspect) * cameraView(settings.camera);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -264,7 +293,7 @@ struct Renderer::Impl {
                 if (gbufferPass && sampled) break;
                 if (!gbufferPass && (draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
                 if (!p) {
-                    sampledDraws = sampledDraws || (sampled && !gbufferPass);
+                    sampledDraws = sampledDraws || (sampled && !gbufferPass && rotating);
                     p = &shaders.program({"mesh.vert", "pbr.frag"}, {{"METHOD", gbufferPass ? "2" : sampled ? "1" : "0"}});
                     glUseProgram(p->id());
                     bindIbl(*p, settings);
@@ -290,8 +319,9 @@ struct Renderer::Impl {
 
     // Everything the reference image depends on: not the tone map, the view's error and
     // split controls, nor the estimators' sampling (only the BRDF's geometry term and the
-    // energy compensation are part of the shading model it shares).
-    std::string referenceKeyFor(const FrameSettings& settings, int width, int height) const
+    // energy compensation are part of the shading model it shares), nor the frame's MSAA
+    // (the reference shades pixel centres, single-sampled).
+    FrameKey referenceKeyFor(const FrameSettings& settings, int width, int height) const
     {
         FrameSettings s = settings;
         s.toneMap = {};
@@ -305,8 +335,8 @@ struct Renderer::Impl {
         s.view.split = false;
         s.view.splitPosition = {};
         s.view.compare = {};
-        return toJsonText(s, -1) + "@" + std::to_string(width) + "x" + std::to_string(height) + "#" + std::to_string(environmentGeneration) + "." +
-               std::to_string(sceneGeneration);
+        s.view.msaaSamples = 1;
+        return {std::move(s), width, height, referenceRevision};
     }
 
     const ImageRGB32F& referenceEnvironmentOfWidth(int width)
@@ -336,7 +366,7 @@ struct Renderer::Impl {
     }
 
     // The mesh pass into the G-buffer, then a fresh integral over the environment.
-    void startReference(const FrameSettings& settings, int width, int height, const ReferenceSlicing& slicing, std::string key)
+    void startReference(const FrameSettings& settings, int width, int height, const ReferenceSlicing& slicing, FrameKey key)
     {
         gbuffer.ensure(width, height);
         gbuffer.bindCleared();
@@ -375,7 +405,7 @@ struct Renderer::Impl {
         referenceResolved = true;
     }
 
-    bool referenceReadyFor(const std::string& key) const { return referenceResolved && key == referenceKey; }
+    bool referenceReadyFor(const std::optional<FrameKey>& key) const { return referenceResolved && key && key == referenceKey; }
 
     // ViewMode::Error's last pass, in place of the tone mapper.
     void drawErrorView(const FrameSettings& settings)
@@ -406,13 +436,24 @@ void Renderer::setEnvironment(const ImageRGB32F& image)
 {
     impl_->environmentSource = image;
     ++impl_->environmentGeneration;
+    ++impl_->referenceRevision;
+    ++impl_->contentRevision;
     // Repeat in u (longitude wraps), clamp in v (the poles do not).
     impl_->equirect = gl::createMipmappedTexture2D(
         {GL_RGB32F, image.width, image.height, GL_RGB, GL_FLOAT, image.texels.data(), 4, GL_REPEAT, GL_CLAMP_TO_EDGE});
 }
 
-void Renderer::setBake(std::shared_ptr<const bake::BakeResult> bake) { impl_->bake = std::move(bake); }
-void Renderer::setFurnaceBake(std::shared_ptr<const bake::BakeResult> bake) { impl_->furnaceBake = std::move(bake); }
+void Renderer::setBake(std::shared_ptr<const bake::BakeResult> bake)
+{
+    impl_->bake = std::move(bake);
+    ++impl_->contentRevision;
+}
+void Renderer::setFurnaceBake(std::shared_ptr<const bake::BakeResult> bake)
+{
+    impl_->furnaceBake = std::move(bake);
+    ++impl_->contentRevision;
+}
+std::uint64_t Renderer::contentRevision() const { return impl_->contentRevision; }
 bool Renderer::hasFurnaceBake() const { return bool(impl_->furnaceBake); }
 
 std::vector<SphereReading> Renderer::measureSpheres(const FrameSettings& settings) const
@@ -453,7 +494,8 @@ bool Renderer::hasBake() const { return bool(impl_->bake); }
 void Renderer::setModel(const ModelData& model, const std::string& path)
 {
     impl_->scene = buildModelScene(model, path);
-    ++impl_->sceneGeneration;
+    ++impl_->referenceRevision;
+    ++impl_->contentRevision;
     impl_->sceneBuilt = true;
     impl_->builtFor.kind = SceneKind::Model;
 }
@@ -483,22 +525,30 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
     r.displayFrame.ensure(GL_RGBA8, width, height);
     const float aspect = float(width) / float(height);
 
-    // A new running mean whenever anything that changes the image changes.
-    const std::string key = toJsonText(settings, -1) + "@" + std::to_string(width) + "x" + std::to_string(height);
-    if (!options.accumulate || key != r.accumulationKey) r.accumulatedFrames = 0;
-    r.accumulationKey = options.accumulate ? key : std::string();
+    // A new running mean whenever anything that changes the image changes. Where every
+    // side keeps its exact sample count, more frames would only average copies: none.
+    const bool accumulate = options.accumulate && !(keepsExactSampleCount(settings) &&
+                                                    (!settings.view.split || keepsExactSampleCount(compareSide(settings))));
+    FrameKey key{settings, width, height, r.contentRevision};
+    if (!accumulate || key != r.accumulationKey) r.accumulatedFrames = 0;
+    r.accumulationKey = accumulate ? std::optional<FrameKey>(std::move(key)) : std::nullopt;
     const glm::vec2 rotation = r.accumulatedFrames == 0 ? glm::vec2(0.0f) : r2Rotation(r.accumulatedFrames);
+
+    r.active = settings.view.mode == ViewMode::Furnace ? r.furnaceBake.get() : r.bake.get();
+    r.sampledDraws = false;
+    const bool debugView = r.active && (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut);
+    // Debug views fill every pixel with one full-screen triangle: samples would add nothing.
+    const bool multisampled = !debugView && settings.view.msaaSamples > 1;
+    if (multisampled) r.msaaFrame.ensure(GL_RGBA16F, width, height, settings.view.msaaSamples);
+    r.frameSamples = multisampled ? r.msaaFrame.samples() : 1;
 
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, r.hdrFrame.framebuffer());
+    glBindFramebuffer(GL_FRAMEBUFFER, multisampled ? r.msaaFrame.framebuffer() : r.hdrFrame.framebuffer());
     glViewport(0, 0, width, height);
     glClear(GL_DEPTH_BUFFER_BIT);
-    r.active = settings.view.mode == ViewMode::Furnace ? r.furnaceBake.get() : r.bake.get();
-    r.sampledDraws = false;
-    const bool debugView = r.active && (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut);
     if (debugView) {
         r.drawDebugView(settings, width, height);
     } else {
@@ -508,8 +558,7 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
         if (settings.view.split) {
             // B over the right part: the same passes with the other sampling settings,
             // confined by the scissor (which the depth clear respects too).
-            FrameSettings b = settings;
-            b.sampling = settings.view.compare;
+            const FrameSettings b = compareSide(settings);
             const int x0 = splitColumn(settings.view, width);
             glEnable(GL_SCISSOR_TEST);
             glScissor(x0, 0, width - x0, height);
@@ -519,23 +568,26 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
             glDisable(GL_SCISSOR_TEST);
         }
     }
+    if (multisampled) r.msaaFrame.resolveInto(r.hdrFrame);
     r.frameKey = r.referenceKeyFor(settings, width, height);
 
     r.resolved = &r.hdrFrame;
-    if (options.accumulate) {
+    if (accumulate) {
         r.accumulation.ensure(GL_RGBA32F, width, height);
         glBindFramebuffer(GL_FRAMEBUFFER, r.accumulation.framebuffer());
-        const gl::ShaderProgram& accumulate = r.shaders.program({"fullscreen.vert", "accumulate.frag"});
-        glUseProgram(accumulate.id());
+        const gl::ShaderProgram& program = r.shaders.program({"fullscreen.vert", "accumulate.frag"});
+        glUseProgram(program.id());
         glBindTextureUnit(kUnitHdrFrame, r.hdrFrame.texture());
         glEnable(GL_BLEND);
-        glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+        // Radiance into the running mean; coverage replaced, because a blend of equal
+        // coverages is not always bit-exact and "fully covered" means exactly 1.
+        glBlendFuncSeparate(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA, GL_ONE, GL_ZERO);
         glBlendColor(0.0f, 0.0f, 0.0f, 1.0f / float(r.accumulatedFrames + 1));
         r.drawFullscreenTriangle();
         glDisable(GL_BLEND);
         r.resolved = &r.accumulation;
     }
-    r.accumulatedFrames = options.accumulate ? r.accumulatedFrames + 1 : 1;
+    r.accumulatedFrames = accumulate ? r.accumulatedFrames + 1 : 1;
 
     glBindFramebuffer(GL_FRAMEBUFFER, r.displayFrame.framebuffer());
     if (settings.view.mode == ViewMode::Error && r.referenceReadyFor(r.frameKey)) {
@@ -565,8 +617,8 @@ ReferenceStatus Renderer::advanceReference(const FrameSettings& settings, int wi
     Impl& r = *impl_;
     if (!r.bake || r.environmentSource.empty()) return {};
     r.active = r.bake.get();
-    std::string key = r.referenceKeyFor(settings, width, height);
-    if (key != r.referenceKey || !(slicing == r.referenceSlicing)) r.startReference(settings, width, height, slicing, std::move(key));
+    FrameKey key = r.referenceKeyFor(settings, width, height);
+    if (key != r.referenceKey || slicing != r.referenceSlicing) r.startReference(settings, width, height, slicing, std::move(key));
     const auto start = std::chrono::steady_clock::now();
     while (!r.reference.complete() && std::chrono::steady_clock::now() - start < budget) {
         r.reference.runSlice(r.shaders, r.gbuffer, r.referenceGeometry);
@@ -580,7 +632,7 @@ ReferenceStatus Renderer::referenceStatus(const FrameSettings& settings, int wid
 {
     const Impl& r = *impl_;
     ReferenceStatus status;
-    status.current = !r.referenceKey.empty() && r.referenceKey == r.referenceKeyFor(settings, width, height);
+    status.current = r.referenceKey == r.referenceKeyFor(settings, width, height);
     if (!status.current) return status;
     status.complete = r.referenceResolved;
     status.progress = r.reference.progress();
@@ -620,11 +672,12 @@ ErrorReport Renderer::measureError(const FrameSettings& settings) const
                 for (int c = 0; c < 3; ++c) image->rgba[i + std::size_t(c)] = shown[c];
             }
     }
-    const std::vector<std::uint8_t> coverage = r.readCoverage();
+    const FrameReadback normals = readReferenceLayer(ReferenceLayer::Normal);
     const int x0 = settings.view.split ? splitColumn(settings.view, frame.width) : frame.width;
     auto side = [&](bool right) {
-        std::vector<std::uint8_t> include = coverage;
-        for (std::size_t i = 0; i < include.size(); ++i) include[i] = include[i] && ((int(i % std::size_t(frame.width)) >= x0) == right);
+        std::vector<std::uint8_t> include(frame.rgba.size() / 4);
+        for (std::size_t i = 0; i < include.size(); ++i)
+            include[i] = isMeasuredPixel(frame.rgba[i * 4 + 3], normals.rgba[i * 4 + 3]) && ((int(i % std::size_t(frame.width)) >= x0) == right);
         return computeErrorMetrics(frame.rgba, reference.rgba, include);
     };
     report.valid = true;
@@ -634,6 +687,7 @@ ErrorReport Renderer::measureError(const FrameSettings& settings) const
 }
 
 int Renderer::accumulatedFrames() const { return impl_->accumulatedFrames; }
+int Renderer::frameSamples() const { return impl_->frameSamples; }
 bool Renderer::lastFrameWasSampled() const { return impl_->sampledDraws; }
 
 unsigned int Renderer::displayTexture() const { return impl_->displayFrame.texture(); }

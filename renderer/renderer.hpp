@@ -27,7 +27,10 @@ struct ModelData;
 struct FrameReadback {
     int width = 0;
     int height = 0;
-    std::vector<float> rgba; // linear HDR before exposure and tone mapping, bottom row first
+    // Linear HDR before exposure and tone mapping, bottom row first. In the HDR frame, alpha
+    // is the fraction of the pixel's MSAA samples covered by surfaces (the sky's are not):
+    // 1 inside a surface, 0 on the background, in between on silhouettes.
+    std::vector<float> rgba;
 };
 
 struct DisplayReadback {
@@ -125,6 +128,10 @@ public:
     std::vector<SphereReading> measureSpheres(const FrameSettings& settings) const;
     // A loaded glTF model for SceneKind::Model (uploads meshes and textures).
     void setModel(const ModelData& model, const std::string& path);
+    // Counts the calls above that change what a frame shows besides its settings
+    // (setEnvironment, setBake, setFurnaceBake, setModel). Accumulation restarts when it
+    // moves; the app may key its own "is this frame final" on it too.
+    std::uint64_t contentRevision() const;
 
     // Renders the HDR frame and its tone-mapped display image at the given size. With the
     // split view, pixels from splitColumn on are rendered with view.compare as sampling.
@@ -132,7 +139,10 @@ public:
     // completed the reference of these settings and size, and the plain frame until then.
     // resolutionScale < 1 renders fewer pixels (the view is scaled up when presented), for
     // interaction with expensive settings; accumulate averages successive frames of the
-    // same settings with rotated sample sets (progressive refinement of the sampled method).
+    // same settings and content revision with rotated sample sets (progressive refinement
+    // of the sampled method), except where keepsExactSampleCount holds (for both sides of
+    // the split view): those frames stay one set of N samples per pixel. The lit frame is
+    // drawn with ViewSettings::msaaSamples per pixel and resolved.
     struct Options {
         float resolutionScale = 1.0f;
         bool accumulate = false;
@@ -141,9 +151,14 @@ public:
     void renderFrame(const FrameSettings& settings, int width, int height) { renderFrame(settings, width, height, Options{}); }
     // Frames averaged into the current image (1 without accumulation).
     int accumulatedFrames() const;
-    // Whether the last frame drew anything with the sampled method (whose frames differ
-    // under accumulation); a frame without it is final after one render.
+    // Whether the last frame drew anything with the sampled method and a sample set that
+    // rotates under accumulation (so later frames differ); a frame without it is final
+    // after one render.
     bool lastFrameWasSampled() const;
+    // MSAA samples per pixel of the last frame: msaaSamples as the driver allocated it
+    // (clamped to the most it supports, or raised to the next count it has); 1 for the
+    // debug views of baked data.
+    int frameSamples() const;
 
     // The reference renderer: the frame of these settings at this size with the full
     // integral over the (downsampled) environment's texels, no split sum and no N = V = R.
@@ -158,6 +173,9 @@ public:
     FrameReadback readReferenceLayer(ReferenceLayer layer) const;
     // Compares the last rendered frame with the reference (ViewSettings::errorSpace decides
     // linear HDR or display values); invalid unless the reference of that frame is complete.
+    // Measures the pixels that the reference covers at their centre and the frame's
+    // surfaces cover entirely (isMeasuredPixel): an MSAA edge pixel mixes in the sky, which
+    // the single-sampled reference does not, so it is left out like the background.
     ErrorReport measureError(const FrameSettings& settings) const;
 
     SceneInfo sceneInfo(const FrameSettings& settings);

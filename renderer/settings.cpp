@@ -116,6 +116,11 @@ bool parseGeometryTerm(std::string_view n, GeometryTerm& t) { return parseName(k
 std::string_view errorSpaceName(ErrorSpace s) { return nameOf(kErrorSpaces, s); }
 bool parseErrorSpace(std::string_view n, ErrorSpace& s) { return parseName(kErrorSpaces, n, s); }
 
+bool keepsExactSampleCount(const FrameSettings& settings)
+{
+    return settings.sampling.freezeSampleSet || settings.scene.kind == SceneKind::Counting;
+}
+
 namespace {
 
 // The sampling block is written twice: the frame's own and the split view's comparison.
@@ -131,7 +136,8 @@ Json samplingJson(const SamplingSettings& s)
             {"cosine_sampled_diffuse", s.cosineSampledDiffuse},
             {"multiscatter", s.multiscatter},
             {"rough_fresnel_on_lut", s.roughFresnelOnLut},
-            {"normalize_by_accepted", s.normalizeByAccepted}};
+            {"normalize_by_accepted", s.normalizeByAccepted},
+            {"freeze_sample_set", s.freezeSampleSet}};
 }
 
 void readSampling(const Reader& sampling, SamplingSettings& s)
@@ -147,6 +153,7 @@ void readSampling(const Reader& sampling, SamplingSettings& s)
     sampling.read("multiscatter", s.multiscatter);
     sampling.read("rough_fresnel_on_lut", s.roughFresnelOnLut);
     sampling.read("normalize_by_accepted", s.normalizeByAccepted);
+    sampling.read("freeze_sample_set", s.freezeSampleSet);
 }
 
 } // namespace
@@ -178,7 +185,8 @@ std::string toJsonText(const FrameSettings& s, int indent)
                  {"reference_width", s.view.referenceWidth},
                  {"split", s.view.split},
                  {"split_position", s.view.splitPosition},
-                 {"compare", samplingJson(s.view.compare)}};
+                 {"compare", samplingJson(s.view.compare)},
+                 {"msaa_samples", s.view.msaaSamples}};
     return j.dump(indent);
 }
 
@@ -241,6 +249,7 @@ FrameSettings frameSettingsFromJsonText(const std::string& text)
     view.read("split", s.view.split);
     view.read("split_position", s.view.splitPosition);
     readSampling(view.child("compare"), s.view.compare);
+    view.read("msaa_samples", s.view.msaaSamples);
     return s;
 }
 

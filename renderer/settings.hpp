@@ -16,11 +16,13 @@ struct EnvironmentSettings {
     std::string source;       // a file path or builtin:NAME
     float yawDegrees = 0.0f;  // rotation about +Y; +90 brings what was at +X in front of the default camera
     float intensityEv = 0.0f; // radiance scale in stops
+    bool operator==(const EnvironmentSettings&) const = default;
 };
 
 struct ToneMapSettings {
     ToneMapOperator op = ToneMapOperator::AcesHill;
     float exposureEv = 0.0f;
+    bool operator==(const ToneMapSettings&) const = default;
 };
 
 // An orbit camera around a target; at yaw = pitch = 0 it looks down -Z.
@@ -30,6 +32,7 @@ struct CameraSettings {
     float fovDegrees = 45.0f;  // vertical field of view
     float distance = 3.5f;     // from the target, in scene units (a sphere has radius 1)
     glm::vec3 target{0.0f};
+    bool operator==(const CameraSettings&) const = default;
 };
 
 // The material the sliders edit. With overrideModel off, a glTF keeps its own factors.
@@ -42,6 +45,7 @@ struct MaterialSettings {
     // Dielectric reflectance as Filament defines it: F0 = 0.16 * specular^2, so 0.5 gives
     // the common 4%.
     float specular = 0.5f;
+    bool operator==(const MaterialSettings&) const = default;
 };
 
 enum class ShadingMethod { SplitSum, Sampled };
@@ -67,6 +71,11 @@ struct SamplingSettings {
     // Sampled method: divide by the samples above the horizon, as LearnOpenGL's prefilter
     // does, instead of by N (unbiased); for comparing the two.
     bool normalizeByAccepted = false;
+    // Sampled method: keep the one sample set of N per pixel instead of adding rotated sets
+    // under accumulation, so that N is exactly what each pixel averages (see
+    // keepsExactSampleCount, which also turns it on for the counting strip).
+    bool freezeSampleSet = false;
+    bool operator==(const SamplingSettings&) const = default;
 };
 
 // Counting: sphere i uses N = i. Sweep: every sphere uses N = SamplingSettings::samples and
@@ -78,6 +87,7 @@ struct SceneSettings {
     SceneKind kind = SceneKind::Sphere;
     std::string modelPath;  // .gltf / .glb when kind == Model
     int countingSpheres = 8; // spheres in the counting strip and the roughness sweep
+    bool operator==(const SceneSettings&) const = default;
 };
 
 // Error: the frame's per-pixel relative error against the reference renderer (the full
@@ -103,6 +113,10 @@ struct ViewSettings {
     bool split = false;
     float splitPosition = 0.5f; // divider, as a fraction of the width from the left
     SamplingSettings compare;
+    // Samples per pixel of the lit frame (1 = no MSAA); the renderer clamps it to what the
+    // driver offers. Debug views of baked data are drawn single-sampled.
+    int msaaSamples = 4;
+    bool operator==(const ViewSettings&) const = default;
 };
 
 struct FrameSettings {
@@ -113,7 +127,13 @@ struct FrameSettings {
     SamplingSettings sampling;
     SceneSettings scene;
     ViewSettings view;
+    bool operator==(const FrameSettings&) const = default;
 };
+
+// Whether accumulation must leave the sampled method's N samples per pixel alone: the
+// freeze switch, or the counting strip, whose point is that sphere i shows exactly i
+// samples (a mean of rotated sets would show i times as many reflections).
+bool keepsExactSampleCount(const FrameSettings& settings);
 
 // Names used by the CLI, the JSON presets and the UI. parse* return false for an unknown
 // name and leave the target untouched.

@@ -1,13 +1,14 @@
 // ViewMode::Error: each surface pixel's relative error against the reference in false
 // colour, on the linear HDR radiance or on the display values after exposure and tone
-// mapping. The background (which the reference shares with the frame) is shown as a dim
-// grey version of the frame, so the heatmap keeps its context.
+// mapping. The pixels the error does not measure (isMeasuredPixel: the background, which
+// the reference shares with the frame, and MSAA edge pixels that are part sky) are shown
+// as a dim grey version of the frame, so the heatmap keeps its context.
 #include "common/tonemap.glsl"
 #include "common/error_metrics.glsl"
 
 out vec4 fragColor;
 
-uniform sampler2D uHdrFrame;       // the frame being judged
+uniform sampler2D uHdrFrame;       // the frame being judged, coverage in alpha
 uniform sampler2D uReferenceFrame; // the reference, same size
 uniform sampler2D uGNormal;        // coverage in alpha
 uniform float uExposureEv;
@@ -18,8 +19,9 @@ uniform float uErrorScale; // relative error at the top of the colour bar
 void main()
 {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    vec3 value = texelFetch(uHdrFrame, pixel, 0).rgb;
-    if (texelFetch(uGNormal, pixel, 0).a == 0.0) {
+    vec4 frame = texelFetch(uHdrFrame, pixel, 0);
+    vec3 value = frame.rgb;
+    if (!isMeasuredPixel(frame.a, texelFetch(uGNormal, pixel, 0).a)) {
         vec3 shown = displayEncode(value, uExposureEv, uToneMapOperator);
         fragColor = vec4(vec3(0.3 * dot(shown, vec3(0.2126, 0.7152, 0.0722))), 1.0);
         return;

@@ -10,6 +10,7 @@ uniform mat4 uModel;
 uniform mat3 uNormalMatrix; // inverse transpose of uModel's upper 3x3: normals stay normal under non-uniform scale
 uniform mat4 uViewProjection;
 
+// pbr.frag chooses where they are interpolated (pixel centre or centroid): see there.
 out vec3 vWorldPosition;
 out vec3 vNormal;
 out vec4 vTangent;

@@ -21,5 +21,5 @@ void main()
     // so it sits at the brightness of the sky it comes from.
     else if (uBackground == 1) colour = diffuseIrradiance(direction) * (1.0 / IBL_PI);
     else if (uBackground == 2) colour = textureLod(uPrefiltered, toEnvironment(direction), uBackgroundMip).rgb * uEnvironmentIntensity;
-    fragColor = vec4(colour, 1.0);
+    fragColor = vec4(colour, 0.0); // coverage 0: the frame's alpha counts surface samples only
 }

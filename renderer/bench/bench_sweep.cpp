@@ -56,12 +56,16 @@ std::vector<std::uint8_t> resolvedPixels(const FrameReadback& normalLayer, const
     return include;
 }
 
+// Of those, the ones the error view measures (isMeasuredPixel): covered wholly by the
+// frame's surfaces too, so that an MSAA silhouette pixel, part sky, is left out.
 std::vector<std::uint8_t> resolvedPixels(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
                                          const FrameReadback& viewLayer, double minRoughness)
 {
     if (frame.rgba.size() != normalLayer.rgba.size() || reference.rgba.size() != normalLayer.rgba.size())
         throw std::invalid_argument("bench error measure: the frame, the reference and its layers differ in size");
-    return resolvedPixels(normalLayer, viewLayer, minRoughness);
+    std::vector<std::uint8_t> include = resolvedPixels(normalLayer, viewLayer, minRoughness);
+    for (std::size_t i = 0; i < include.size(); ++i) include[i] = include[i] && isMeasuredPixel(frame.rgba[i * 4 + 3], normalLayer.rgba[i * 4 + 3]);
+    return include;
 }
 
 // Why the reference resolves none of the frame's surface pixels, naming what would; empty

@@ -16,6 +16,7 @@ namespace iblab {
 
 using shared::falseColour;
 using shared::isFirefly;
+using shared::isMeasuredPixel;
 using shared::relativeError;
 
 struct ErrorMetrics {

@@ -17,12 +17,9 @@ float centredOffset(int index, int count, float spacing) { return (float(index) 
 
 float unitRamp(int index, int count) { return count > 1 ? float(index) / float(count - 1) : 0.0f; }
 
-std::string tickText(float value)
-{
-    char text[16];
-    std::snprintf(text, sizeof text, "%.2f", double(value));
-    return text;
-}
+// Tick values sit this many spacings from the sphere centres they label: clear of a unit
+// sphere at the default 2.5 spacing, and nearer to it than to the next row.
+constexpr float kTickOffset = 0.75f;
 
 void requireSpacing(const char* subject, float spacing)
 {
@@ -31,6 +28,13 @@ void requireSpacing(const char* subject, float spacing)
 }
 
 } // namespace
+
+std::string tickText(float value)
+{
+    char text[16];
+    std::snprintf(text, sizeof text, "%.2f", double(value));
+    return text;
+}
 
 MeshData makeUvSphere(float radius, int segments, int rings)
 {
@@ -117,10 +121,10 @@ SphereGrid sphereGrid(int rows, int columns, float spacing)
     grid.labels.push_back({"roughness 0..1", glm::vec3(0.0f, bottom - 1.5f * spacing, 0.0f), true});
     for (int r = 0; r < rows; ++r)
         grid.labels.push_back({tickText(unitRamp(r, rows)),
-                               glm::vec3(left - 0.75f * spacing, centredOffset(r, rows, spacing), 0.0f), false});
+                               glm::vec3(left - kTickOffset * spacing, centredOffset(r, rows, spacing), 0.0f), false});
     for (int c = 0; c < columns; ++c)
         grid.labels.push_back({tickText(unitRamp(c, columns)),
-                               glm::vec3(centredOffset(c, columns, spacing), bottom - 0.75f * spacing, 0.0f), false});
+                               glm::vec3(centredOffset(c, columns, spacing), bottom - kTickOffset * spacing, 0.0f), false});
     return grid;
 }
 
@@ -134,6 +138,15 @@ std::vector<glm::mat4> countingStrip(int k, float spacing)
     for (int i = 0; i < k; ++i)
         transforms.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(centredOffset(i, k, spacing), 0.0f, 0.0f)));
     return transforms;
+}
+
+std::vector<GridLabel> stripLabels(const std::vector<std::string>& texts, float spacing)
+{
+    const std::vector<glm::mat4> strip = countingStrip(int(texts.size()), spacing);
+    std::vector<GridLabel> labels;
+    labels.reserve(texts.size());
+    for (std::size_t i = 0; i < texts.size(); ++i) labels.push_back({texts[i], glm::vec3(strip[i][3]) - glm::vec3(0.0f, kTickOffset * spacing, 0.0f), false});
+    return labels;
 }
 
 } // namespace iblab

@@ -63,4 +63,12 @@ SphereGrid sphereGrid(int rows = 7, int columns = 7, float spacing = 2.5f);
 // spacing > 0; throws iblab::Error("countingStrip", ...).
 std::vector<glm::mat4> countingStrip(int k, float spacing = 2.5f);
 
+// One text anchor per text, below the spheres of countingStrip(texts.size(), spacing) in
+// order (left to right), as far below their centres as the grid's column ticks are below
+// its bottom row. Throws like countingStrip for an empty list.
+std::vector<GridLabel> stripLabels(const std::vector<std::string>& texts, float spacing = 2.5f);
+
+// A value as the grid's ticks print it: two decimals ("0.17").
+std::string tickText(float value);
+
 } // namespace iblab

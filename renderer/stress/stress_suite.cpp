@@ -618,6 +618,10 @@ StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
     base.view.mode = ViewMode::Final;
     base.view.background = BackgroundMode::SolidColour;
     base.view.solidColour = glm::vec3(kBackgroundSentinel);
+    // Pixels are compared with the CPU reference at their centres and the background is
+    // found by its sentinel value: both need one sample per pixel, not an MSAA resolve that
+    // mixes the sentinel into silhouette pixels.
+    base.view.msaaSamples = 1;
     base.material.baseColor = glm::vec3(1.0f);
     base.material.specular = 0.5f;
     base.toneMap.op = ToneMapOperator::AcesHill;

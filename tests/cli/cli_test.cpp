@@ -97,6 +97,18 @@ TEST_F(Cli, RenderWritesPngWithSettingsAndSidecar)
     EXPECT_EQ(nlohmann::json::parse(sidecar), embedded);
 }
 
+// The frame options the GUI also has reach the settings the image records.
+TEST_F(Cli, MsaaAndFrozenSamplesAreRecordedInTheSidecar)
+{
+    const Result r = run("render --scene none --env builtin:white --width 8 --height 8 --msaa 2 --freeze-samples --b-freeze-samples -o a.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream sidecar(dir / "a.png.json");
+    const auto settings = nlohmann::json::parse(sidecar);
+    EXPECT_EQ(settings["view"]["msaa_samples"], 2);
+    EXPECT_EQ(settings["sampling"]["freeze_sample_set"], true);
+    EXPECT_EQ(settings["view"]["compare"]["freeze_sample_set"], true);
+}
+
 TEST_F(Cli, RenderWritesLinearExrBeforeToneMapping)
 {
     const Result r = run("render --scene none --env builtin:white --env-intensity 2 --exposure -5 --width 8 --height 8 -o frame.exr");
@@ -138,7 +150,7 @@ TEST_F(Cli, WrongAspectFailsWithOneLine)
 
 TEST_F(Cli, BadOptionsExitWithUsageError)
 {
-    for (const char* arguments : {"render --tonemap filmic -o a.png", "render -o a.jpg", "render", "render --width 0 -o a.png"}) {
+    for (const char* arguments : {"render --tonemap filmic -o a.png", "render -o a.jpg", "render", "render --width 0 -o a.png", "render --msaa 3 -o a.png"}) {
         const Result r = run(arguments);
         EXPECT_EQ(r.exitCode, 2) << arguments;
         EXPECT_EQ(lineCount(r.err), 1) << arguments << ": " << r.err;
@@ -278,7 +290,7 @@ TEST_F(Cli, HelpListsEveryRenderOption)
     for (const char* option : {"--env", "--env-yaw", "--env-intensity", "--exposure", "--tonemap", "--yaw", "--pitch", "--fov", "--width",
                                "--height", "--output", "--json", "--scene", "--method", "--samples", "--mip", "--metallic", "--roughness",
                                "--base-color", "--view", "--error-space", "--error-scale", "--reference-width", "--split", "--b-method",
-                               "--b-samples", "--b-geometry", "--b-multiscatter"})
+                               "--b-samples", "--b-geometry", "--b-multiscatter", "--freeze-samples", "--b-freeze-samples", "--msaa"})
         EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }
 

@@ -198,3 +198,18 @@ TEST(CountingStrip, PlacesKSpheresInACentredRow)
     EXPECT_EQ(countingStrip(1)[0], glm::mat4(1.0f));
     EXPECT_THROW(countingStrip(0), Error);
 }
+
+TEST(CountingStrip, LabelsSitBelowEachSphereInOrder)
+{
+    const auto labels = stripLabels({"N = 1", "N = 2", "N = 3"}, 2.0f);
+    ASSERT_EQ(labels.size(), 3u);
+    const float expectedX[] = {-2.0f, 0.0f, 2.0f};
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(labels[i].text, "N = " + std::to_string(i + 1));
+        EXPECT_FALSE(labels[i].axisTitle);
+        EXPECT_FLOAT_EQ(labels[i].position.x, expectedX[i]);
+        EXPECT_FLOAT_EQ(labels[i].position.y, -0.75f * 2.0f); // where the grid's column ticks sit
+        EXPECT_EQ(labels[i].position.z, 0.0f);
+    }
+    EXPECT_THROW(stripLabels({}), Error);
+}

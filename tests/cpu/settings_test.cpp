@@ -1,5 +1,7 @@
 // Lab settings are the preset format and the screenshot metadata: every field must survive
 // a round trip, and a bad preset must say which key is wrong.
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "settings.hpp"
@@ -24,6 +26,7 @@ TEST(Settings, EveryFieldSurvivesJson)
     s.sampling.cosineSampledDiffuse = true;
     s.sampling.multiscatter = true;
     s.sampling.normalizeByAccepted = true;
+    s.sampling.freezeSampleSet = true;
     s.scene = {SceneKind::Model, "a/b.glb", 5};
     s.view = {ViewMode::Lut, BackgroundMode::PrefilterMip, 3, glm::vec3(0.5f)};
     s.view.mode = ViewMode::Error;
@@ -36,9 +39,12 @@ TEST(Settings, EveryFieldSurvivesJson)
     s.view.compare.samples = 3;
     s.view.compare.geometry = GeometryTerm::SchlickGGX;
     s.view.compare.multiscatter = true;
+    s.view.compare.freezeSampleSet = true;
+    s.view.msaaSamples = 8;
 
     const FrameSettings r = frameSettingsFromJsonText(toJsonText(s));
     EXPECT_EQ(toJsonText(r), toJsonText(s));
+    EXPECT_EQ(r, s);
     EXPECT_EQ(r.sampling.method, ShadingMethod::Sampled);
     EXPECT_EQ(r.scene.modelPath, "a/b.glb");
     EXPECT_EQ(r.camera.target, glm::vec3(0.1f, 0.2f, 0.3f));
@@ -47,6 +53,44 @@ TEST(Settings, EveryFieldSurvivesJson)
     EXPECT_EQ(r.view.compare.samples, 3);
     EXPECT_EQ(r.view.compare.geometry, GeometryTerm::SchlickGGX);
     EXPECT_FLOAT_EQ(r.view.splitPosition, 0.3f);
+    EXPECT_TRUE(r.sampling.freezeSampleSet);
+    EXPECT_TRUE(r.view.compare.freezeSampleSet);
+    EXPECT_EQ(r.view.msaaSamples, 8);
+}
+
+// The renderer keys its images on settings compared by value: every field must take part
+// (a field left out of operator== would let a stale image survive its change).
+TEST(Settings, EqualityComparesEveryField)
+{
+    const FrameSettings base;
+    EXPECT_EQ(base, FrameSettings{});
+    std::vector<FrameSettings> changed(12, base);
+    changed[0].environment.source = "builtin:sky";
+    changed[1].toneMap.exposureEv = 1.0f;
+    changed[2].camera.target.z = 0.5f;
+    changed[3].material.baseColor.g = 0.1f;
+    changed[4].material.specular = 0.3f;
+    changed[5].sampling.freezeSampleSet = true;
+    changed[6].sampling.normalizeByAccepted = true;
+    changed[7].scene.countingSpheres = 3;
+    changed[8].view.msaaSamples = 1;
+    changed[9].view.compare.samples = 3;
+    changed[10].view.solidColour.b = 0.5f;
+    changed[11].view.splitPosition = 0.25f;
+    for (std::size_t i = 0; i < changed.size(); ++i) EXPECT_NE(changed[i], base) << i;
+}
+
+TEST(Settings, CountingStripAlwaysKeepsItsExactSampleCount)
+{
+    FrameSettings s;
+    EXPECT_FALSE(keepsExactSampleCount(s));
+    s.sampling.freezeSampleSet = true;
+    EXPECT_TRUE(keepsExactSampleCount(s));
+    s.sampling.freezeSampleSet = false;
+    s.scene.kind = SceneKind::Counting;
+    EXPECT_TRUE(keepsExactSampleCount(s));
+    s.scene.kind = SceneKind::Sweep;
+    EXPECT_FALSE(keepsExactSampleCount(s));
 }
 
 TEST(Settings, MissingKeysKeepDefaults)
@@ -54,6 +98,7 @@ TEST(Settings, MissingKeysKeepDefaults)
     const FrameSettings r = frameSettingsFromJsonText(R"({"material": {"roughness": 0.9}})");
     EXPECT_FLOAT_EQ(r.material.roughness, 0.9f);
     EXPECT_EQ(toJsonText(frameSettingsFromJsonText("{}")), toJsonText(FrameSettings{}));
+    EXPECT_EQ(frameSettingsFromJsonText("{}").view.msaaSamples, 4);
 }
 
 TEST(Settings, BadValuesNameTheKey)

@@ -18,6 +18,16 @@ IBL_FN float relativeError(vec3 value, vec3 reference)
     return (d.x + d.y + d.z) / max(referenceSum, IBL_ERROR_FLOOR);
 }
 
+// Whether the error measures a pixel: the reference's G-buffer covers its centre, and the
+// frame's surfaces cover all of its MSAA samples (the frame's alpha is the covered
+// fraction). A partially covered edge pixel averages surface and sky samples, which the
+// single-sampled reference never does: measured, it would be an error of coverage, not of
+// shading. Covered is exactly 1: the resolve averages samples of 1 exactly.
+IBL_FN bool isMeasuredPixel(float frameCoverage, float referenceCoverage)
+{
+    return frameCoverage == 1.0f && referenceCoverage != 0.0f;
+}
+
 // A firefly: a pixel more than three times as bright as it should be (channel sums), the
 // signature of a low-probability sample that hit a bright texel.
 IBL_FN bool isFirefly(vec3 value, vec3 reference)
