@@ -62,7 +62,7 @@ std::optional<glm::vec3> parseColour(const std::string& text)
 void addSamplingOptions(CLI::App& command, SamplingSettings& sampling, const std::string& prefix, const std::string& helpPrefix)
 {
     addNamedOption(command, prefix + "method", helpPrefix + "Shading: splitsum|sampled", sampling.method, parseShadingMethod, shadingMethodName);
-    command.add_option(prefix + "samples", sampling.samples, helpPrefix + "N, samples per pixel for the sampled method")->capture_default_str()->check(CLI::Range(1, 1024));
+    command.add_option(prefix + "samples", sampling.samples, helpPrefix + "N, samples per pixel for the sampled method")->capture_default_str()->check(CLI::Range(1, kMaxSampleCount));
     const std::string mipOption = prefix + "mip";
     command
         .add_option_function<std::string>(
@@ -205,6 +205,25 @@ int runCommandLine(int argc, char** argv)
     bool forceHeadless = false;
     app.add_flag("--headless", forceHeadless, "Render the default view to a PNG even when a display exists");
     app.add_option("--quit-after-frames", gui.quitAfterFrames, "Close the window after N frames (scripted start-up timing)");
+    app.add_option_function<std::string>(
+           "--window-size",
+           [&gui](const std::string& value) {
+               int width = 0, height = 0;
+               char x = 0, extra = 0;
+               if (std::sscanf(value.c_str(), "%d%c%d%c", &width, &x, &height, &extra) != 3 || (x != 'x' && x != 'X') || width < 320 ||
+                   height < 240 || width > 16384 || height > 16384)
+                   throw CLI::ValidationError("--window-size", "expected WIDTHxHEIGHT between 320x240 and 16384x16384, got \"" + value + "\"");
+               gui.width = width;
+               gui.height = height;
+           },
+           "GUI window size, WIDTHxHEIGHT")
+        ->default_str("1280x720");
+    app.add_option("--script", gui.script,
+                   "Run the GUI under a script of input events and checks (docs/gui-scripts.md); exits 0 when every check passed. "
+                   "Offscreen when there is no display")
+        ->check(CLI::ExistingFile);
+    app.add_flag("--offscreen", gui.offscreen, "With --script: run the GUI frame in a headless EGL context even when a display exists");
+    app.add_option("--coverage-out", gui.coverageOut, "With --script: write the controls the script showed and used (JSON)");
 
     std::vector<Command> commands;
     commands.push_back(addRenderCommand(app, processStart));
@@ -233,6 +252,14 @@ int runCommandLine(int argc, char** argv)
         if (*command.subcommand) return command.run();
 
     if (gui.settings.environment.source.empty()) gui.settings.environment.source = defaultEnvironmentSpec();
+    if (!gui.script.empty()) {
+        try {
+            return runGui(gui);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "iblab: %s\n", e.what());
+            return 1;
+        }
+    }
     if (!forceHeadless && displayAvailable()) {
         try {
             return runGui(gui);

@@ -4,95 +4,97 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <filesystem>
-#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-#include <cstdio>
-#include <stdexcept>
 
 #include <epoxy/gl.h>
-// GLFW after epoxy: epoxy provides the GL declarations GLFW would otherwise pull in.
 #include <GLFW/glfw3.h>
 #include <imgui.h>
-#include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>
 
 #include "asset_paths.hpp"
-#include "bench/auto_quality.hpp"
-#include "bench_chart.hpp"
 #include "camera.hpp"
 #include "conventions.hpp"
-#include "view_overlays.hpp"
 #include "environment/atomic_file.hpp"
+#include "environment/builtin_environments.hpp"
 #include "environment/error.hpp"
 #include "gl/context_info.hpp"
 #include "gl/debug_output.hpp"
+#include "gui_script.hpp"
 #include "lab_session.hpp"
 #include "panels.hpp"
 #include "renderer.hpp"
+#include "study_run.hpp"
+#include "view_overlays.hpp"
+#include "widgets.hpp"
 
 namespace iblab::app {
 namespace {
 
-struct GlfwLibrary {
-    GlfwLibrary()
-    {
-        glfwSetErrorCallback([](int code, const char* description) { std::fprintf(stderr, "iblab: GLFW error %d: %s\n", code, description); });
-        if (!glfwInit()) throw WindowUnavailable("no window system: glfwInit failed (is DISPLAY set?)");
-    }
-    ~GlfwLibrary() { glfwTerminate(); }
-};
+using Clock = std::chrono::steady_clock;
 
-struct Window {
-    GLFWwindow* handle = nullptr;
-    Window(int width, int height, bool debug)
-    {
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-        glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, debug ? GLFW_TRUE : GLFW_FALSE);
-        handle = glfwCreateWindow(width, height, "iblab", nullptr, nullptr);
-        if (!handle) throw WindowUnavailable("cannot create a window with an OpenGL 4.5 core context");
-        glfwMakeContextCurrent(handle);
-        glfwSwapInterval(1);
-    }
-    ~Window() { glfwDestroyWindow(handle); }
-};
+// The error view's reference gets this much GPU time per frame while the view is idle.
+constexpr auto kReferenceBudgetPerFrame = std::chrono::milliseconds(30);
+// Background loading and baking get this much per frame: the UI stays near interactive
+// rates on a software renderer.
+constexpr auto kBackgroundBudgetPerFrame = std::chrono::milliseconds(30);
+// Progressive refinement stops here: 64 rotated sample sets of any N are plenty to judge.
+constexpr int kMaxAccumulatedFrames = 64;
+// A scripted frame advances ImGui's clock by this much, whatever the frame took.
+constexpr float kScriptedFrameSeconds = 1.0f / 30.0f;
 
-struct ImGuiLayer {
-    explicit ImGuiLayer(GLFWwindow* window)
+#ifdef NDEBUG
+constexpr bool kDebugContext = false;
+#else
+constexpr bool kDebugContext = true;
+#endif
+
+// The ImGui context with our platform layer (gui_input.hpp) in place of imgui_impl_glfw,
+// and the OpenGL3 renderer backend.
+struct ImGuiSetup {
+    ImGuiContext* context = nullptr;
+    explicit ImGuiSetup(GuiPlatform& platform)
     {
         IMGUI_CHECKVERSION();
-        ImGui::CreateContext();
-        ImGui::GetIO().IniFilename = nullptr; // no imgui.ini littering the working directory
+        context = ImGui::CreateContext();
+        ImGuiIO& io = ImGui::GetIO();
+        io.IniFilename = nullptr; // no imgui.ini littering the working directory
+        io.BackendPlatformName = "iblab";
+        io.BackendFlags |= ImGuiBackendFlags_HasMouseCursors;
+        mapGlfwKeys(io);
+        io.ClipboardUserData = &platform;
+        io.GetClipboardTextFn = [](void* user) {
+            static std::string text; // ImGui copies it before the next call
+            text = static_cast<GuiPlatform*>(user)->clipboard();
+            return text.c_str();
+        };
+        io.SetClipboardTextFn = [](void* user, const char* text) { static_cast<GuiPlatform*>(user)->setClipboard(text); };
         ImGui::StyleColorsDark();
-        ImGui_ImplGlfw_InitForOpenGL(window, true);
         ImGui_ImplOpenGL3_Init("#version 450");
     }
-    ~ImGuiLayer()
+    ~ImGuiSetup()
     {
         ImGui_ImplOpenGL3_Shutdown();
-        ImGui_ImplGlfw_Shutdown();
-        ImGui::DestroyContext();
+        ImGui::DestroyContext(context);
     }
 };
 
-// Files dropped onto the window, collected by GLFW's callback and handled once per frame.
-std::vector<std::string> g_droppedFiles;
-
-void onDrop(GLFWwindow*, int count, const char** paths)
+std::string lowerExtension(const std::string& path)
 {
-    for (int i = 0; i < count; ++i) g_droppedFiles.emplace_back(paths[i]);
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
 }
 
 void handleDrop(const std::string& path, ui::UiRequests& requests, ui::PanelState& panels)
 {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string extension = lowerExtension(path);
     if (extension == ".exr" || extension == ".hdr")
         requests.loadEnvironment = path;
     else if (extension == ".gltf" || extension == ".glb")
@@ -135,13 +137,43 @@ ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, LabS
     return {"loaded " + path, false};
 }
 
-// Left drag orbits, the wheel zooms (multiplicatively, so it feels the same at any
-// distance), a double-click frames the scene.
-struct OrbitInput {
-    void update(CameraSettings& camera, const ImGuiIO& io, ui::UiRequests& requests)
+// A screenshot name nobody has used: iblab-<environment>-<date>-<time>[-n].<ext> in
+// `directory`, or `requested` (made unique the same way) when the user typed one. A capture
+// never overwrites a file.
+std::filesystem::path captureName(const std::filesystem::path& directory, const std::string& requested, const std::string& environment,
+                                  const std::string& extension)
+{
+    std::filesystem::path base;
+    if (!requested.empty()) {
+        base = std::filesystem::path(requested);
+        if (base.is_relative()) base = directory / base;
+    } else {
+        const std::time_t now = std::time(nullptr);
+        char stamp[32];
+        std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+        const std::string stem = isBuiltinSpec(environment) ? environment.substr(environment.find(':') + 1, std::string::npos)
+                                                            : std::filesystem::path(environment).stem().string();
+        std::string safe;
+        for (char c : stem.substr(0, stem.find('?'))) safe += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+        base = directory / ("iblab-" + safe + "-" + stamp + extension);
+    }
+    std::filesystem::path candidate = base;
+    for (int n = 2; std::filesystem::exists(candidate); ++n)
+        candidate = base.parent_path() / (base.stem().string() + "-" + std::to_string(n) + base.extension().string());
+    return candidate;
+}
+
+// Left drag orbits; right or middle drag, or Shift + left drag, pans; the wheel zooms
+// (multiplicatively, so it feels the same at any distance); a double-click frames the scene.
+struct CameraInput {
+    void update(CameraSettings& camera, const ImGuiIO& io, float viewHeight, ui::UiRequests& requests)
     {
         if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) requests.frameScene = true;
-        if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 1.0f)) {
+        const bool panning = ImGui::IsMouseDragging(ImGuiMouseButton_Right, 1.0f) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 1.0f) ||
+                             (io.KeyShift && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 1.0f));
+        if (panning) {
+            panCamera(camera, glm::vec2(io.MouseDelta.x, io.MouseDelta.y), viewHeight);
+        } else if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 1.0f)) {
             camera.yawDegrees -= io.MouseDelta.x * 0.3f;
             camera.pitchDegrees = std::clamp(camera.pitchDegrees + io.MouseDelta.y * 0.3f, -89.0f, 89.0f);
             camera.yawDegrees = std::remainder(camera.yawDegrees, 360.0f);
@@ -169,325 +201,385 @@ struct SplitDividerInput {
     }
 };
 
-// The error view's reference gets this much GPU time per frame while the view is idle.
-constexpr auto kReferenceBudgetPerFrame = std::chrono::milliseconds(30);
+bool keyPressed(int glfwKey) { return ImGui::IsKeyPressed(glfwKey, /*repeat=*/false); }
 
-// Progressive refinement stops here: 64 rotated sample sets of any N are plenty to judge.
-constexpr int kMaxAccumulatedFrames = 64;
+// What the image on screen was rendered from: when it is unchanged, nothing is left to
+// render but refinement. The renderer's content revision covers what settings do not
+// (a bake that finished, a model or environment that arrived).
+struct RenderedState {
+    FrameSettings settings;
+    int width = 0, height = 0;
+    std::uint64_t contentRevision = 0;
+    bool referenceComplete = false;
+    bool operator==(const RenderedState&) const = default;
+};
 
-#ifdef NDEBUG
-constexpr bool kDebugContext = false;
-#else
-constexpr bool kDebugContext = true;
-#endif
+nlohmann::json statusJson(const ui::StatusLine& status) { return {{"text", status.text}, {"error", status.isError}, {"notes", status.notes}}; }
+
+// Points the Study chart draws: with a positive error and cost (the axes are logarithmic).
+std::size_t plottedPoints(const std::vector<ui::ParetoChart>& charts)
+{
+    std::size_t count = 0;
+    for (const ui::ParetoChart& chart : charts)
+        for (const ui::ChartSeries& series : chart.series)
+            for (const ui::ChartPoint& point : series.points) count += point.x > 0.0 && point.y > 0.0 && std::isfinite(point.y);
+    return count;
+}
 
 } // namespace
 
-bool displayAvailable()
-{
-    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) return false;
-    glfwSetErrorCallback(nullptr);
-    if (!glfwInit()) return false;
-    glfwTerminate();
-    return true;
-}
-
-// The Study panel's sweep: a quick bench on the current environment and scene, a slice per
-// frame. It runs on a renderer of its own, so the view keeps its environment and bake.
-class StudyRun {
-public:
-    void start(const LabSession& session, const FrameSettings& settings, ui::StudyState& study) { begin(session, settings, study, false); }
-
-    // The auto quality mode: its candidates for this scene and environment, and the presets
-    // beside them, measured like the sweep; the choice is made when the last one is in.
-    void startAutoQuality(const LabSession& session, const FrameSettings& settings, ui::StudyState& study) { begin(session, settings, study, true); }
-
-    void stop(ui::StudyState& study)
-    {
-        job_.reset();
-        study.running = false;
-        study.autoQuality.running = false;
-        study.status = {"stopped", false};
-    }
-
-    // One slice of the sweep; the chart follows the points measured so far.
-    void advance(ui::StudyState& study, std::chrono::steady_clock::duration budget)
-    {
-        if (!job_) return;
-        try {
-            const bool more = job_->runFor(budget);
-            study.progress = job_->progress();
-            study.activity = job_->currentActivity();
-            if (job_->report().points.size() != pointsCharted_) {
-                pointsCharted_ = job_->report().points.size();
-                study.charts = study.autoQuality.running ? benchCharts(job_->report(), ChartError::DisplayP99, targetSteps_) : benchCharts(job_->report());
-            }
-            if (!more) {
-                study.running = false;
-                study.status = {std::to_string(pointsCharted_) + " settings measured in " + std::to_string(int(job_->report().seconds)) + " s", false};
-                if (study.autoQuality.running) finishAutoQuality(study);
-                job_.reset();
-            }
-        } catch (const std::exception& e) {
-            study.running = false;
-            study.autoQuality.running = false;
-            study.status = {e.what(), true};
-            job_.reset();
-        }
-        if (!job_) pointsCharted_ = 0;
-    }
-
-    // The chosen bake and sampling on top of the session's: its environment cube and LUT stay.
-    void applyAutoQuality(LabSession& session, FrameSettings& settings, ui::PanelState& panels) const
-    {
-        if (!choice_ || !choice_->found) return;
-        session.setBakeSettings(bench::appliedBakeSettings(*choice_, session.bakeSettings()));
-        settings.sampling = bench::appliedSampling(*choice_, settings.sampling);
-        panels.bakeStatus = {"auto quality: baking " + bench::describeSettings(choice_->chosen.setting), false};
-    }
-
-    bool running() const { return bool(job_); }
-
-private:
-    void begin(const LabSession& session, const FrameSettings& settings, ui::StudyState& study, bool autoQuality)
-    {
-        if (!session.environment()) {
-            study.status = {"no environment loaded yet", true};
-            return;
-        }
-        if (settings.scene.kind == SceneKind::None) {
-            study.status = {"the scene has no surfaces to measure: pick sphere, grid or a model", true};
-            return;
-        }
-        try {
-            if (!renderer_) renderer_ = std::make_unique<Renderer>(shaderDirectory());
-            bench::BenchOptions options = bench::defaultBenchOptions(/*quick=*/true, assetDirectory().string());
-            const Environment& environment = *session.environment();
-            options.environments = {{std::filesystem::path(environment.source).stem().string(), environment.source,
-                                     std::make_shared<const Environment>(environment)}};
-            options.frame = settings;
-            options.width = options.height = 96; // the quick run's 48 is for tests; 96 still sweeps in seconds
-            if (autoQuality) {
-                candidates_ = bench::autoCandidates(/*quick=*/true, bench::sceneFacts(settings, environment.image));
-                options.points = candidates_.points;
-                for (bench::SweepPoint& preset : bench::presetPoints(/*quick=*/true)) options.points.push_back(std::move(preset));
-                options.referenceWidth = candidates_.referenceWidth;
-                targetSteps_ = study.autoQuality.targetSteps;
-            }
-            job_ = std::make_unique<bench::BenchJob>(*renderer_, options);
-            ui::AutoQualityState kept = study.autoQuality;
-            study = {true, 0.0f, "", {}, {}, true, kept};
-            study.autoQuality.running = autoQuality;
-            if (autoQuality) {
-                study.autoQuality.haveChoice = false;
-                choice_.reset();
-            }
-        } catch (const std::exception& e) {
-            study.status = {e.what(), true};
-        }
-    }
-
-    void finishAutoQuality(ui::StudyState& study)
-    {
-        bench::BenchReport report = job_->report();
-        choice_ = bench::chooseAuto(report, targetSteps_, candidates_);
-        bench::markChosen(report.points, *choice_);
-        study.charts = benchCharts(report, ChartError::DisplayP99, targetSteps_);
-        ui::AutoQualityState& shown = study.autoQuality;
-        shown.running = false;
-        shown.haveChoice = choice_->found;
-        shown.meetsTarget = choice_->meetsTarget;
-        shown.reasons = choice_->reasons;
-        shown.presets.clear();
-        if (!choice_->found) {
-            study.status = {choice_->reasons.back(), true};
-            return;
-        }
-        const auto numbers = [](const bench::BenchPoint& p) {
-            char text[160];
-            std::snprintf(text, sizeof text, "cost %.1f ms (bake %.1f + frame %.2f), display p99 %.2f steps, RMS %.2f", p.costMilliseconds,
-                          p.bakeMilliseconds, p.frameMilliseconds, p.display.p99Steps, p.display.rmsSteps);
-            return std::string(text);
-        };
-        shown.chosen = bench::describeSettings(choice_->chosen.setting);
-        shown.numbers = numbers(choice_->chosen);
-        for (const bench::BenchPoint& p : report.points)
-            if (p.setting.family == "preset") shown.presets.push_back(p.setting.mark + " preset: " + numbers(p));
-    }
-
-    std::unique_ptr<Renderer> renderer_;
-    std::unique_ptr<bench::BenchJob> job_;
-    std::size_t pointsCharted_ = 0;
-    bench::AutoCandidates candidates_;
-    double targetSteps_ = bench::kDefaultAutoTargetSteps;
-    std::optional<bench::AutoChoice> choice_;
-};
-
-int runGui(const GuiOptions& options)
-{
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    GlfwLibrary glfw;
-    Window window(options.width, options.height, kDebugContext);
-    gl::requireCurrentContextFeatures();
+struct GuiApp::Impl {
+    GuiPlatform& platform;
+    GuiOptions options;
     gl::DebugOutput debug;
-    if (gl::currentContextHasDebugOutput()) {
-        debug.onMessage = [](const gl::DebugMessage& m) { std::fprintf(stderr, "iblab: %s\n", m.text.c_str()); };
-        debug.install();
-    }
-    ImGuiLayer imgui(window.handle);
-    glfwSetDropCallback(window.handle, onDrop);
-
-    FrameSettings settings = options.settings;
-    Renderer renderer(shaderDirectory());
-    bake::BakeSettings bakeSettings = bake::defaultPreset();
+    ImGuiSetup imgui;
+    Renderer renderer;
+    FrameSettings settings;
+    FrameSettings savedSettings; // as last saved or loaded: quitting asks before losing changes
     ui::PanelState panels;
-    if (const ConventionPreset* convention = findConvention(options.convention)) {
-        bakeSettings = conventionBakeSettings(*convention);
-        applyConvention(*convention, settings.sampling);
-        panels.convention = convention->name;
-    }
-    LabSession session(renderer, bakeSettings);
-    panels.catalog = session.catalog();
-    // The environment loads on a worker thread and bakes in slices: the window is up at once.
-    session.requestEnvironment(settings.environment.source);
-    bool frameWhenReady = settings.camera.distance <= 0.0f;
-    if (frameWhenReady) settings.camera.distance = 3.5f;
-    if (settings.scene.kind == SceneKind::Model) panels.sceneStatus = session.loadModel(settings.scene.modelPath, settings);
-
+    LabSession session;
     ui::FrameStats stats;
-    stats.renderer = gl::describeCurrentContext();
-    bool firstFrame = true;
-    int framesShown = 0;
-    auto previousFrame = Clock::now();
-    OrbitInput orbit;
-    SplitDividerInput divider;
-    std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
-    float previousScale = 1.0f;
-    bool idle = false;
-    std::string lastRenderedKey; // settings + size of the image on screen
+    InputQueue input;
     StudyRun study;
-    while (!glfwWindowShouldClose(window.handle)) {
-        // Idle and converged: sleep until input instead of re-rendering the same image.
-        if (idle) glfwWaitEventsTimeout(0.25);
-        else glfwPollEvents();
-        int windowWidth = 0, windowHeight = 0;
-        glfwGetFramebufferSize(window.handle, &windowWidth, &windowHeight);
-        // The 3D view is the part of the window right of the docked panel.
-        const int viewX = panels.showPanels ? std::min(int(panels.panelWidth), windowWidth - 16) : 0;
-        const int fbWidth = windowWidth - viewX, fbHeight = windowHeight;
-        if (fbWidth <= 0 || fbHeight <= 0) { // minimised
-            glfwWaitEvents();
-            continue;
+    CameraInput cameraInput;
+    SplitDividerInput divider;
+    std::optional<RenderedState> rendered;
+    std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
+    Clock::time_point start = Clock::now();
+    Clock::time_point previousFrame = Clock::now();
+    float previousScale = 1.0f;
+    bool frameWhenReady = false;
+    bool isIdle = false;
+    bool sleepWhenIdle = false;
+    bool scripted = false;
+    bool quit = false;
+    bool pixelsRequested = false;
+    WindowPixels pixels;
+    int framesShown = 0;
+
+    Impl(GuiPlatform& p, const GuiOptions& o)
+        : platform(p), options(o), imgui(p), renderer(shaderDirectory()), settings(o.settings), session(renderer, initialBake(o))
+    {
+        if (gl::currentContextHasDebugOutput()) {
+            debug.onMessage = [](const gl::DebugMessage& m) { std::fprintf(stderr, "iblab: %s\n", m.text.c_str()); };
+            debug.install();
         }
-        const glm::vec2 viewOrigin(float(viewX), 0.0f);
-        for (const std::string& error : renderer.reloadShaders()) std::fprintf(stderr, "iblab: %s\n", error.c_str());
+        if (const ConventionPreset* convention = findConvention(options.convention)) {
+            applyConvention(*convention, settings.sampling);
+            panels.convention = convention->name;
+        }
+        panels.catalog = session.catalog();
+        std::snprintf(panels.capture.directory, sizeof panels.capture.directory, "%s", std::filesystem::current_path().string().c_str());
+        // The environment loads on a worker thread and bakes in slices: the window is up at once.
+        session.requestEnvironment(settings.environment.source);
+        frameWhenReady = settings.camera.distance <= 0.0f;
+        if (frameWhenReady) settings.camera.distance = 3.5f;
+        if (settings.scene.kind == SceneKind::Model) panels.sceneStatus = session.loadModel(settings.scene.modelPath, settings);
+        stats.renderer = gl::describeCurrentContext();
+        savedSettings = settings;
+    }
 
-        // Background work first, within a budget that keeps the UI near interactive rates
-        // on a software renderer.
-        const LabSession::Finished finished = session.pump(settings, std::chrono::milliseconds(30));
-        if (finished.environment) panels.environmentStatus = *finished.environment;
-        if (finished.bake) panels.bakeStatus = *finished.bake;
-        panels.activity = {session.activity(), session.progress()};
-        study.advance(panels.study, std::chrono::milliseconds(30));
+    static bake::BakeSettings initialBake(const GuiOptions& o)
+    {
+        const ConventionPreset* convention = findConvention(o.convention);
+        return convention ? conventionBakeSettings(*convention) : bake::defaultPreset();
+    }
 
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        ui::UiRequests requests;
-        ui::drawControlWindow(settings, panels, stats, requests);
-        const ImVec2 mouse = ImGui::GetIO().MousePos;
-        drawViewOverlays(renderer, settings, fbWidth, fbHeight, viewOrigin, furnaceReadings,
-                         glm::vec2(mouse.x - float(viewX), float(fbHeight) - mouse.y));
-        const ImGuiIO& io = ImGui::GetIO();
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)) && !io.WantTextInput) glfwSetWindowShouldClose(window.handle, 1);
-        if (ImGui::IsKeyPressed(GLFW_KEY_F12)) requests.captureTo = std::string(panels.capture.path);
-        if (!io.WantCaptureMouse && !divider.update(settings.view, io, viewX, fbWidth)) orbit.update(settings.camera, io, requests);
-        ImGui::Render();
+    bool unsavedChanges() const { return !(settings == savedSettings); }
 
-        for (const std::string& dropped : std::exchange(g_droppedFiles, {})) handleDrop(dropped, requests, panels);
+    void requestQuit()
+    {
+        if (unsavedChanges()) panels.quitDialog.open = true;
+        else quit = true;
+    }
+
+    // Keys that act on the lab, not on a control. None fires while a text field has the
+    // keyboard; Esc only closes what is open and never quits (tuning is lost that way too
+    // easily): quitting is the window's close button or Ctrl+Q, which ask first when the
+    // settings changed since the last save.
+    void handleShortcuts(const ImGuiIO& io, ui::UiRequests& requests)
+    {
+        if (io.WantTextInput) return;
+        if (keyPressed(GLFW_KEY_ESCAPE)) {
+            if (panels.quitDialog.open) panels.quitDialog.open = false;
+            else if (ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopup)) ImGui::ClosePopupsExceptModals();
+        }
+        if (io.KeyCtrl && keyPressed(GLFW_KEY_Q)) requestQuit();
+        if (io.KeyCtrl && keyPressed(GLFW_KEY_S)) requests.savePreset = std::string(panels.presetPath);
+        if (keyPressed(GLFW_KEY_F12)) requests.capture = ui::CaptureRequest{};
+        if (io.KeyCtrl || io.KeyAlt) return;
+        const bool plus = keyPressed(GLFW_KEY_KP_ADD) || keyPressed(GLFW_KEY_EQUAL);
+        const bool minus = keyPressed(GLFW_KEY_KP_SUBTRACT) || keyPressed(GLFW_KEY_MINUS);
+        if (plus || minus) settings.sampling.samples = std::clamp(settings.sampling.samples + (plus ? 1 : -1), 1, kMaxSampleCount);
+        if (keyPressed(GLFW_KEY_HOME) || keyPressed(GLFW_KEY_R)) requests.resetCamera = true;
+        if (keyPressed(GLFW_KEY_1) || keyPressed(GLFW_KEY_KP_1)) requests.axisView = CameraAxisView::Front;
+        if (keyPressed(GLFW_KEY_3) || keyPressed(GLFW_KEY_KP_3)) requests.axisView = CameraAxisView::Side;
+        if (keyPressed(GLFW_KEY_7) || keyPressed(GLFW_KEY_KP_7)) requests.axisView = CameraAxisView::Top;
+        if (keyPressed(GLFW_KEY_F)) requests.frameScene = true;
+    }
+
+    void capture(const ui::CaptureRequest& request)
+    {
+        const std::string extension = request.file.empty() ? ".png" : lowerExtension(request.file);
+        const std::filesystem::path path = captureName(panels.capture.directory, request.file, settings.environment.source, extension);
+        panels.captureStatus = session.capture(path.string(), settings);
+    }
+
+    void actOn(ui::UiRequests& requests, int viewWidth, int viewHeight)
+    {
         if (requests.loadEnvironment) session.requestEnvironment(*requests.loadEnvironment);
         if (requests.loadModel) {
             panels.sceneStatus = session.loadModel(*requests.loadModel, settings);
-            requests.frameScene = !panels.sceneStatus.isError;
+            if (!panels.sceneStatus.isError) {
+                // A model shows its own materials first; the sliders take over on request.
+                settings.material.overrideModel = false;
+                requests.frameScene = true;
+            }
         }
-        if (requests.loadPreset) panels.presetStatus = loadPreset(*requests.loadPreset, settings, session);
-        if (requests.savePreset) panels.presetStatus = savePreset(*requests.savePreset, settings);
+        if (requests.loadPreset) {
+            panels.presetStatus = loadPreset(*requests.loadPreset, settings, session);
+            if (!panels.presetStatus.isError) savedSettings = settings;
+        }
+        if (requests.savePreset) {
+            panels.presetStatus = savePreset(*requests.savePreset, settings);
+            if (!panels.presetStatus.isError) savedSettings = settings;
+        }
         if (requests.exportModel) panels.sceneStatus = session.exportModel(*requests.exportModel, settings);
         if (requests.applyConvention)
             if (const ConventionPreset* convention = findConvention(*requests.applyConvention)) {
                 session.setBakeSettings(conventionBakeSettings(*convention));
                 applyConvention(*convention, settings.sampling);
                 panels.convention = convention->name;
-                panels.bakeStatus = {"convention " + std::string(convention->title) + ": baking its preset \"" + std::string(convention->bakePreset) + "\"", false};
+                panels.bakeStatus = {"convention " + std::string(convention->title) + ": baking its preset \"" + std::string(convention->bakePreset) + "\"",
+                                     false};
             }
         if (requests.startStudy) study.start(session, settings, panels.study);
         if (requests.stopStudy) study.stop(panels.study);
         if (requests.startAutoQuality) study.startAutoQuality(session, settings, panels.study);
         if (requests.applyAutoQuality) study.applyAutoQuality(session, settings, panels);
+        if (requests.axisView) setAxisView(settings.camera, *requests.axisView);
+        if (requests.resetCamera) {
+            const CameraSettings defaults;
+            settings.camera.yawDegrees = defaults.yawDegrees;
+            settings.camera.pitchDegrees = defaults.pitchDegrees;
+            settings.camera.fovDegrees = defaults.fovDegrees;
+            requests.frameScene = true;
+        }
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
             const SceneInfo scene = renderer.sceneInfo(settings);
-            frameBox(settings.camera, scene.centre, scene.halfExtents, float(fbWidth) / float(fbHeight));
+            frameBox(settings.camera, scene.centre, scene.halfExtents, float(viewWidth) / float(viewHeight));
             frameWhenReady = false;
         }
-
-        if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
-        // Responsive on a software renderer: while the user drags something, expensive
-        // frames render fewer pixels (aiming at ~30 fps); when idle, the sampled method
-        // refines progressively instead of re-rendering the same noisy image.
-        const bool interacting = ImGui::IsAnyItemActive() || ImGui::IsMouseDragging(ImGuiMouseButton_Left) || io.MouseWheel != 0.0f;
-        Renderer::Options renderOptions;
-        if (interacting && !requests.captureTo && stats.renderMs > 33.0)
-            renderOptions.resolutionScale = std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(previousScale * previousScale))), 0.25f, 1.0f);
-        renderOptions.accumulate = !interacting;
-        previousScale = renderOptions.resolutionScale;
-        // The error view's reference, one budgeted slice of work per idle frame (a drag
-        // would restart it every frame; it resumes when the drag ends).
-        const bool errorView = settings.view.mode == ViewMode::Error;
-        if (errorView)
-            panels.compare.reference = interacting || session.busy() ? renderer.referenceStatus(settings, fbWidth, fbHeight)
-                                                                     : renderer.advanceReference(settings, fbWidth, fbHeight, kReferenceBudgetPerFrame);
-        // A finished image needs no more frames: split-sum is deterministic, the sampled
-        // method stops refining after kMaxAccumulatedFrames, and the error view waits for
-        // its reference (whose completion changes the image, hence its place in the key).
-        const bool referencePending = errorView && !panels.compare.reference.complete;
-        const std::string renderKey = toJsonText(settings, -1) + std::to_string(fbWidth) + "x" + std::to_string(fbHeight) +
-                                      (errorView && panels.compare.reference.complete ? " with reference" : "");
-        const bool converged = renderKey == lastRenderedKey && !interacting && !session.busy() && !requests.captureTo &&
-                               renderer.accumulatedFrames() >= (renderer.lastFrameWasSampled() ? kMaxAccumulatedFrames : 1);
-        idle = converged && !referencePending && !study.running() && !ImGui::IsAnyItemHovered() && !io.WantTextInput;
-        lastRenderedKey = renderKey;
-        const auto renderStart = Clock::now();
-        if (!converged) renderer.renderFrame(settings, fbWidth, fbHeight, renderOptions);
-        stats.resolutionScale = renderOptions.resolutionScale;
-        stats.accumulatedFrames = renderer.accumulatedFrames();
-        glFinish(); // so that the reported pass time is the GPU's, not the submission's
-        if (!converged) stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
-        stats.width = fbWidth;
-        stats.height = fbHeight;
-        furnaceReadings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
-        if (!converged) panels.compare.error = errorView ? renderer.measureError(settings) : ErrorReport{};
-        if (requests.captureTo) panels.captureStatus = session.capture(*requests.captureTo, settings);
-
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glViewport(0, 0, windowWidth, windowHeight);
-        glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        renderer.presentToDefaultFramebuffer(viewX, 0, windowWidth, windowHeight);
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        glfwSwapBuffers(window.handle);
-
-        const auto now = Clock::now();
-        stats.frameMs = std::chrono::duration<double, std::milli>(now - previousFrame).count();
-        previousFrame = now;
-        if (firstFrame) {
-            std::printf("iblab: first frame %.0f ms after start (%s)\n", std::chrono::duration<double, std::milli>(now - start).count(),
-                        stats.renderer.c_str());
-            std::fflush(stdout);
-            firstFrame = false;
+        if (requests.quit) {
+            if (*requests.quit == ui::QuitChoice::SaveAndQuit) {
+                panels.presetStatus = savePreset(panels.presetPath, settings);
+                quit = !panels.presetStatus.isError; // a failed save keeps the app and says why
+                if (quit) savedSettings = settings;
+            } else if (*requests.quit == ui::QuitChoice::Quit) {
+                quit = true;
+            }
+            panels.quitDialog.open = false;
         }
-        if (options.quitAfterFrames > 0 && ++framesShown >= options.quitAfterFrames) break;
     }
+
+    void frame();
+};
+
+void GuiApp::Impl::frame()
+{
+    platform.collectEvents(input, isIdle && sleepWhenIdle && !scripted ? 0.25 : 0.0);
+    ImGuiIO& io = ImGui::GetIO();
+    const FrameRequests frameInput = input.applyFrame(io);
+    if (frameInput.resized && platform.kind() == "offscreen") platform.resize(frameInput.width, frameInput.height);
+    if (frameInput.closeRequested) requestQuit();
+
+    const int windowWidth = platform.width(), windowHeight = platform.height();
+    // The 3D view is the part of the window right of the docked panel.
+    const int viewX = panels.showPanels ? std::min(int(panels.panelWidth), windowWidth - 16) : 0;
+    const int viewWidth = windowWidth - viewX, viewHeight = windowHeight;
+    if (viewWidth <= 0 || viewHeight <= 0) { // minimised
+        platform.collectEvents(input, 0.25);
+        return;
+    }
+    const glm::vec2 viewOrigin(float(viewX), 0.0f);
+    panels.viewRect = {float(viewX), 0.0f, float(windowWidth), float(windowHeight)};
+    for (const std::string& error : renderer.reloadShaders()) std::fprintf(stderr, "iblab: %s\n", error.c_str());
+
+    const LabSession::Finished finished = session.pump(settings, kBackgroundBudgetPerFrame);
+    if (finished.environment) panels.environmentStatus = *finished.environment;
+    if (finished.bake) panels.bakeStatus = *finished.bake;
+    panels.activity = {session.activity(), session.progress()};
+    study.advance(panels.study, kBackgroundBudgetPerFrame);
+
+    const auto now = Clock::now();
+    io.DisplaySize = ImVec2(float(windowWidth), float(windowHeight));
+    io.DeltaTime = scripted ? kScriptedFrameSeconds : std::max(std::chrono::duration<float>(now - previousFrame).count(), 1e-4f);
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    ui::itemRegistry().beginFrame();
+    ui::UiRequests requests;
+    for (const std::string& dropped : frameInput.dropped) handleDrop(dropped, requests, panels);
+    handleShortcuts(io, requests);
+    panels.unsavedChanges = unsavedChanges();
+    ui::drawControlWindow(settings, panels, stats, requests);
+    ui::drawQuitDialog(panels, requests);
+    const ImVec2 mouse = io.MousePos;
+    drawViewOverlays(renderer, settings, viewWidth, viewHeight, viewOrigin, furnaceReadings,
+                     glm::vec2(mouse.x - float(viewX), float(viewHeight) - mouse.y));
+    if (!io.WantCaptureMouse && !divider.update(settings.view, io, viewX, viewWidth)) cameraInput.update(settings.camera, io, float(viewHeight), requests);
+    ImGui::Render();
+    ui::itemRegistry().endFrame();
+    platform.setCursor(ImGui::GetMouseCursor());
+
+    actOn(requests, viewWidth, viewHeight);
+    if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
+
+    // Responsive on a software renderer: while the user drags something, expensive frames
+    // render fewer pixels (aiming at ~30 fps); when idle, the sampled method refines
+    // progressively instead of re-rendering the same noisy image.
+    const bool interacting = ImGui::IsAnyItemActive() || ImGui::IsMouseDragging(ImGuiMouseButton_Left) ||
+                             ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle) ||
+                             io.MouseWheel != 0.0f;
+    const bool capturing = requests.capture.has_value();
+    Renderer::Options renderOptions;
+    if (interacting && !capturing && stats.renderMs > 33.0)
+        renderOptions.resolutionScale = std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(previousScale * previousScale))), 0.25f, 1.0f);
+    renderOptions.accumulate = !interacting;
+    previousScale = renderOptions.resolutionScale;
+    // The error view's reference, one budgeted slice of work per idle frame (a drag would
+    // restart it every frame; it resumes when the drag ends).
+    const bool errorView = settings.view.mode == ViewMode::Error;
+    if (errorView)
+        panels.compare.reference = interacting || session.busy() ? renderer.referenceStatus(settings, viewWidth, viewHeight)
+                                                                 : renderer.advanceReference(settings, viewWidth, viewHeight, kReferenceBudgetPerFrame);
+    // A finished image needs no more frames: split-sum is deterministic, the sampled method
+    // stops refining after kMaxAccumulatedFrames (or at once with a frozen sample set), and
+    // the error view waits for its reference.
+    const bool referencePending = errorView && !panels.compare.reference.complete;
+    const RenderedState current{settings, viewWidth, viewHeight, renderer.contentRevision(), errorView && panels.compare.reference.complete};
+    const int framesToConverge = renderer.lastFrameWasSampled() && !keepsExactSampleCount(settings) ? kMaxAccumulatedFrames : 1;
+    const bool converged = rendered == current && !interacting && !session.busy() && !capturing && renderer.accumulatedFrames() >= framesToConverge;
+    const auto renderStart = Clock::now();
+    if (!converged) {
+        renderer.renderFrame(settings, viewWidth, viewHeight, renderOptions);
+        glFinish(); // so that the reported pass time is the GPU's, not the submission's
+        stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
+        if (errorView) panels.compare.error = renderer.measureError(settings);
+    }
+    rendered = current;
+    stats.resolutionScale = renderOptions.resolutionScale;
+    stats.accumulatedFrames = renderer.accumulatedFrames();
+    stats.width = viewWidth;
+    stats.height = viewHeight;
+    furnaceReadings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
+    if (requests.capture) capture(*requests.capture);
+    // Idle: nothing left to compute until the next input (what scripts wait for). The loop
+    // also keeps drawing while a control is hovered (its tooltip) or a field has the
+    // keyboard (the caret), and only sleeps when neither.
+    isIdle = converged && !referencePending && !study.running() && input.empty();
+    sleepWhenIdle = !ImGui::IsAnyItemHovered() && !io.WantTextInput;
+
+    glBindFramebuffer(GL_FRAMEBUFFER, platform.framebuffer());
+    glViewport(0, 0, windowWidth, windowHeight);
+    glClearColor(0.06f, 0.06f, 0.07f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    renderer.presentTo(platform.framebuffer(), viewX, 0, windowWidth, windowHeight);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (std::exchange(pixelsRequested, false)) pixels = platform.readPixels();
+    platform.present();
+
+    const auto end = Clock::now();
+    stats.frameMs = std::chrono::duration<double, std::milli>(end - previousFrame).count();
+    previousFrame = end;
+    if (framesShown++ == 0) {
+        std::printf("iblab: first frame %.0f ms after start (%s)\n", std::chrono::duration<double, std::milli>(end - start).count(), stats.renderer.c_str());
+        std::fflush(stdout);
+    }
+    if (options.quitAfterFrames > 0 && framesShown >= options.quitAfterFrames) quit = true;
+}
+
+GuiApp::GuiApp(GuiPlatform& platform, const GuiOptions& options) : impl_(std::make_unique<Impl>(platform, options)) {}
+GuiApp::~GuiApp() = default;
+
+void GuiApp::frame() { impl_->frame(); }
+void GuiApp::setScripted(bool scripted) { impl_->scripted = scripted; }
+bool GuiApp::quitRequested() const { return impl_->quit; }
+bool GuiApp::idle() const { return impl_->isIdle; }
+InputQueue& GuiApp::input() { return impl_->input; }
+GuiPlatform& GuiApp::platform() { return impl_->platform; }
+const WindowPixels& GuiApp::lastPixels() const { return impl_->pixels; }
+void GuiApp::requestPixels() { impl_->pixelsRequested = true; }
+const ui::ItemRegistry& GuiApp::items() const { return ui::itemRegistry(); }
+int GuiApp::glErrorCount() const { return impl_->debug.errorCount(); }
+
+nlohmann::json GuiApp::state() const
+{
+    const Impl& a = *impl_;
+    const ui::PanelState& p = a.panels;
+    nlohmann::json labels = nlohmann::json::array();
+    for (const ScreenLabel& label : a.renderer.sceneLabels(a.settings, a.stats.width, a.stats.height))
+        labels.push_back({{"text", label.text}, {"x", p.viewRect.x0 + label.pixel.x}, {"y", float(a.stats.height) - label.pixel.y}});
+    nlohmann::json popups = nlohmann::json::array();
+    for (const ImGuiPopupData& popup : ImGui::GetCurrentContext()->OpenPopupStack)
+        popups.push_back(popup.Window ? popup.Window->Name : "");
+    return {
+        {"frame", a.framesShown},
+        {"idle", a.isIdle},
+        {"quit", a.quit},
+        {"platform", a.platform.kind()},
+        {"window", {{"width", a.platform.width()}, {"height", a.platform.height()}}},
+        {"view", {{"x", p.viewRect.x0}, {"y", p.viewRect.y0}, {"width", p.viewRect.x1 - p.viewRect.x0}, {"height", p.viewRect.y1 - p.viewRect.y0}}},
+        {"settings", nlohmann::json::parse(toJsonText(a.settings))},
+        {"unsaved_changes", a.unsavedChanges()},
+        {"panels",
+         {{"shown", p.showPanels},
+          {"width", p.panelWidth},
+          {"environment_status", statusJson(p.environmentStatus)},
+          {"bake_status", statusJson(p.bakeStatus)},
+          {"scene_status", statusJson(p.sceneStatus)},
+          {"capture_status", statusJson(p.captureStatus)},
+          {"preset_status", statusJson(p.presetStatus)},
+          {"activity", p.activity.text},
+          {"convention", p.convention},
+          {"quit_dialog", p.quitDialog.open},
+          {"compare",
+           {{"reference_current", p.compare.reference.current},
+            {"reference_complete", p.compare.reference.complete},
+            {"reference_progress", p.compare.reference.progress},
+            {"error_valid", p.compare.error.valid},
+            {"relative_rmse", p.compare.error.valid ? p.compare.error.left.relativeRmse : 0.0},
+            {"pixels", p.compare.error.valid ? p.compare.error.left.pixels : 0}}},
+          {"study",
+           {{"running", p.study.running},
+            {"status", statusJson(p.study.status)},
+            {"charts", p.study.charts.size()},
+            {"plotted_points", plottedPoints(p.study.charts)},
+            {"chart_open", p.study.chartOpen},
+            {"auto_quality", {{"running", p.study.autoQuality.running}, {"have_choice", p.study.autoQuality.haveChoice}, {"applied", p.study.autoQuality.applied}, {"chosen", p.study.autoQuality.chosen}}}}}}},
+        {"session", {{"busy", a.session.busy()}, {"environment", a.session.environment() ? a.session.environment()->source : ""}, {"has_bake", a.renderer.hasBake()}}},
+        {"renderer",
+         {{"accumulated_frames", a.renderer.accumulatedFrames()},
+          {"content_revision", a.renderer.contentRevision()},
+          {"sampled", a.renderer.lastFrameWasSampled()},
+          {"render_ms", a.stats.renderMs},
+          {"resolution_scale", a.stats.resolutionScale}}},
+        {"ui",
+         {{"popups", popups},
+          {"want_text_input", ImGui::GetIO().WantTextInput},
+          {"mouse", {ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}}}},
+        {"labels", labels},
+    };
+}
+
+int runGui(const GuiOptions& options)
+{
+    const bool offscreen = options.offscreen || (!options.script.empty() && !displayAvailable());
+    std::unique_ptr<GuiPlatform> platform = offscreen ? makeOffscreenPlatform(options.width, options.height, kDebugContext || !options.script.empty())
+                                                      : makeWindowPlatform(options.width, options.height, kDebugContext || !options.script.empty());
+    gl::requireCurrentContextFeatures();
+    GuiApp app(*platform, options);
+    if (!options.script.empty()) return runGuiScript(app, options.script, options.coverageOut);
+    while (!app.quitRequested()) app.frame();
     return 0;
 }
 

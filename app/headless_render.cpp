@@ -102,7 +102,7 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
             report["width"] = job.width;
             report["height"] = job.height;
             report["renderer"] = gl.context.description();
-            report["environment"] = loaded.text;
+            report["environment"] = loaded.joined();
             if (!sceneStatus.empty()) report["scene"] = sceneStatus;
             if (settings.view.mode == ViewMode::Furnace)
                 for (const SphereReading& r : renderer.measureSpheres(settings))

@@ -44,13 +44,15 @@ void LabSession::requestEnvironment(const std::string& spec)
 ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& settings)
 {
     renderer_.setEnvironment(loaded.image);
-    std::string text = shortName(loaded.source) + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
-    // Repairs, downsampling and LDR input are all among the loader's warnings.
-    for (const auto& warning : loaded.warnings) text += "; " + warning;
+    const std::string text = shortName(loaded.source) + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
+    // Repairs, downsampling and LDR input are the loader's warnings: notes under the line,
+    // since the environment loaded and is usable (the bundled courtyard has negative texels
+    // from its stitching, repaired to 0, which is nobody's error).
+    std::vector<std::string> notes = loaded.warnings;
     settings.environment.source = pendingSpec_.empty() ? loaded.source : pendingSpec_;
     job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), loaded, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
     environment_ = std::move(loaded);
-    return {text, false};
+    return {text, false, std::move(notes)};
 }
 
 ui::StatusLine LabSession::finishBake()
@@ -115,6 +117,7 @@ ui::StatusLine LabSession::loadEnvironment(const std::string& spec, FrameSetting
             if (!line) continue;
             if (line->isError) return *line;
             status.text += (status.text.empty() ? "" : "; ") + line->text;
+            status.notes.insert(status.notes.end(), line->notes.begin(), line->notes.end());
         }
     }
     return status;
@@ -187,7 +190,10 @@ ui::StatusLine LabSession::capture(const std::string& path, const FrameSettings&
             const DisplayReadback image = renderer_.readDisplayImage();
             writePng8(path, image.width, image.height, 4, image.rgba, {.bottomUp = true, .settingsJson = settingsJson});
         } else if (extension == ".exr") {
-            const FrameReadback image = renderer_.readHdrFrame();
+            // Opaque: the frame's alpha is its MSAA coverage, not an opacity of the
+            // (unpremultiplied) colour, and would make compositing tools cut the silhouettes.
+            FrameReadback image = renderer_.readHdrFrame();
+            for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 1.0f;
             writeExr(path, image.width, image.height, 4, image.rgba, {.bottomUp = true, .settingsJson = settingsJson});
         } else {
             return {path + ": unknown screenshot format \"" + extension + "\" (use .png or .exr)", true};

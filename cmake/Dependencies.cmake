@@ -20,14 +20,16 @@ pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 pkg_check_modules(OPENIMAGEIO REQUIRED IMPORTED_TARGET OpenImageIO)
 add_library(OpenImageIO::OpenImageIO ALIAS PkgConfig::OPENIMAGEIO)
 
-# Debian ships Dear ImGui's platform backends as sources only; compile the two we use.
+# Debian ships Dear ImGui's backends as sources only; compile the OpenGL3 renderer backend.
+# The platform side is app/gui_input + app/gui_platform instead of imgui_impl_glfw: one input
+# queue that a window and a script both feed (imgui_impl_glfw writes GLFW's state straight
+# into ImGui and cannot be driven without a window).
 set(IMGUI_BACKEND_DIR /usr/share/doc/libimgui-dev/examples/backends)
 add_library(imgui_backends STATIC
-  ${IMGUI_BACKEND_DIR}/imgui_impl_glfw.cpp
   ${IMGUI_BACKEND_DIR}/imgui_impl_opengl3.cpp)
 target_include_directories(imgui_backends SYSTEM PUBLIC /usr/include/imgui/backends)
 # Our loader is libepoxy: the custom-loader switch makes the backend use whatever GL
 # declarations are already visible, and the forced include provides them.
 target_compile_definitions(imgui_backends PUBLIC IMGUI_IMPL_OPENGL_LOADER_CUSTOM)
 target_compile_options(imgui_backends PRIVATE -include epoxy/gl.h -w)
-target_link_libraries(imgui_backends PUBLIC PkgConfig::IMGUI PkgConfig::EPOXY glfw)
+target_link_libraries(imgui_backends PUBLIC PkgConfig::IMGUI PkgConfig::EPOXY)

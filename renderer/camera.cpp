@@ -45,4 +45,24 @@ void frameBox(CameraSettings& camera, glm::vec3 centre, glm::vec3 halfExtents, f
     camera.distance = 1.08f * std::max(halfRight / tanHorizontal, halfUp / tanVertical) + halfDepth;
 }
 
+void panCamera(CameraSettings& camera, glm::vec2 dragPixels, float viewHeight)
+{
+    const glm::vec3 forward = cameraForward(camera);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::vec3 up = glm::cross(right, forward);
+    // World units per pixel in the plane through the target, facing the camera.
+    const float unitsPerPixel = 2.0f * camera.distance * std::tan(0.5f * glm::radians(camera.fovDegrees)) / std::max(viewHeight, 1.0f);
+    camera.target += unitsPerPixel * (-dragPixels.x * right + dragPixels.y * up);
+}
+
+void setAxisView(CameraSettings& camera, CameraAxisView view)
+{
+    // Pitch stops short of 90 degrees, where the orbit's up vector would be undefined.
+    switch (view) {
+    case CameraAxisView::Front: camera.yawDegrees = 0.0f; camera.pitchDegrees = 0.0f; break;
+    case CameraAxisView::Side: camera.yawDegrees = -90.0f; camera.pitchDegrees = 0.0f; break;
+    case CameraAxisView::Top: camera.yawDegrees = 0.0f; camera.pitchDegrees = -89.0f; break;
+    }
+}
+
 } // namespace iblab

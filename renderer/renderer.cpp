@@ -42,7 +42,6 @@ void assignSamplerUnits(const gl::ShaderProgram& program)
     for (const auto& [name, unit] : kSamplerUnits) program.set(name, int(unit));
 }
 
-constexpr int kMaxSamples = 1024;
 
 std::vector<float> mipRoughnessOf(const bake::BakeResult& bake)
 {
@@ -120,7 +119,7 @@ struct Renderer::Impl {
     explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory))
     {
         shaders.setProgramInitializer(assignSamplerUnits);
-        glNamedBufferStorage(hammersley.id(), kMaxSamples * sizeof(float) * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
+        glNamedBufferStorage(hammersley.id(), kMaxSampleCount * sizeof(float) * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
 
     void drawFullscreenTriangle() const
@@ -307,7 +306,7 @@ struct Renderer::Impl {
                 p->set("uNormalMatrix", glm::transpose(glm::inverse(glm::mat3(draw.model))));
                 bindMaterial(*p, draw, settings);
                 if (sampled && !gbufferPass) {
-                    const int n = std::clamp(draw.sampleCount > 0 ? draw.sampleCount : settings.sampling.samples, 1, kMaxSamples);
+                    const int n = std::clamp(draw.sampleCount > 0 ? draw.sampleCount : settings.sampling.samples, 1, kMaxSampleCount);
                     ensureHammersley(n);
                     p->set("uSampleCount", n);
                 }
@@ -692,10 +691,10 @@ bool Renderer::lastFrameWasSampled() const { return impl_->sampledDraws; }
 
 unsigned int Renderer::displayTexture() const { return impl_->displayFrame.texture(); }
 
-void Renderer::presentToDefaultFramebuffer(int x0, int y0, int x1, int y1) const
+void Renderer::presentTo(unsigned int framebuffer, int x0, int y0, int x1, int y1) const
 {
     const gl::RenderTarget& display = impl_->displayFrame;
-    glBlitNamedFramebuffer(display.framebuffer(), 0, 0, 0, display.width(), display.height(), x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    glBlitNamedFramebuffer(display.framebuffer(), framebuffer, 0, 0, display.width(), display.height(), x0, y0, x1, y1, GL_COLOR_BUFFER_BIT, GL_LINEAR);
 }
 
 void Renderer::bindDisplayFramebuffer() const

@@ -188,8 +188,8 @@ public:
 
     // GL name of the display texture (RGBA8, sRGB-encoded) for ImGui::Image or a blit.
     unsigned int displayTexture() const;
-    // Copies the display image into a rectangle of the default framebuffer (y up).
-    void presentToDefaultFramebuffer(int x0, int y0, int x1, int y1) const;
+    // Copies the display image into a rectangle (y up) of a framebuffer (0: the window's).
+    void presentTo(unsigned int framebuffer, int x0, int y0, int x1, int y1) const;
 
     // Binds the display image as the draw framebuffer (viewport included), for overlays
     // drawn into it after renderFrame.

@@ -116,9 +116,11 @@ bool parseGeometryTerm(std::string_view n, GeometryTerm& t) { return parseName(k
 std::string_view errorSpaceName(ErrorSpace s) { return nameOf(kErrorSpaces, s); }
 bool parseErrorSpace(std::string_view n, ErrorSpace& s) { return parseName(kErrorSpaces, n, s); }
 
+bool sceneDemandsExactSampleCount(const SceneSettings& scene) { return scene.kind == SceneKind::Counting; }
+
 bool keepsExactSampleCount(const FrameSettings& settings)
 {
-    return settings.sampling.freezeSampleSet || settings.scene.kind == SceneKind::Counting;
+    return settings.sampling.freezeSampleSet || sceneDemandsExactSampleCount(settings.scene);
 }
 
 namespace {

@@ -51,6 +51,9 @@ struct MaterialSettings {
 enum class ShadingMethod { SplitSum, Sampled };
 enum class DiffuseSource { Sh9, IrradianceCube };
 
+// The sampled method's largest N: the Hammersley table the renderer uploads holds this many.
+inline constexpr int kMaxSampleCount = 1024;
+
 struct SamplingSettings {
     ShadingMethod method = ShadingMethod::SplitSum;
     int samples = 16;      // N for the sampled method, 1..1024
@@ -134,6 +137,8 @@ struct FrameSettings {
 // freeze switch, or the counting strip, whose point is that sphere i shows exactly i
 // samples (a mean of rotated sets would show i times as many reflections).
 bool keepsExactSampleCount(const FrameSettings& settings);
+// The scene's part of that rule: its kind demands exact counts whatever the switch says.
+bool sceneDemandsExactSampleCount(const SceneSettings& scene);
 
 // Names used by the CLI, the JSON presets and the UI. parse* return false for an unknown
 // name and leave the target untouched.

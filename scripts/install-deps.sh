@@ -16,6 +16,8 @@ packages=(
   libgtest-dev zlib1g-dev
   # OpenGL through Mesa: EGL headers (headless), the EGL and GLX vendors, llvmpipe's driver.
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
+  # The GUI tests drive a real GLFW window on a private X server (tests/gui/with-xvfb.sh).
+  xvfb
   # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14, and its
   # llvm-symbolizer (llvm-14): tests/sanitizer/lsan.supp matches function names, which a
   # leak report only has when its stack is symbolized.

@@ -12,6 +12,7 @@
 #include "conventions.hpp"
 #include "ibl/error_metrics.hpp"
 #include "ibl/tonemap.hpp"
+#include "widgets.hpp"
 
 namespace iblab::ui {
 namespace {
@@ -23,27 +24,53 @@ void drawStatus(const StatusLine& status)
     ImGui::PushStyleColor(ImGuiCol_Text, colour);
     ImGui::TextWrapped("%s", status.text.c_str());
     ImGui::PopStyleColor();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    for (const std::string& note : status.notes) ImGui::TextWrapped("note: %s", note.c_str());
+    ImGui::PopStyleColor();
+}
+
+// A warning in amber, wrapped at the panel's edge.
+void drawWarning(const char* text)
+{
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
 }
 
 // The live curve: displayed value (after sRGB encoding, what lands on screen) against
 // scene luminance in stops around mid grey, evaluated by the very function the shader
-// runs. Drawn by hand for the axes, the mid-grey marker and the hover readout.
+// runs. Drawn by hand for the numbered axes, the mid-grey marker and the hover readout.
 void drawToneCurve(const ToneMapSettings& settings)
 {
     constexpr float kMinStops = -8.0f, kMaxStops = 8.0f, kMidGrey = 0.18f;
-    const ImVec2 size(ImGui::GetContentRegionAvail().x, 120.0f);
+    const float lineHeight = ImGui::GetTextLineHeight();
+    const float axisWidth = ImGui::CalcTextSize("0.75").x + 6.0f; // the y axis' numbers
+    const ImVec2 size(ImGui::GetContentRegionAvail().x, 130.0f + lineHeight);
     const ImVec2 origin = ImGui::GetCursorScreenPos();
-    ImGui::InvisibleButton("##tonecurve", size);
+    canvas("##tonecurve", size, "canvas");
     ImDrawList* draw = ImGui::GetWindowDrawList();
-    const ImVec2 end(origin.x + size.x, origin.y + size.y);
-    draw->AddRectFilled(origin, end, ImGui::GetColorU32(ImGuiCol_FrameBg));
+    const ImVec2 plot0(origin.x + axisWidth, origin.y + 2.0f), plot1(origin.x + size.x - 4.0f, origin.y + size.y - lineHeight - 4.0f);
+    draw->AddRectFilled(plot0, plot1, ImGui::GetColorU32(ImGuiCol_FrameBg));
     auto toScreen = [&](float stops, float value) {
-        return ImVec2(origin.x + (stops - kMinStops) / (kMaxStops - kMinStops) * size.x, end.y - value * size.y);
+        return ImVec2(plot0.x + (stops - kMinStops) / (kMaxStops - kMinStops) * (plot1.x - plot0.x), plot1.y - value * (plot1.y - plot0.y));
     };
-    const ImU32 gridColour = ImGui::GetColorU32(ImGuiCol_Border);
-    for (float stops = kMinStops; stops <= kMaxStops; stops += 2.0f) draw->AddLine(toScreen(stops, 0.0f), toScreen(stops, 1.0f), gridColour);
-    for (float value : {0.25f, 0.5f, 0.75f}) draw->AddLine(toScreen(kMinStops, value), toScreen(kMaxStops, value), gridColour);
-    draw->AddLine(toScreen(0.0f, 0.0f), toScreen(0.0f, 1.0f), ImGui::GetColorU32(ImGuiCol_TextDisabled), 2.0f);
+    const ImU32 gridColour = ImGui::GetColorU32(ImGuiCol_Border), labelColour = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+    for (float stops = kMinStops; stops <= kMaxStops; stops += 2.0f) {
+        draw->AddLine(toScreen(stops, 0.0f), toScreen(stops, 1.0f), gridColour);
+        if (int(stops) % 4 != 0) continue;
+        char label[8];
+        std::snprintf(label, sizeof label, "%+.0f", stops);
+        const ImVec2 at = toScreen(stops, 0.0f);
+        draw->AddText(ImVec2(at.x - 0.5f * ImGui::CalcTextSize(label).x, at.y + 2.0f), labelColour, stops == 0.0f ? "0" : label);
+    }
+    for (float value : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
+        draw->AddLine(toScreen(kMinStops, value), toScreen(kMaxStops, value), gridColour);
+        char label[8];
+        std::snprintf(label, sizeof label, "%g", value);
+        const ImVec2 at = toScreen(kMinStops, value);
+        draw->AddText(ImVec2(origin.x + axisWidth - 4.0f - ImGui::CalcTextSize(label).x, at.y - 0.5f * lineHeight), labelColour, label);
+    }
+    draw->AddLine(toScreen(0.0f, 0.0f), toScreen(0.0f, 1.0f), labelColour, 2.0f);
 
     auto displayed = [&](float stops) { return displayEncode(glm::vec3(kMidGrey * std::exp2(stops)), settings.exposureEv, settings.op).g; };
     constexpr int kPoints = 160;
@@ -53,14 +80,15 @@ void drawToneCurve(const ToneMapSettings& settings)
         points[i] = toScreen(stops, displayed(stops));
     }
     draw->AddPolyline(points, kPoints, ImGui::GetColorU32(ImGuiCol_PlotLines), ImDrawFlags_None, 2.0f);
-    draw->AddText(ImVec2(origin.x + 4, origin.y + 2), ImGui::GetColorU32(ImGuiCol_TextDisabled), "display value");
     if (ImGui::IsItemHovered()) {
-        const float stops = kMinStops + (ImGui::GetIO().MousePos.x - origin.x) / size.x * (kMaxStops - kMinStops);
+        const float stops = std::clamp(kMinStops + (ImGui::GetIO().MousePos.x - plot0.x) / (plot1.x - plot0.x) * (kMaxStops - kMinStops), kMinStops, kMaxStops);
         draw->AddCircleFilled(toScreen(stops, displayed(stops)), 4.0f, ImGui::GetColorU32(ImGuiCol_PlotLinesHovered));
         ImGui::SetTooltip("scene %.4g (%+.1f stops from mid grey) -> display %.3f (8-bit %d)", kMidGrey * std::exp2(stops), stops,
                           displayed(stops), int(displayed(stops) * 255.0f + 0.5f));
     }
-    ImGui::TextDisabled("x: scene luminance, mid grey x 2^[%.0f..%+.0f]; line at mid grey", kMinStops, kMaxStops);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("x: scene luminance in stops from mid grey (0.18); y: display value after sRGB encoding; line at mid grey");
+    ImGui::PopStyleColor();
 }
 
 std::string displayName(const std::string& source)
@@ -71,24 +99,55 @@ std::string displayName(const std::string& source)
 
 } // namespace
 
+std::string StatusLine::joined() const
+{
+    std::string all = text;
+    for (const std::string& note : notes) all += (all.empty() ? "" : "; ") + note;
+    return all;
+}
+
+namespace {
+
+// A combo over an enum whose names settings.hpp spells; returns true when it changed.
+template <typename Enum, std::size_t N>
+bool enumCombo(const char* label, Enum& value, const std::array<Enum, N>& values, std::string_view (*nameOf)(Enum))
+{
+    bool changed = false;
+    if (Combo combo(label, std::string(nameOf(value)).c_str()); combo)
+        for (Enum v : values)
+            if (combo.entry(std::string(nameOf(v)).c_str(), v == value)) {
+                changed = v != value;
+                value = v;
+            }
+    return changed;
+}
+
+void tooltip(const char* text)
+{
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+} // namespace
+
 void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Environment", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    if (ImGui::BeginCombo("Source", displayName(settings.source).c_str())) {
+    Section section("Environment", true);
+    if (!section) return;
+    // Tall enough for the bundled maps and every builtin without scrolling.
+    if (Combo combo("Source", displayName(settings.source).c_str(), ImGuiComboFlags_HeightLargest); combo) {
         ImGui::TextDisabled("Bundled (CC0)");
         for (const auto& path : state.catalog.gallery)
-            if (ImGui::Selectable(displayName(path).c_str(), path == settings.source)) requests.loadEnvironment = path;
+            if (combo.entry(displayName(path).c_str(), path == settings.source)) requests.loadEnvironment = path;
         ImGui::Separator();
         ImGui::TextDisabled("Procedural");
         for (const auto& name : state.catalog.builtins)
-            if (ImGui::Selectable(name.c_str(), name == settings.source)) requests.loadEnvironment = name;
-        ImGui::EndCombo();
+            if (combo.entry(name.c_str(), name == settings.source)) requests.loadEnvironment = name;
     }
-    ImGui::InputTextWithHint("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath, sizeof state.environmentPath);
+    inputTextWithHint("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath, sizeof state.environmentPath);
     ImGui::SameLine();
-    if (ImGui::Button("Load") && state.environmentPath[0] != '\0') requests.loadEnvironment = std::string(state.environmentPath);
-    ImGui::SliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
-    ImGui::SliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
+    if (button("Load") && state.environmentPath[0] != '\0') requests.loadEnvironment = std::string(state.environmentPath);
+    sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
+    sliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
     drawStatus(state.environmentStatus);
     if (!state.activity.text.empty()) ImGui::ProgressBar(state.activity.progress, ImVec2(-1.0f, 0.0f), state.activity.text.c_str());
     drawStatus(state.bakeStatus);
@@ -96,91 +155,106 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
 
 void drawToneMapPanel(ToneMapSettings& settings)
 {
-    if (!ImGui::CollapsingHeader("Tone mapping", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    if (ImGui::BeginCombo("Operator", toneMapOperatorLabel(settings.op))) {
+    Section section("Tone mapping", true);
+    if (!section) return;
+    if (Combo combo("Operator", toneMapOperatorLabel(settings.op)); combo)
         for (ToneMapOperator op : allToneMapOperators())
-            if (ImGui::Selectable(toneMapOperatorLabel(op), op == settings.op)) settings.op = op;
-        ImGui::EndCombo();
-    }
-    ImGui::SliderFloat("Exposure", &settings.exposureEv, -10.0f, 10.0f, "%+.2f EV");
+            if (combo.entry(toneMapOperatorLabel(op), op == settings.op)) settings.op = op;
+    sliderFloat("Exposure", &settings.exposureEv, -10.0f, 10.0f, "%+.2f EV");
     ImGui::SameLine();
-    if (ImGui::SmallButton("0")) settings.exposureEv = 0.0f;
-
+    if (smallButton("0")) settings.exposureEv = 0.0f;
+    tooltip("Exposure back to 0 EV");
     drawToneCurve(settings);
 }
 
 void drawCameraPanel(CameraSettings& settings, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Camera")) return;
-    ImGui::SliderFloat("Yaw##camera", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
-    ImGui::SliderFloat("Pitch", &settings.pitchDegrees, -89.0f, 89.0f, "%.1f deg");
-    ImGui::SliderFloat("Field of view", &settings.fovDegrees, 10.0f, 120.0f, "%.0f deg");
-    ImGui::SliderFloat("Distance", &settings.distance, 0.1f, 200.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-    if (ImGui::Button("Frame the scene")) requests.frameScene = true;
+    Section section("Camera");
+    if (!section) return;
+    sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
+    sliderFloat("Pitch", &settings.pitchDegrees, -89.0f, 89.0f, "%.1f deg");
+    sliderFloat("Field of view", &settings.fovDegrees, 10.0f, 120.0f, "%.0f deg");
+    sliderFloat("Distance", &settings.distance, 0.1f, 200.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    if (button("Frame")) requests.frameScene = true;
+    tooltip("Fit the scene in the view (F, or double-click the view)");
     ImGui::SameLine();
-    ImGui::TextDisabled("drag: orbit, wheel: zoom, double-click: frame");
-}
-
-// A combo over an enum whose names settings.hpp spells; returns true when it changed.
-template <typename Enum, std::size_t N>
-bool enumCombo(const char* label, Enum& value, const std::array<Enum, N>& values, std::string_view (*nameOf)(Enum))
-{
-    bool changed = false;
-    if (ImGui::BeginCombo(label, std::string(nameOf(value)).c_str())) {
-        for (Enum v : values)
-            if (ImGui::Selectable(std::string(nameOf(v)).c_str(), v == value)) {
-                changed = v != value;
-                value = v;
-            }
-        ImGui::EndCombo();
-    }
-    return changed;
+    if (button("Reset")) requests.resetCamera = true;
+    tooltip("Default orientation and field of view, then frame (R or Home)");
+    ImGui::SameLine();
+    if (button("Front")) requests.axisView = CameraAxisView::Front;
+    tooltip("Look down -Z (1)");
+    ImGui::SameLine();
+    if (button("Side")) requests.axisView = CameraAxisView::Side;
+    tooltip("Look down -X (3)");
+    ImGui::SameLine();
+    if (button("Top")) requests.axisView = CameraAxisView::Top;
+    tooltip("Look down -Y (7)");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("Left drag: orbit. Right or middle drag, or Shift + left drag: pan. Wheel: zoom. Double-click: frame.");
+    ImGui::PopStyleColor();
 }
 
 void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene)
 {
-    if (!ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    if (scene.kind == SceneKind::Model) ImGui::Checkbox("Override the model's factors", &settings.overrideModel);
-    ImGui::ColorEdit3("Base colour", &settings.baseColor.x, ImGuiColorEditFlags_Float);
+    Section section("Material", true);
+    if (!section) return;
+    if (scene.kind == SceneKind::Model) {
+        checkbox("Override the model's factors", &settings.overrideModel);
+        tooltip("Off: the model's own materials. On: the sliders below replace its base colour, metallic and roughness factors.");
+    }
+    colourEdit3("Base colour", &settings.baseColor.x);
     if (scene.kind == SceneKind::Grid) ImGui::TextDisabled("The grid sets metallic (rows) and roughness (columns).");
-    ImGui::SliderFloat("Metallic", &settings.metallic, 0.0f, 1.0f);
-    ImGui::SliderFloat("Roughness", &settings.roughness, 0.0f, 1.0f);
-    ImGui::SliderFloat("AO", &settings.ambientOcclusion, 0.0f, 1.0f);
-    ImGui::SliderFloat("Specular", &settings.specular, 0.0f, 1.0f, "%.2f");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Dielectric F0 = 0.16 specular^2: 0.5 gives 4%%");
+    sliderFloat("Metallic", &settings.metallic, 0.0f, 1.0f);
+    sliderFloat("Roughness", &settings.roughness, 0.0f, 1.0f);
+    sliderFloat("AO", &settings.ambientOcclusion, 0.0f, 1.0f);
+    sliderFloat("Specular", &settings.specular, 0.0f, 1.0f, "%.2f");
+    tooltip("Dielectric F0 = 0.16 specular^2: 0.5 gives 4%");
 }
 
 namespace {
 
 // The estimator's controls; the frame's own (A) and the split view's B use the same.
-void drawSamplingControls(SamplingSettings& settings)
+void drawSamplingControls(SamplingSettings& settings, bool exactCountForced)
 {
     enumCombo("Method", settings.method, std::array{ShadingMethod::SplitSum, ShadingMethod::Sampled}, shadingMethodName);
     if (settings.method == ShadingMethod::Sampled) {
-        ImGui::SliderInt("N samples", &settings.samples, 1, 1024, "%d", ImGuiSliderFlags_Logarithmic);
-        ImGui::Checkbox("PDF mip filtering", &settings.pdfMipFiltering);
-        if (settings.pdfMipFiltering) ImGui::SliderFloat("Mip bias", &settings.mipBias, -1.0f, 3.0f, "%+.2f");
-        ImGui::Checkbox("Cosine-sampled diffuse", &settings.cosineSampledDiffuse);
-        ImGui::Checkbox("Normalise by accepted samples", &settings.normalizeByAccepted);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("LearnOpenGL's normalisation; off divides by N (unbiased)");
+        // N is counted in ones for the N = 1..k check: typed (Ctrl+click), stepped with the
+        // buttons or the +/- keys, or dragged on a logarithmic scale.
+        const float stepWidth = ImGui::GetFrameHeight();
+        ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - 2.0f * (stepWidth + ImGui::GetStyle().ItemInnerSpacing.x));
+        sliderInt("##N", &settings.samples, 1, kMaxSampleCount, "N = %d", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+        tooltip("Samples per pixel. Ctrl+click to type; +/- keys step by one");
+        ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
+        if (button("-", ImVec2(stepWidth, 0.0f))) settings.samples = std::max(1, settings.samples - 1);
+        ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
+        if (button("+", ImVec2(stepWidth, 0.0f))) settings.samples = std::min(kMaxSampleCount, settings.samples + 1);
+        ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
+        ImGui::TextUnformatted("N samples");
+        bool frozen = settings.freezeSampleSet || exactCountForced;
+        ImGui::BeginDisabled(exactCountForced);
+        if (checkbox("Freeze the sample set", &frozen)) settings.freezeSampleSet = frozen;
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip(exactCountForced ? "The counting strip always keeps exactly N samples per pixel"
+                                               : "Exactly N samples per pixel: no progressive refinement with rotated sample sets");
+        checkbox("PDF mip filtering", &settings.pdfMipFiltering);
+        if (settings.pdfMipFiltering) sliderFloat("Mip bias", &settings.mipBias, -1.0f, 3.0f, "%+.2f");
+        checkbox("Cosine-sampled diffuse", &settings.cosineSampledDiffuse);
+        checkbox("Normalise by accepted samples", &settings.normalizeByAccepted);
+        tooltip("LearnOpenGL's normalisation; off divides by N (unbiased)");
     }
     bool automatic = settings.forcedMip < 0;
-    if (ImGui::Checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;
-    if (!automatic) {
-        ImGui::SameLine();
-        ImGui::SetNextItemWidth(120.0f);
-        ImGui::SliderInt("Forced mip", &settings.forcedMip, 0, 10);
-    }
+    if (checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;
+    if (!automatic) sliderInt("Forced mip", &settings.forcedMip, 0, 10);
     enumCombo("Geometry term", settings.geometry, std::array{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith}, geometryTermShortName);
     enumCombo("Diffuse", settings.diffuse, std::array{DiffuseSource::Sh9, DiffuseSource::IrradianceCube}, diffuseSourceName);
-    ImGui::Checkbox("Multiple-scattering compensation", &settings.multiscatter);
+    checkbox("Multiple-scattering compensation", &settings.multiscatter);
     if (settings.method == ShadingMethod::SplitSum) {
-        ImGui::Checkbox("F_roughness on the LUT", &settings.roughFresnelOnLut);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("LearnOpenGL's split sum: F_roughness(n.v) A + B; off: F0 A + B (exact)");
+        checkbox("F_roughness on the LUT", &settings.roughFresnelOnLut);
+        tooltip("LearnOpenGL's split sum: F_roughness(n.v) A + B; off: F0 A + B (exact)");
     }
 }
 
-// "sampled N=16" or "splitsum", the divider's labels.
 // The smoothest roughness the scene shows, where the settings say it (a glTF's own
 // materials are not known here).
 std::optional<float> smoothestRoughness(const FrameSettings& settings)
@@ -196,6 +270,7 @@ std::optional<float> smoothestRoughness(const FrameSettings& settings)
     return std::nullopt;
 }
 
+// "sampled N=16" or "splitsum", the divider's labels.
 std::string samplingSummary(const SamplingSettings& s)
 {
     std::string text(shadingMethodName(s.method));
@@ -230,12 +305,12 @@ void drawMetricsTable(const char* id, const ErrorMetrics& m)
 
 void drawConventionPanel(PanelState& state, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Conventions")) return;
+    Section section("Conventions");
+    if (!section) return;
     ImGui::TextWrapped("Bake and shade as another viewer does; the Compare section's A/B split and error view show what it changes.");
     for (const ConventionPreset& convention : conventionPresets()) {
         const bool current = state.convention == convention.name;
-        if (ImGui::RadioButton(std::string(convention.title).c_str(), current) && !current)
-            requests.applyConvention = std::string(convention.name);
+        if (radioButton(std::string(convention.title).c_str(), current) && !current) requests.applyConvention = std::string(convention.name);
         if (ImGui::IsItemHovered()) {
             ImGui::BeginTooltip();
             for (const auto& [aspect, choice] : conventionChoices(convention)) ImGui::Text("%-20s %s", aspect.c_str(), choice.c_str());
@@ -244,38 +319,41 @@ void drawConventionPanel(PanelState& state, UiRequests& requests)
     }
 }
 
-void drawSamplingPanel(SamplingSettings& settings)
+void drawSamplingPanel(SamplingSettings& settings, bool exactCountForced)
 {
-    if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    drawSamplingControls(settings);
+    Section section("Sampling", true);
+    if (!section) return;
+    drawSamplingControls(settings, exactCountForced);
 }
 
 void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state, std::optional<float> sceneMinRoughness)
 {
-    if (!ImGui::CollapsingHeader("Compare")) return;
+    Section section("Compare");
+    if (!section) return;
     bool errorView = view.mode == ViewMode::Error;
-    if (ImGui::Checkbox("Error against the reference", &errorView)) view.mode = errorView ? ViewMode::Error : ViewMode::Final;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("The full integral over the environment's texels: no split sum, no N = V = R");
+    if (checkbox("Error against the reference", &errorView)) view.mode = errorView ? ViewMode::Error : ViewMode::Final;
+    tooltip("The full integral over the environment's texels: no split sum, no N = V = R");
     if (errorView) {
-        enumCombo("Compare", view.errorSpace, std::array{ErrorSpace::Linear, ErrorSpace::Display}, errorSpaceName);
-        ImGui::SliderFloat("Colour bar top", &view.errorScale, 0.01f, 4.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+        enumCombo("Error space", view.errorSpace, std::array{ErrorSpace::Linear, ErrorSpace::Display}, errorSpaceName);
+        sliderFloat("Colour bar top", &view.errorScale, 0.01f, 4.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
         const std::array widths{32, 64, 128, 256, 512};
-        if (ImGui::BeginCombo("Reference map", (std::to_string(view.referenceWidth) + " x " + std::to_string(view.referenceWidth / 2)).c_str())) {
+        if (Combo combo("Reference map", (std::to_string(view.referenceWidth) + " x " + std::to_string(view.referenceWidth / 2)).c_str()); combo)
             for (int w : widths)
-                if (ImGui::Selectable((std::to_string(w) + " x " + std::to_string(w / 2)).c_str(), w == view.referenceWidth)) view.referenceWidth = w;
-            ImGui::EndCombo();
-        }
+                if (combo.entry((std::to_string(w) + " x " + std::to_string(w / 2)).c_str(), w == view.referenceWidth)) view.referenceWidth = w;
         const ReferenceStatus& r = state.reference;
         if (r.current) {
             char text[96];
             std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d)", 100.0 * r.progress, r.environmentWidth, r.environmentHeight);
             ImGui::ProgressBar(r.progress, ImVec2(-1.0f, 0.0f), text);
             ImGui::TextDisabled("texel %.2f deg: converged for roughness >= %.2f", r.texelDegrees, r.minResolvedRoughness);
-            if (sceneMinRoughness && *sceneMinRoughness < r.minResolvedRoughness)
-                ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f),
-                                   "Roughness %.2f is below that: there the heatmap measures the reference's texels, not the method. "
-                                   "Use a wider reference map.",
-                                   *sceneMinRoughness);
+            if (sceneMinRoughness && *sceneMinRoughness < r.minResolvedRoughness) {
+                char warning[256];
+                std::snprintf(warning, sizeof warning,
+                              "Roughness %.2f is below that: there the heatmap measures the reference's texels, not the method. Use a wider "
+                              "reference map.",
+                              *sceneMinRoughness);
+                drawWarning(warning);
+            }
         }
         if (state.error.valid) {
             ImGui::TextUnformatted(view.split ? "A (left)" : "Frame");
@@ -287,70 +365,102 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
         }
     }
     ImGui::Separator();
-    ImGui::Checkbox("A/B split", &view.split);
+    checkbox("Split view A | B", &view.split);
     if (!view.split) return;
-    ImGui::SliderFloat("Divider", &view.splitPosition, 0.0f, 1.0f, "%.2f");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Or drag the line in the view");
-    if (ImGui::Button("Copy A's sampling to B")) view.compare = frameSampling;
+    sliderFloat("Divider", &view.splitPosition, 0.0f, 1.0f, "%.2f");
+    tooltip("Or drag the line in the view");
+    if (button("Copy A's sampling to B")) view.compare = frameSampling;
     ImGui::TextDisabled("B, right of the divider:");
     ImGui::PushID("B");
-    drawSamplingControls(view.compare);
+    itemRegistry().pushScope("B");
+    drawSamplingControls(view.compare, false);
+    itemRegistry().popScope();
     ImGui::PopID();
 }
 
 void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    Section section("Scene", true);
+    if (!section) return;
     const std::array kinds{SceneKind::Sphere, SceneKind::Grid, SceneKind::Counting, SceneKind::Sweep, SceneKind::Model, SceneKind::None};
     if (enumCombo("Scene", settings.kind, kinds, sceneKindName)) requests.sceneChanged = true;
     if (settings.kind == SceneKind::Counting || settings.kind == SceneKind::Sweep) {
-        if (ImGui::SliderInt(settings.kind == SceneKind::Counting ? "Spheres (N = 1..k)" : "Spheres (roughness 0..1)", &settings.countingSpheres, 2, 16))
-            requests.sceneChanged = true;
-        ImGui::TextDisabled(settings.kind == SceneKind::Counting ? "Sampled method; try builtin:lights, forced mip 0, metallic 1."
-                                                                 : "Sampled method at the Sampling panel's N; try builtin:lights.");
+        if (sliderInt("Spheres", &settings.countingSpheres, 2, 16)) requests.sceneChanged = true;
+        tooltip(settings.kind == SceneKind::Counting ? "Sphere i uses N = i samples" : "Roughness from 0 (left) to 1 (right)");
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped(settings.kind == SceneKind::Counting ? "Sampled method, N = 1..k: try builtin:lights, forced mip 0, metallic 1."
+                                                                : "Sampled method at the Sampling panel's N; try builtin:lights.");
+        ImGui::PopStyleColor();
     }
-    ImGui::InputTextWithHint("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath);
+    inputTextWithHint("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath);
     ImGui::SameLine();
-    if (ImGui::Button("Load model") && state.modelPath[0] != '\0') requests.loadModel = std::string(state.modelPath);
+    if (button("Load model") && state.modelPath[0] != '\0') requests.loadModel = std::string(state.modelPath);
     if (settings.kind == SceneKind::Model && !settings.modelPath.empty()) {
-        ImGui::InputText("##export", state.exportPath, sizeof state.exportPath);
+        inputText("##export", state.exportPath, sizeof state.exportPath);
         ImGui::SameLine();
-        if (ImGui::Button("Export glTF")) requests.exportModel = std::string(state.exportPath);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("A copy of the model with the material sliders' factors (.glb or .gltf)");
+        if (button("Export glTF")) requests.exportModel = std::string(state.exportPath);
+        tooltip("A copy of the model with the material sliders' factors (.glb or .gltf)");
     }
     drawStatus(state.sceneStatus);
 }
 
 void drawViewPanel(ViewSettings& settings)
 {
-    if (!ImGui::CollapsingHeader("View")) return;
+    Section section("View");
+    if (!section) return;
     const std::array modes{ViewMode::Final, ViewMode::PrefilterMips, ViewMode::Lut, ViewMode::Furnace, ViewMode::Irradiance, ViewMode::Error};
     enumCombo("View", settings.mode, modes, viewModeName);
     const std::array backgrounds{BackgroundMode::Environment, BackgroundMode::Irradiance, BackgroundMode::PrefilterMip, BackgroundMode::SolidColour};
     enumCombo("Background", settings.background, backgrounds, backgroundModeName);
-    if (settings.background == BackgroundMode::PrefilterMip) ImGui::SliderInt("Mip", &settings.backgroundMip, 0, 8);
-    if (settings.background == BackgroundMode::SolidColour) ImGui::ColorEdit3("Colour", &settings.solidColour.x, ImGuiColorEditFlags_Float);
+    if (settings.background == BackgroundMode::PrefilterMip) sliderInt("Mip", &settings.backgroundMip, 0, 8);
+    if (settings.background == BackgroundMode::SolidColour) colourEdit3("Colour", &settings.solidColour.x);
 }
 
 void drawPresetPanel(PanelState& state, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Preset")) return;
-    ImGui::InputText("##preset", state.presetPath, sizeof state.presetPath);
+    Section section("Preset");
+    if (!section) return;
+    inputText("##preset", state.presetPath, sizeof state.presetPath);
     ImGui::SameLine();
-    if (ImGui::Button("Save")) requests.savePreset = std::string(state.presetPath);
+    if (button("Save")) requests.savePreset = std::string(state.presetPath);
+    tooltip("Ctrl+S");
     ImGui::SameLine();
-    if (ImGui::Button("Load##preset")) requests.loadPreset = std::string(state.presetPath);
+    if (button("Load")) requests.loadPreset = std::string(state.presetPath);
+    if (state.unsavedChanges) ImGui::TextDisabled("unsaved changes");
     drawStatus(state.presetStatus);
 }
 
 void drawCapturePanel(PanelState& state, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Capture", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    ImGui::InputText("File", state.capture.path, sizeof state.capture.path);
-    if (ImGui::Button("Save screenshot (F12)")) requests.captureTo = std::string(state.capture.path);
-    ImGui::SameLine();
-    ImGui::TextDisabled(".png: tone-mapped sRGB, .exr: linear HDR");
+    Section section("Capture", true);
+    if (!section) return;
+    inputText("Folder", state.capture.directory, sizeof state.capture.directory);
+    inputTextWithHint("File", "automatic: iblab-<map>-<date>-<time>.png", state.capture.file, sizeof state.capture.file);
+    if (button("Save screenshot (F12)")) requests.capture = CaptureRequest{state.capture.file};
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped(".png: tone-mapped sRGB; .exr: linear HDR. A capture never replaces a file: a taken name gets -2, -3, ...; F12 names "
+                       "it automatically.");
+    ImGui::PopStyleColor();
     drawStatus(state.captureStatus);
+}
+
+void drawQuitDialog(PanelState& state, UiRequests& requests)
+{
+    constexpr const char* kTitle = "Quit iblab?";
+    if (state.quitDialog.open && !ImGui::IsPopupOpen(kTitle)) ImGui::OpenPopup(kTitle);
+    ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+    if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+    itemRegistry().pushScope(kTitle);
+    ImGui::TextUnformatted("The settings changed since they were last saved as a preset.");
+    if (button("Save preset and quit")) requests.quit = QuitChoice::SaveAndQuit;
+    tooltip(state.presetPath);
+    ImGui::SameLine();
+    if (button("Quit without saving")) requests.quit = QuitChoice::Quit;
+    ImGui::SameLine();
+    if (button("Cancel") || !state.quitDialog.open) requests.quit = QuitChoice::Cancel;
+    if (requests.quit) ImGui::CloseCurrentPopup();
+    itemRegistry().popScope();
+    ImGui::EndPopup();
 }
 
 void drawStatsOverlay(const FrameStats& stats)
@@ -363,7 +473,9 @@ void drawStatsOverlay(const FrameStats& stats)
         ImGui::SameLine();
         ImGui::TextDisabled(" x%d", stats.accumulatedFrames);
     }
-    ImGui::TextDisabled("%s", stats.renderer.c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s", stats.renderer.c_str());
+    ImGui::PopStyleColor();
 }
 
 // Overlays are drawn in the view's pixels (y up, as the renderer reports them), placed at
@@ -397,9 +509,11 @@ void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigi
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     for (const ScreenLabel& label : labels) {
         const ImVec2 size = ImGui::CalcTextSize(label.text.c_str());
-        const ImU32 colour = label.title ? IM_COL32(255, 255, 255, 255) : IM_COL32(210, 210, 210, 230);
-        draw->AddText(ImVec2(viewOrigin.x + label.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - label.pixel.y - size.y * 0.5f), colour,
-                      label.text.c_str());
+        const ImU32 colour = label.title ? IM_COL32(255, 255, 255, 255) : IM_COL32(225, 225, 225, 255);
+        const ImVec2 at(viewOrigin.x + label.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - label.pixel.y - size.y * 0.5f);
+        // A dark backing keeps labels readable over a bright sky.
+        draw->AddRectFilled(ImVec2(at.x - 3.0f, at.y - 1.0f), ImVec2(at.x + size.x + 3.0f, at.y + size.y + 1.0f), IM_COL32(0, 0, 0, 150), 3.0f);
+        draw->AddText(at, colour, label.text.c_str());
     }
 }
 
@@ -480,18 +594,19 @@ void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewO
 
 void drawStudyPanel(PanelState& state, UiRequests& requests)
 {
-    if (!ImGui::CollapsingHeader("Study")) return;
+    Section section("Study");
+    if (!section) return;
     StudyState& study = state.study;
     ImGui::TextWrapped("Speed against accuracy on the current environment and scene: the quick sweep of `iblab bench` (split-sum prefilter "
                        "samples, runtime N, diffuse sources), each point baked, timed and compared with the reference.");
     if (!study.running) {
-        if (ImGui::Button("Run quick sweep")) requests.startStudy = true;
-        if (!study.charts.empty() && !study.chartOpen) {
+        if (button("Run quick sweep")) requests.startStudy = true;
+        if (!study.charts.empty()) {
             ImGui::SameLine();
-            if (ImGui::Button("Show chart")) study.chartOpen = true;
+            if (button(study.chartOpen ? "Hide chart" : "Show chart")) study.chartOpen = !study.chartOpen;
         }
     } else {
-        if (ImGui::Button("Stop")) requests.stopStudy = true;
+        if (button("Stop")) requests.stopStudy = true;
         ImGui::SameLine();
         ImGui::ProgressBar(study.progress, ImVec2(-1.0f, 0.0f));
         ImGui::TextDisabled("%s", study.activity.c_str());
@@ -503,14 +618,14 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
     AutoQualityState& autoQuality = study.autoQuality;
     ImGui::TextWrapped("The cheapest settings whose 99th-percentile error after tone mapping stays within the target, measured on this "
                        "environment and scene.");
-    ImGui::SliderFloat("Target", &autoQuality.targetSteps, 0.25f, 64.0f, "p99 %.2f 8-bit steps", ImGuiSliderFlags_Logarithmic);
+    sliderFloat("Target", &autoQuality.targetSteps, 0.25f, 64.0f, "p99 %.2f 8-bit steps", ImGuiSliderFlags_Logarithmic);
     ImGui::BeginDisabled(study.running);
-    if (ImGui::Button("Choose")) requests.startAutoQuality = true;
+    if (button("Choose")) requests.startAutoQuality = true;
     ImGui::EndDisabled();
     if (autoQuality.haveChoice) {
         ImGui::SameLine();
         ImGui::BeginDisabled(study.running);
-        if (ImGui::Button("Apply")) requests.applyAutoQuality = true;
+        if (button("Apply")) requests.applyAutoQuality = true;
         ImGui::EndDisabled();
         if (autoQuality.meetsTarget) ImGui::TextColored(ImVec4(0.5f, 0.9f, 0.5f, 1.0f), "Chosen (within the target):");
         else ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "Target out of reach; the most accurate:");
@@ -519,7 +634,9 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
         for (const std::string& preset : autoQuality.presets) ImGui::TextWrapped("%s", preset.c_str());
         ImGui::PopStyleColor();
-        if (ImGui::TreeNodeEx("Why", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const bool why = ImGui::TreeNodeEx("Why", ImGuiTreeNodeFlags_DefaultOpen);
+        itemRegistry().recordLastItem("Why", "header");
+        if (why) {
             for (const std::string& reason : autoQuality.reasons) {
                 ImGui::Bullet();
                 ImGui::TextWrapped("%s", reason.c_str());
@@ -538,18 +655,20 @@ void drawStudyChartWindow(StudyState& study)
         ImGui::End();
         return;
     }
+    itemRegistry().pushScope("Study chart");
     for (std::size_t i = 0; i < study.charts.size(); ++i) {
         const ParetoChart& chart = study.charts[i];
         const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 420.0f), std::max(ImGui::GetContentRegionAvail().y, 260.0f));
         const ImVec2 origin = ImGui::GetCursorScreenPos();
         ImGui::PushID(int(i));
-        ImGui::InvisibleButton("##chart", size);
+        canvas("##chart", size, "canvas");
         const bool hovered = ImGui::IsItemHovered();
         ImGui::PopID();
         const ChartHover hover = drawParetoChart(*ImGui::GetWindowDrawList(), chart, origin, size,
                                                  hovered ? std::optional<ImVec2>(ImGui::GetIO().MousePos) : std::nullopt);
         if (hover.valid()) ImGui::SetTooltip("%s", chart.series[std::size_t(hover.series)].points[std::size_t(hover.point)].tooltip.c_str());
     }
+    itemRegistry().popScope();
     ImGui::End();
 }
 
@@ -563,11 +682,14 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     ImGui::SetNextWindowSizeConstraints(ImVec2(260, ImGui::GetIO().DisplaySize.y), ImVec2(900, ImGui::GetIO().DisplaySize.y));
     ImGui::Begin("iblab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
     state.panelWidth = ImGui::GetWindowWidth();
+    // Controls take a little over half the width and their labels the rest, so that labels
+    // stay inside the panel at its default width.
+    ImGui::PushItemWidth(std::floor(ImGui::GetWindowWidth() * 0.55f));
     drawStatsOverlay(stats);
     drawEnvironmentPanel(settings.environment, state, requests);
     drawScenePanel(settings.scene, state, requests);
     drawMaterialPanel(settings.material, settings.scene);
-    drawSamplingPanel(settings.sampling);
+    drawSamplingPanel(settings.sampling, sceneDemandsExactSampleCount(settings.scene));
     drawConventionPanel(state, requests);
     drawToneMapPanel(settings.toneMap);
     drawViewPanel(settings.view);
@@ -576,6 +698,7 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     drawCapturePanel(state, requests);
     drawPresetPanel(state, requests);
     drawStudyPanel(state, requests);
+    ImGui::PopItemWidth();
     ImGui::End();
     drawStudyChartWindow(state.study);
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "camera.hpp"
 #include "debug_layout.hpp"
 #include "pareto_chart.hpp"
 #include "renderer.hpp"
@@ -21,6 +22,11 @@ struct EnvironmentCatalog {
 struct StatusLine {
     std::string text;
     bool isError = false;
+    // Details that are worth knowing but are no problem (texels a loader repaired, a model's
+    // unsupported extension): shown quietly under the line.
+    std::vector<std::string> notes;
+    // text and notes in one line ("a; b; c"), for logs and reports.
+    std::string joined() const;
 };
 
 struct FrameStats {
@@ -33,10 +39,19 @@ struct FrameStats {
     int accumulatedFrames = 1;
 };
 
+// A screenshot: into the Capture panel's folder, named by `file` when not empty, else by
+// the environment and the time; never over an existing file.
+struct CaptureRequest {
+    std::string file;
+};
+
+// The quit dialog's answer.
+enum class QuitChoice { SaveAndQuit, Quit, Cancel };
+
 struct UiRequests {
     std::optional<std::string> loadEnvironment; // a path or builtin:NAME
     std::optional<std::string> loadModel;       // a .gltf or .glb path
-    std::optional<std::string> captureTo;       // a .png or .exr path
+    std::optional<CaptureRequest> capture;
     std::optional<std::string> savePreset;      // lab settings as JSON
     std::optional<std::string> loadPreset;
     std::optional<std::string> exportModel;     // a copy of the loaded glTF with the tuned material
@@ -47,10 +62,24 @@ struct UiRequests {
     bool stopStudy = false;
     bool startAutoQuality = false;              // measure the auto candidates on the current environment and scene
     bool applyAutoQuality = false;              // bake and shade with the auto choice
+    bool resetCamera = false;                   // default orientation and field of view, then frame the scene
+    std::optional<CameraAxisView> axisView;     // front, side or top
+    std::optional<QuitChoice> quit;             // from the quit dialog
 };
 
 struct CaptureSettings {
-    char path[512] = "iblab-capture.png";
+    char directory[1024] = ""; // the app sets the working directory at start
+    char file[256] = "";       // empty: a name from the environment and the time
+};
+
+// Asked when quitting would lose settings changed since they were last saved or loaded.
+struct QuitDialogState {
+    bool open = false;
+};
+
+// The 3D view's rectangle in window pixels (y down).
+struct ViewRect {
+    float x0 = 0.0f, y0 = 0.0f, x1 = 0.0f, y1 = 0.0f;
 };
 
 // Background work the app reports to the panels: an environment loading or a bake running.
@@ -70,6 +99,7 @@ struct AutoQualityState {
     float targetSteps = 1.0f;      // 99th-percentile display error, 8-bit steps after tone mapping
     bool running = false;          // measuring its candidates (the StudyState's progress and chart follow it)
     bool haveChoice = false;
+    bool applied = false;          // the choice is what the view bakes and shades with
     bool meetsTarget = false;
     std::string chosen;            // the settings in words
     std::string numbers;           // its cost and error
@@ -105,14 +135,22 @@ struct PanelState {
     char presetPath[512] = "iblab-preset.json";
     char exportPath[512] = "iblab-export.glb";
     bool showPanels = true;
-    float panelWidth = 380.0f; // the control window is docked at the left; the view takes the rest
+    float panelWidth = 420.0f; // the control window is docked at the left; the view takes the rest
+    ViewRect viewRect;
+    QuitDialogState quitDialog;
+    bool unsavedChanges = false; // settings differ from the last saved or loaded preset
 };
 
 void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRequests& requests);
 void drawToneMapPanel(ToneMapSettings& settings);
 void drawCameraPanel(CameraSettings& settings, UiRequests& requests);
+// "Quit iblab?" with Save preset and quit / Quit without saving / Cancel, while
+// state.quitDialog.open; the answer goes to requests.quit.
+void drawQuitDialog(PanelState& state, UiRequests& requests);
 void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene);
-void drawSamplingPanel(SamplingSettings& settings);
+// exactCountForced: the scene keeps exactly N samples whatever the freeze checkbox says (the
+// counting strip), so the checkbox shows on and cannot be cleared.
+void drawSamplingPanel(SamplingSettings& settings, bool exactCountForced);
 // The convention presets (LearnOpenGL, Filament, glTF Sample Viewer, iblab) and what each chose.
 void drawConventionPanel(PanelState& state, UiRequests& requests);
 // The error view's and the split view's controls, the reference's progress and the numbers.

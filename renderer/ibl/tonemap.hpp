@@ -27,13 +27,14 @@ enum class ToneMapOperator : int {
     AcesHill = shared::IBL_TONEMAP_ACES_HILL,
     Hable = shared::IBL_TONEMAP_HABLE,
     PbrNeutral = shared::IBL_TONEMAP_PBR_NEUTRAL,
+    Agx = shared::IBL_TONEMAP_AGX,
 };
 
 inline constexpr int kToneMapOperatorCount = shared::IBL_TONEMAP_COUNT;
 
 // Indexed by the operator id.
 inline constexpr std::array<std::string_view, kToneMapOperatorCount> kToneMapOperatorNames = {
-    "none", "reinhard", "aces-narkowicz", "aces-hill", "hable", "pbr-neutral",
+    "none", "reinhard", "aces-narkowicz", "aces-hill", "hable", "pbr-neutral", "agx",
 };
 
 constexpr std::string_view toneMapOperatorName(ToneMapOperator op)
@@ -71,7 +72,7 @@ inline constexpr std::array<ToneMapOperator, kToneMapOperatorCount> allToneMapOp
 
 // What the UI shows: the curve and where it comes from.
 inline constexpr std::array<const char*, kToneMapOperatorCount> kToneMapOperatorLabels = {
-    "None (clamp)", "Reinhard", "ACES (Narkowicz fit)", "ACES (Hill RRT+ODT fit)", "Uncharted 2 / Hable", "Khronos PBR Neutral",
+    "None (clamp)", "Reinhard", "ACES (Narkowicz fit)", "ACES (Hill RRT+ODT fit)", "Uncharted 2 / Hable", "Khronos PBR Neutral", "AgX (Filament, three.js)",
 };
 
 constexpr const char* toneMapOperatorLabel(ToneMapOperator op)

@@ -1,5 +1,7 @@
 // Tone-mapping curves at fixed points, each expected value computed here from the published
 // formula, and the typed C++ wrapper.
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -22,6 +24,7 @@ TEST(ToneMap, IdsNamesAndParse)
 {
     EXPECT_EQ(int(ToneMapOperator::None), 0);
     EXPECT_EQ(int(ToneMapOperator::PbrNeutral), 5);
+    EXPECT_EQ(int(ToneMapOperator::Agx), 6);
     for (int id = 0; id < iblab::kToneMapOperatorCount; ++id) {
         const auto op = ToneMapOperator(id);
         EXPECT_EQ(iblab::parseToneMapOperator(iblab::toneMapOperatorName(op)), op);
@@ -119,6 +122,101 @@ TEST(ToneMap, PbrNeutral)
         for (int i = 0; i < 3; ++i)
             EXPECT_NEAR(r[i], (in[i] - f) * pn / p * g + pn * (1.0 - g), 1e-5) << i;
     }
+}
+
+// AgX from its published pieces in double precision: Rec.2020 -> sRGB by rows (ITU-R
+// BT.2407), Filament's inset matrix and its outset matrix's inverse as three.js lists them
+// (columns), Wrensch's polynomial; the two inverses are computed here, independently of
+// the values written into tonemap.glsl.
+namespace agx_reference {
+using Matrix = std::array<std::array<double, 3>, 3>; // [row][column]
+using Vector = std::array<double, 3>;
+
+Matrix inverse(const Matrix& m)
+{
+    const double a = m[0][0], b = m[0][1], c = m[0][2], d = m[1][0], e = m[1][1], f = m[1][2], g = m[2][0], h = m[2][1], i = m[2][2];
+    const double det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+    return {{{(e * i - f * h) / det, (c * h - b * i) / det, (b * f - c * e) / det},
+             {(f * g - d * i) / det, (a * i - c * g) / det, (c * d - a * f) / det},
+             {(d * h - e * g) / det, (b * g - a * h) / det, (a * e - b * d) / det}}};
+}
+
+Matrix fromColumns(const Matrix& columns)
+{
+    Matrix m{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m[r][c] = columns[c][r];
+    return m;
+}
+
+Vector multiply(const Matrix& m, const Vector& v)
+{
+    Vector out{};
+    for (int r = 0; r < 3; ++r) out[r] = m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2];
+    return out;
+}
+
+const Matrix kRec2020ToSrgb = {{{1.6605, -0.5876, -0.0728}, {-0.1246, 1.1329, -0.0083}, {-0.0182, -0.1006, 1.1187}}};
+const Matrix kInset = fromColumns({{{0.856627153315983, 0.137318972929847, 0.11189821299995},
+                                    {0.0951212405381588, 0.761241990602591, 0.0767994186031903},
+                                    {0.0482516061458583, 0.101439036467562, 0.811302368396859}}});
+const Matrix kOutsetInverse = fromColumns({{{0.899796955911611, 0.11142098895748, 0.11142098895748},
+                                            {0.0871996192028351, 0.875575586156966, 0.0871996192028349},
+                                            {0.013003424885555, 0.0130034248855548, 0.801379391839686}}});
+
+Vector agx(Vector c)
+{
+    const double minEv = -12.47393, maxEv = 4.026069;
+    Vector v = multiply(inverse(kRec2020ToSrgb), c);
+    for (double& x : v) x = std::max(x, 0.0);
+    v = multiply(kInset, v);
+    for (double& x : v) {
+        x = std::clamp((std::log2(std::max(x, 1e-10)) - minEv) / (maxEv - minEv), 0.0, 1.0);
+        x = 15.5 * std::pow(x, 6) - 40.14 * std::pow(x, 5) + 31.96 * std::pow(x, 4) - 6.868 * std::pow(x, 3) + 0.4298 * x * x + 0.1191 * x - 0.00232;
+    }
+    v = multiply(inverse(kOutsetInverse), v);
+    for (double& x : v) x = std::pow(std::max(x, 0.0), 2.2);
+    v = multiply(kRec2020ToSrgb, v);
+    for (double& x : v) x = std::clamp(x, 0.0, 1.0);
+    return v;
+}
+} // namespace agx_reference
+
+TEST(ToneMap, AgxMatchesItsPublishedPieces)
+{
+    // The float shader against the double reference: the log encoding and the 6th-order
+    // polynomial amplify float rounding to a few 1e-6.
+    for (const glm::vec3 c : {grey(0.18f), grey(1.0f), glm::vec3(0.8f, 0.3f, 0.05f), glm::vec3(0.05f, 0.2f, 3.0f), grey(16.0f), grey(1e-3f)}) {
+        const agx_reference::Vector expected = agx_reference::agx({c.x, c.y, c.z});
+        const glm::vec3 r = iblab::toneMap(c, ToneMapOperator::Agx);
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(r[i], expected[std::size_t(i)], 2e-5) << c.x << " " << c.y << " " << c.z << " channel " << i;
+    }
+    // AgX's anchor: scene mid grey 0.18 lands at display-encoded 0.50 (log position 0.606 of
+    // its 16.5-stop range, where the sigmoid gives 0.497 before the 2.2 power).
+    EXPECT_NEAR(iblab::displayEncode(grey(0.18f), 0.0f, ToneMapOperator::Agx).x, 0.50f, 0.01f);
+    // Black stays black; a grey stays grey up to the rounding of BT.2407's matrix to four
+    // decimals (its rows sum to 1 within 1e-4, which the curve's slope about doubles).
+    EXPECT_EQ(iblab::toneMap(grey(0.0f), ToneMapOperator::Agx), glm::vec3(0.0f));
+    const glm::vec3 g = iblab::toneMap(grey(2.0f), ToneMapOperator::Agx);
+    EXPECT_NEAR(g.x, g.z, 3e-4f);
+    // Highlights desaturate toward white instead of clipping per channel: a saturated red at
+    // 64x its mid-grey level keeps green and blue well above zero.
+    const glm::vec3 hot = iblab::toneMap(glm::vec3(12.0f, 1.0f, 1.0f), ToneMapOperator::Agx);
+    EXPECT_GT(hot.y, 0.5f * hot.x);
+}
+
+TEST(ToneMap, AgxInverseMatricesAreInverses)
+{
+    // The inverses written into tonemap.glsl, against the published matrices they invert.
+    const glm::mat3 toRec2020 = iblab::shared::agxSrgbToRec2020(), toSrgb = iblab::shared::agxRec2020ToSrgb();
+    const glm::mat3 outset = iblab::shared::agxOutsetMatrix();
+    const agx_reference::Matrix& outsetInverse = agx_reference::kOutsetInverse;
+    glm::mat3 outsetInverseGlm;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) outsetInverseGlm[c][r] = float(outsetInverse[std::size_t(r)][std::size_t(c)]);
+    for (const glm::mat3 product : {toRec2020 * toSrgb, outset * outsetInverseGlm})
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(product[c][r], r == c ? 1.0f : 0.0f, 2e-6f) << r << " " << c;
 }
 
 TEST(ToneMap, SrgbOetf)

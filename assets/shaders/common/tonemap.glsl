@@ -16,7 +16,8 @@ const int IBL_TONEMAP_ACES_NARKOWICZ = 2; // Narkowicz 2015 curve fit to the ACE
 const int IBL_TONEMAP_ACES_HILL = 3;      // Stephen Hill's fit, with the AP1 round trip
 const int IBL_TONEMAP_HABLE = 4;          // Uncharted 2 filmic (John Hable 2010)
 const int IBL_TONEMAP_PBR_NEUTRAL = 5;    // Khronos PBR Neutral (2024)
-const int IBL_TONEMAP_COUNT = 6;
+const int IBL_TONEMAP_AGX = 6;            // AgX (Sobotka), as Filament and three.js ship it
+const int IBL_TONEMAP_COUNT = 7;
 
 IBL_FN vec3 toneMapNone(vec3 x)
 {
@@ -120,6 +121,66 @@ IBL_FN vec3 toneMapPbrNeutral(vec3 color)
     return mix(color, newPeak * vec3(1.0f), g);
 }
 
+// AgX (Troy Sobotka; Blender 4's default view transform), in the variant Filament ships
+// (ToneMapper.cpp, AgxToneMapper with AgxLook::NONE) and three.js ported (r162+,
+// tonemapping_pars_fragment AgXToneMapping), which Godot 4.4 follows closely:
+//   linear sRGB -> linear Rec.2020 -> Filament's inset matrix -> log2 encoding over
+//   [-12.47393, 4.026069] EV (mid grey 0.18 at 10 stops below the top) -> Blender's default
+//   contrast sigmoid as Benjamin Wrensch's 6th-order polynomial fit (iolite, "Minimal AgX",
+//   mean squared error 3.7e-6) -> outset matrix -> 2.2 power -> linear Rec.2020 -> sRGB.
+// The matrices are listed as COLUMNS (GLSL's and glm's mat3 order). The published forms are
+// Rec.2020 -> sRGB by rows (ITU-R BT.2407) and the outset matrix's inverse; the inverses
+// below were computed from them in double precision (tests/cpu/tonemap_test.cpp checks
+// that each pair multiplies to the identity).
+IBL_FN mat3 agxSrgbToRec2020()
+{
+    return mat3(0.62740944046172165f, 0.069124839044179098f, 0.016423358026501966f,
+                0.32926025219386862f, 0.91954861378641906f, 0.088047847623886816f,
+                0.043271893589722402f, 0.01132076676217352f, 0.89561671368517703f);
+}
+
+IBL_FN mat3 agxRec2020ToSrgb()
+{
+    return mat3(1.6605f, -0.1246f, -0.0182f,
+                -0.5876f, 1.1329f, -0.1006f,
+                -0.0728f, -0.0083f, 1.1187f);
+}
+
+IBL_FN mat3 agxInsetMatrix()
+{
+    return mat3(0.856627153315983f, 0.137318972929847f, 0.11189821299995f,
+                0.0951212405381588f, 0.761241990602591f, 0.0767994186031903f,
+                0.0482516061458583f, 0.101439036467562f, 0.811302368396859f);
+}
+
+IBL_FN mat3 agxOutsetMatrix()
+{
+    return mat3(1.1271005818144368f, -0.14132976349843829f, -0.14132976349843826f,
+                -0.11060664309660322f, 1.1578237022162718f, -0.11060664309660294f,
+                -0.016493938717834569f, -0.016493938717834257f, 1.2519364065950402f);
+}
+
+// Wrensch's fit of the default contrast sigmoid on [0, 1] (log-encoded in, display-encoded out).
+IBL_FN vec3 agxContrastApprox(vec3 x)
+{
+    vec3 x2 = x * x;
+    vec3 x4 = x2 * x2;
+    return 15.5f * x4 * x2 - 40.14f * x4 * x + 31.96f * x4 - 6.868f * x2 * x + 0.4298f * x2 + 0.1191f * x - 0.00232f;
+}
+
+IBL_FN vec3 toneMapAgx(vec3 color)
+{
+    const float minEv = -12.47393f;
+    const float maxEv = 4.026069f;
+    vec3 v = max(agxSrgbToRec2020() * color, vec3(0.0f));
+    v = agxInsetMatrix() * v;
+    v = clamp((log2(max(v, vec3(1e-10f))) - minEv) / (maxEv - minEv), 0.0f, 1.0f);
+    v = agxContrastApprox(v);
+    v = agxOutsetMatrix() * v;
+    v = pow(max(v, vec3(0.0f)), vec3(2.2f));
+    return clamp(agxRec2020ToSrgb() * v, 0.0f, 1.0f);
+}
+
 // Display-linear RGB in [0, 1] from exposed scene-linear RGB. Unknown ids fall back to none.
 IBL_FN vec3 toneMap(vec3 hdr, int op)
 {
@@ -129,6 +190,7 @@ IBL_FN vec3 toneMap(vec3 hdr, int op)
     if (op == IBL_TONEMAP_ACES_HILL) return toneMapAcesHill(x);
     if (op == IBL_TONEMAP_HABLE) return toneMapHable(x);
     if (op == IBL_TONEMAP_PBR_NEUTRAL) return toneMapPbrNeutral(x);
+    if (op == IBL_TONEMAP_AGX) return toneMapAgx(x);
     return toneMapNone(x);
 }
 

@@ -1,0 +1,693 @@
+#include "gui_script.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include <GLFW/glfw3.h>
+#include <nlohmann/json.hpp>
+
+#include "environment/atomic_file.hpp"
+#include "environment/error.hpp"
+#include "environment/image_writer.hpp"
+#include "gui_app.hpp"
+#include "widgets.hpp"
+
+namespace iblab::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct CommandShape {
+    int minArgs, maxArgs;
+};
+
+// Every command and how many arguments it takes (docs/gui-scripts.md describes each).
+const std::map<std::string, CommandShape>& commandShapes()
+{
+    static const std::map<std::string, CommandShape> shapes = {
+        {"window", {2, 2}},       {"frames", {1, 1}},         {"wait-idle", {0, 1}},      {"wait-until", {3, 4}},
+        {"move", {1, 2}},         {"click", {1, 3}},          {"double-click", {1, 2}},   {"press", {0, 1}},
+        {"release", {0, 1}},      {"drag", {3, 5}},           {"wheel", {1, 3}},          {"key", {1, 16}},
+        {"key-down", {1, 1}},     {"key-up", {1, 1}},         {"type", {1, 1}},           {"set", {2, 2}},
+        {"select", {2, 2}},       {"open", {1, 1}},           {"close-section", {1, 1}},  {"drop", {1, 16}},
+        {"close", {0, 0}},        {"expect", {3, 3}},         {"expect-item", {1, 1}},    {"expect-no-item", {1, 1}},
+        {"expect-pixel", {5, 6}}, {"expect-mean", {3, 7}},    {"snapshot", {1, 6}},       {"expect-changed", {1, 2}},
+        {"expect-unchanged", {1, 2}}, {"screenshot", {1, 1}}, {"print", {1, 1}},          {"sleep", {1, 1}},
+        {"list-items", {0, 1}},
+    };
+    return shapes;
+}
+
+// ${NAME} becomes the environment variable's value, so that a script can name files
+// wherever a test or a user keeps them (${IBLAB_ASSET_DIR}/models/...). An unset variable is
+// an error rather than an empty string that would make a wrong path.
+std::string expandVariables(const std::string& token, int lineNumber)
+{
+    std::string out;
+    for (std::size_t i = 0; i < token.size(); ++i) {
+        if (token.compare(i, 2, "${") != 0) {
+            out += token[i];
+            continue;
+        }
+        const std::size_t end = token.find('}', i);
+        if (end == std::string::npos) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unterminated ${");
+        const std::string name = token.substr(i + 2, end - i - 2);
+        const char* value = std::getenv(name.c_str());
+        if (!value) throw std::runtime_error("line " + std::to_string(lineNumber) + ": environment variable " + name + " is not set");
+        out += value;
+        i = end;
+    }
+    return out;
+}
+
+std::vector<std::string> tokenize(const std::string& line, int lineNumber)
+{
+    std::vector<std::string> tokens;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        if (std::isspace(static_cast<unsigned char>(line[i]))) {
+            ++i;
+            continue;
+        }
+        if (line[i] == '#') break;
+        std::string token;
+        if (line[i] == '"') {
+            ++i;
+            bool closed = false;
+            while (i < line.size()) {
+                if (line[i] == '\\' && i + 1 < line.size()) {
+                    token += line[i + 1];
+                    i += 2;
+                } else if (line[i] == '"') {
+                    closed = true;
+                    ++i;
+                    break;
+                } else {
+                    token += line[i++];
+                }
+            }
+            if (!closed) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unterminated quote");
+        } else {
+            while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) token += line[i++];
+        }
+        tokens.push_back(expandVariables(token, lineNumber));
+    }
+    return tokens;
+}
+
+std::optional<double> number(const std::string& text)
+{
+    if (text.empty()) return std::nullopt;
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+    return value;
+}
+
+std::string lower(std::string text)
+{
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return text;
+}
+
+const std::map<std::string, int>& keyNames()
+{
+    static const std::map<std::string, int> names = [] {
+        std::map<std::string, int> n = {
+            {"escape", GLFW_KEY_ESCAPE},   {"esc", GLFW_KEY_ESCAPE},        {"enter", GLFW_KEY_ENTER},     {"return", GLFW_KEY_ENTER},
+            {"tab", GLFW_KEY_TAB},         {"space", GLFW_KEY_SPACE},       {"backspace", GLFW_KEY_BACKSPACE}, {"delete", GLFW_KEY_DELETE},
+            {"insert", GLFW_KEY_INSERT},   {"left", GLFW_KEY_LEFT},         {"right", GLFW_KEY_RIGHT},     {"up", GLFW_KEY_UP},
+            {"down", GLFW_KEY_DOWN},       {"home", GLFW_KEY_HOME},         {"end", GLFW_KEY_END},         {"pageup", GLFW_KEY_PAGE_UP},
+            {"pagedown", GLFW_KEY_PAGE_DOWN}, {"minus", GLFW_KEY_MINUS},    {"equal", GLFW_KEY_EQUAL},     {"plus", GLFW_KEY_KP_ADD},
+            {"kp_add", GLFW_KEY_KP_ADD},   {"kp_subtract", GLFW_KEY_KP_SUBTRACT}, {"kp_enter", GLFW_KEY_KP_ENTER},
+            {"ctrl", GLFW_KEY_LEFT_CONTROL}, {"shift", GLFW_KEY_LEFT_SHIFT}, {"alt", GLFW_KEY_LEFT_ALT},   {"super", GLFW_KEY_LEFT_SUPER},
+        };
+        for (char c = 'a'; c <= 'z'; ++c) n[std::string(1, c)] = GLFW_KEY_A + (c - 'a');
+        for (char c = '0'; c <= '9'; ++c) {
+            n[std::string(1, c)] = GLFW_KEY_0 + (c - '0');
+            n["kp_" + std::string(1, c)] = GLFW_KEY_KP_0 + (c - '0');
+        }
+        for (int f = 1; f <= 12; ++f) n["f" + std::to_string(f)] = GLFW_KEY_F1 + f - 1;
+        return n;
+    }();
+    return names;
+}
+
+} // namespace
+
+std::optional<KeyChord> parseKeyChord(const std::string& text)
+{
+    KeyChord chord;
+    std::stringstream parts(text);
+    std::vector<std::string> names;
+    for (std::string part; std::getline(parts, part, '+');) names.push_back(lower(part));
+    if (names.empty()) return std::nullopt;
+    // "ctrl++" leaves an empty last part: the key is '+' itself.
+    if (!text.empty() && text.back() == '+' && (names.empty() || names.back().empty())) names.back() = "plus";
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        const auto found = keyNames().find(names[i]);
+        if (found == keyNames().end()) return std::nullopt;
+        if (i + 1 < names.size()) chord.modifiers.push_back(found->second);
+        else chord.key = found->second;
+    }
+    return chord;
+}
+
+std::vector<ScriptStep> parseGuiScript(const std::string& text)
+{
+    std::vector<ScriptStep> steps;
+    std::istringstream in(text);
+    int lineNumber = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNumber;
+        std::vector<std::string> tokens = tokenize(line, lineNumber);
+        if (tokens.empty()) continue;
+        const std::string command = tokens.front();
+        const auto shape = commandShapes().find(command);
+        if (shape == commandShapes().end()) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown command \"" + command + "\"");
+        const int args = int(tokens.size()) - 1;
+        if (args < shape->second.minArgs || args > shape->second.maxArgs)
+            throw std::runtime_error("line " + std::to_string(lineNumber) + ": " + command + " takes " + std::to_string(shape->second.minArgs) +
+                                     (shape->second.maxArgs != shape->second.minArgs ? " to " + std::to_string(shape->second.maxArgs) : "") +
+                                     " arguments, got " + std::to_string(args));
+        if (command == "key" || command == "key-down" || command == "key-up")
+            for (std::size_t i = 1; i < tokens.size(); ++i)
+                if (!parseKeyChord(tokens[i])) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown key \"" + tokens[i] + "\"");
+        steps.push_back({lineNumber, command, std::vector<std::string>(tokens.begin() + 1, tokens.end()), line});
+    }
+    return steps;
+}
+
+namespace {
+
+struct StepFailed : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Region {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+struct Snapshot {
+    Region region;
+    WindowPixels pixels;
+};
+
+class ScriptRunner {
+public:
+    ScriptRunner(GuiApp& app) : app_(app) {}
+
+    void run(const ScriptStep& step)
+    {
+        const std::string& c = step.command;
+        const std::vector<std::string>& a = step.args;
+        if (c == "window") {
+            app_.platform().resize(int(need(number(a[0]), "a width")), int(need(number(a[1]), "a height")));
+            frames(2);
+        } else if (c == "frames") {
+            frames(int(need(number(a[0]), "a frame count")));
+        } else if (c == "wait-idle") {
+            waitFor([&] { return app_.idle(); }, a.empty() ? 180.0 : need(number(a[0]), "seconds"), [] { return std::string("the app to be idle"); });
+        } else if (c == "wait-until") {
+            std::string why;
+            waitFor([&] { return check(a[0], a[1], a[2], why); }, a.size() > 3 ? need(number(a[3]), "seconds") : 180.0,
+                    [&] { return a[0] + " " + a[1] + " " + a[2] + " (last: " + why + ")"; });
+        } else if (c == "move") {
+            std::size_t i = 0;
+            const ImVec2 p = target(a, i);
+            moveTo(p);
+            settle();
+        } else if (c == "click" || c == "double-click") {
+            std::size_t i = 0;
+            const ImVec2 p = target(a, i);
+            const int button = i < a.size() ? mouseButton(a[i]) : 0;
+            moveTo(p);
+            for (int n = 0; n < (c == "click" ? 1 : 2); ++n) {
+                push({.type = InputEvent::Type::MouseButton, .code = button, .pressed = true});
+                push({.type = InputEvent::Type::MouseButton, .code = button, .pressed = false});
+            }
+            settle();
+        } else if (c == "press" || c == "release") {
+            push({.type = InputEvent::Type::MouseButton, .code = a.empty() ? 0 : mouseButton(a[0]), .pressed = c == "press"});
+            settle();
+        } else if (c == "drag") {
+            std::size_t i = 0;
+            const ImVec2 from = target(a, i);
+            if (i + 2 > a.size()) throw StepFailed("drag needs a target, then DX DY");
+            const ImVec2 by(float(need(number(a[i]), "DX")), float(need(number(a[i + 1]), "DY")));
+            const int button = i + 2 < a.size() ? mouseButton(a[i + 2]) : 0;
+            moveTo(from);
+            push({.type = InputEvent::Type::MouseButton, .code = button, .pressed = true});
+            settle(0);
+            // A drag over several frames, as a hand makes it: what follows the mouse (a
+            // slider, the orbit, the divider) sees every step.
+            constexpr int kSteps = 8;
+            for (int s = 1; s <= kSteps; ++s) {
+                moveTo(ImVec2(from.x + by.x * float(s) / kSteps, from.y + by.y * float(s) / kSteps));
+                settle(0);
+            }
+            push({.type = InputEvent::Type::MouseButton, .code = button, .pressed = false});
+            settle();
+        } else if (c == "wheel") {
+            const double steps = need(number(a[0]), "wheel steps");
+            if (a.size() > 1) {
+                std::size_t i = 1;
+                moveTo(target(a, i));
+            }
+            push({.type = InputEvent::Type::Scroll, .y = steps});
+            settle();
+        } else if (c == "key") {
+            for (const std::string& name : a) {
+                const KeyChord chord = *parseKeyChord(name);
+                for (int m : chord.modifiers) key(m, true);
+                key(chord.key, true);
+                key(chord.key, false);
+                for (int m : chord.modifiers) key(m, false);
+            }
+            settle();
+        } else if (c == "key-down" || c == "key-up") {
+            key(parseKeyChord(a[0])->key, c == "key-down");
+            settle();
+        } else if (c == "type") {
+            typeText(a[0]);
+            settle();
+        } else if (c == "set") {
+            setValue(a[0], a[1]);
+        } else if (c == "select") {
+            clickItem(a[0]);
+            clickItem(a[0] + "/" + a[1]);
+        } else if (c == "open" || c == "close-section") {
+            if (sectionOpen(a[0]) != (c == "open")) clickItem(a[0]);
+            if (sectionOpen(a[0]) != (c == "open")) throw StepFailed("\"" + a[0] + "\" did not " + (c == "open" ? "open" : "close"));
+        } else if (c == "drop") {
+            push({.type = InputEvent::Type::Drop, .paths = a});
+            settle();
+        } else if (c == "close") {
+            push({.type = InputEvent::Type::CloseRequest});
+            settle();
+        } else if (c == "expect") {
+            std::string why;
+            if (!check(a[0], a[1], a[2], why)) throw StepFailed(why);
+        } else if (c == "expect-item" || c == "expect-no-item") {
+            const bool present = app_.items().find(a[0]) != nullptr;
+            if (present != (c == "expect-item")) throw StepFailed(present ? "\"" + a[0] + "\" is shown" : "no control \"" + a[0] + "\" is shown" + nearby(a[0]));
+        } else if (c == "expect-pixel") {
+            const WindowPixels& pixels = capture();
+            const int x = int(need(number(a[0]), "X")), y = int(need(number(a[1]), "Y"));
+            const double tolerance = a.size() > 5 ? need(number(a[5]), "a tolerance") : 8.0;
+            if (x < 0 || y < 0 || x >= pixels.width || y >= pixels.height) throw StepFailed("pixel outside the window");
+            const std::uint8_t* p = &pixels.rgba[(std::size_t(y) * std::size_t(pixels.width) + std::size_t(x)) * 4];
+            for (int ch = 0; ch < 3; ++ch)
+                if (std::abs(double(p[ch]) - need(number(a[2 + std::size_t(ch)]), "R G B")) > tolerance)
+                    throw StepFailed("pixel (" + a[0] + ", " + a[1] + ") is " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " +
+                                     std::to_string(p[2]));
+        } else if (c == "expect-mean") {
+            std::size_t i = 0;
+            const Region r = region(a, i);
+            if (i + 2 != a.size()) throw StepFailed("expect-mean REGION OP VALUE");
+            const double mean = meanLevel(capture(), r);
+            std::string why;
+            if (!compare(nlohmann::json(mean), a[i], nlohmann::json(need(number(a[i + 1]), "a value")), why))
+                throw StepFailed("mean level " + std::to_string(mean) + ": " + why);
+        } else if (c == "snapshot") {
+            std::size_t i = 1;
+            const Region r = a.size() > 1 ? region(a, i) : Region{0, 0, app_.platform().width(), app_.platform().height()};
+            snapshots_[a[0]] = {r, capture()};
+        } else if (c == "expect-changed" || c == "expect-unchanged") {
+            const auto found = snapshots_.find(a[0]);
+            if (found == snapshots_.end()) throw StepFailed("no snapshot \"" + a[0] + "\"");
+            const double difference = meanDifference(found->second, capture());
+            const bool changed = c == "expect-changed";
+            const double limit = a.size() > 1 ? need(number(a[1]), "a level difference") : (changed ? 2.0 : 1.0);
+            if (changed ? difference < limit : difference > limit)
+                throw StepFailed("mean difference from \"" + a[0] + "\" is " + std::to_string(difference) + (changed ? ", below " : ", above ") +
+                                 std::to_string(limit));
+        } else if (c == "screenshot") {
+            const WindowPixels& pixels = capture();
+            writePng8(a[0], pixels.width, pixels.height, 4, pixels.rgba, {});
+        } else if (c == "print") {
+            const nlohmann::json state = app_.state();
+            const nlohmann::json::json_pointer pointer(a[0]);
+            std::printf("%s = %s\n", a[0].c_str(), state.contains(pointer) ? state.at(pointer).dump().c_str() : "(absent)");
+        } else if (c == "list-items") {
+            for (const ui::TrackedItem& shown : app_.items().items())
+                if (a.empty() || shown.path.compare(0, a[0].size(), a[0]) == 0)
+                    std::printf("  %-60s %-8s (%.0f, %.0f)-(%.0f, %.0f)\n", shown.path.c_str(), shown.kind.c_str(), shown.min.x, shown.min.y, shown.max.x,
+                                shown.max.y);
+        } else if (c == "sleep") {
+            const auto until = Clock::now() + std::chrono::milliseconds(int(need(number(a[0]), "milliseconds")));
+            while (Clock::now() < until) frames(1);
+        }
+    }
+
+    int framesRun() const { return frames_; }
+
+private:
+    static double need(std::optional<double> value, const char* what)
+    {
+        if (!value) throw StepFailed(std::string("expected a number for ") + what);
+        return *value;
+    }
+
+    static int mouseButton(const std::string& name)
+    {
+        if (name == "left") return 0;
+        if (name == "right") return 1;
+        if (name == "middle") return 2;
+        throw StepFailed("unknown mouse button \"" + name + "\" (left, right, middle)");
+    }
+
+    void frames(int n)
+    {
+        for (int i = 0; i < n; ++i) {
+            app_.frame();
+            ++frames_;
+        }
+    }
+
+    void push(InputEvent event) { app_.input().push(std::move(event)); }
+    void moveTo(ImVec2 p) { push({.type = InputEvent::Type::CursorMoved, .x = p.x, .y = p.y}); }
+    void key(int code, bool pressed) { push({.type = InputEvent::Type::Key, .code = code, .pressed = pressed}); }
+
+    void typeText(const std::string& text)
+    {
+        // UTF-8 to code points, as GLFW's character callback delivers them.
+        for (std::size_t i = 0; i < text.size();) {
+            const unsigned char c = static_cast<unsigned char>(text[i]);
+            unsigned codepoint = c;
+            int extra = c >= 0xF0 ? 3 : c >= 0xE0 ? 2 : c >= 0xC0 ? 1 : 0;
+            if (extra) codepoint = c & (0x3F >> extra);
+            ++i;
+            for (; extra > 0 && i < text.size(); --extra, ++i) codepoint = (codepoint << 6) | (static_cast<unsigned char>(text[i]) & 0x3F);
+            push({.type = InputEvent::Type::Text, .codepoint = codepoint});
+        }
+    }
+
+    // Frames until every queued event has been handed to the app, then `extra` more so that
+    // what the input changed is drawn (a popup that opened is laid out on its second frame).
+    void settle(int extra = 2)
+    {
+        for (int guard = 0; !app_.input().empty(); ++guard) {
+            if (guard > 10000) throw StepFailed("the input queue does not drain");
+            frames(1);
+        }
+        frames(extra);
+    }
+
+    template <typename Done, typename What>
+    void waitFor(Done done, double seconds, What what)
+    {
+        const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+        while (!done()) {
+            if (Clock::now() > deadline) throw StepFailed("timed out after " + std::to_string(int(seconds)) + " s waiting for " + what());
+            frames(1);
+        }
+    }
+
+    std::string nearby(const std::string& path) const
+    {
+        // The shown paths that share the last part of the missing one, to help fix a script.
+        const std::string last = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1);
+        std::string list;
+        for (const ui::TrackedItem& item : app_.items().items())
+            if (lower(item.path).find(lower(last)) != std::string::npos) list += (list.empty() ? "" : ", ") + item.path;
+        return list.empty() ? "" : " (shown: " + list + ")";
+    }
+
+    const ui::TrackedItem& item(const std::string& path) const
+    {
+        const ui::TrackedItem* found = app_.items().find(path);
+        if (!found) throw StepFailed("no control \"" + path + "\" is shown" + nearby(path));
+        return *found;
+    }
+
+    // A control to be clicked must be on screen: the panel is scrolled with the wheel, as a
+    // user would, until the control's centre is inside the window.
+    // It must also stay where it is: a status line that appears (a load finishing) moves
+    // what is below it, and a click aimed at the last frame's layout would land elsewhere.
+    const ui::TrackedItem& visibleItem(const std::string& path)
+    {
+        const float height = float(app_.platform().height());
+        for (int attempt = 0; attempt < 200; ++attempt) {
+            const ImVec2 before = item(path).min;
+            frames(1);
+            const ui::TrackedItem& control = item(path);
+            if (control.min.x != before.x || control.min.y != before.y) continue;
+            const float y = control.centre().y;
+            if (y >= 4.0f && y <= height - 4.0f) return control;
+            moveTo(ImVec2(std::max(4.0f, control.min.x), 0.5f * height));
+            push({.type = InputEvent::Type::Scroll, .y = y < 4.0f ? 1.0 : -1.0});
+            settle(1);
+        }
+        throw StepFailed("\"" + path + "\" stays out of view however the panel is scrolled");
+    }
+
+    // "X Y" (window pixels) or an item path; advances i past what it read.
+    ImVec2 target(const std::vector<std::string>& a, std::size_t& i)
+    {
+        if (i + 1 < a.size() && number(a[i]) && number(a[i + 1])) {
+            const ImVec2 p(float(*number(a[i])), float(*number(a[i + 1])));
+            i += 2;
+            return p;
+        }
+        if (i >= a.size()) throw StepFailed("missing target (X Y, view or a control's path)");
+        if (a[i] == "view") {
+            ++i;
+            const nlohmann::json view = app_.state()["view"];
+            return ImVec2(float(view["x"].get<double>() + 0.5 * view["width"].get<double>()), float(view["y"].get<double>() + 0.5 * view["height"].get<double>()));
+        }
+        return visibleItem(a[i++]).centre();
+    }
+
+    void clickItem(const std::string& path)
+    {
+        const ImVec2 p = visibleItem(path).centre();
+        moveTo(p);
+        push({.type = InputEvent::Type::MouseButton, .code = 0, .pressed = true});
+        push({.type = InputEvent::Type::MouseButton, .code = 0, .pressed = false});
+        settle();
+    }
+
+    bool sectionOpen(const std::string& path) const
+    {
+        const ui::TrackedItem& header = item(path);
+        const std::string prefix = header.path + "/";
+        return std::any_of(app_.items().items().begin(), app_.items().items().end(),
+                           [&](const ui::TrackedItem& i) { return i.path.compare(0, prefix.size(), prefix) == 0; });
+    }
+
+    // As a user types a value: Ctrl+click turns a slider into a text field (a plain click
+    // focuses an input), Ctrl+A selects what is there, the value is typed and Enter commits.
+    void setValue(const std::string& path, const std::string& value)
+    {
+        const ui::TrackedItem control = visibleItem(path); // a copy: frames below replace the registry's
+        if (control.kind == "combo") {
+            clickItem(path);
+            clickItem(control.path + "/" + value);
+            return;
+        }
+        if (control.kind != "slider" && control.kind != "part" && control.kind != "input")
+            throw StepFailed("\"" + path + "\" is a " + control.kind + ": set takes a slider, a field or a combo (click a " + control.kind + ")");
+        moveTo(control.centre());
+        const bool slider = control.kind != "input";
+        if (slider) key(GLFW_KEY_LEFT_CONTROL, true);
+        push({.type = InputEvent::Type::MouseButton, .code = 0, .pressed = true});
+        push({.type = InputEvent::Type::MouseButton, .code = 0, .pressed = false});
+        if (slider) key(GLFW_KEY_LEFT_CONTROL, false);
+        settle(1);
+        key(GLFW_KEY_LEFT_CONTROL, true);
+        key(GLFW_KEY_A, true);
+        key(GLFW_KEY_A, false);
+        key(GLFW_KEY_LEFT_CONTROL, false);
+        typeText(value);
+        key(GLFW_KEY_ENTER, true);
+        key(GLFW_KEY_ENTER, false);
+        settle();
+    }
+
+    Region region(const std::vector<std::string>& a, std::size_t& i)
+    {
+        if (i >= a.size()) throw StepFailed("missing region (view, window, panel, item PATH or X0 Y0 X1 Y1)");
+        const nlohmann::json state = app_.state();
+        const std::string& name = a[i];
+        if (name == "view" || name == "window" || name == "panel") {
+            ++i;
+            const int viewX = int(state["view"]["x"].get<double>());
+            const int w = app_.platform().width(), h = app_.platform().height();
+            if (name == "view") return {viewX, 0, w, h};
+            if (name == "panel") return {0, 0, viewX, h};
+            return {0, 0, w, h};
+        }
+        if (name == "item") {
+            if (i + 1 >= a.size()) throw StepFailed("item needs a control's path");
+            const ui::TrackedItem& control = visibleItem(a[i + 1]);
+            i += 2;
+            return {int(control.min.x), int(control.min.y), int(control.max.x), int(control.max.y)};
+        }
+        if (i + 3 >= a.size()) throw StepFailed("a region is view, window, panel, item PATH or X0 Y0 X1 Y1");
+        Region r{int(need(number(a[i]), "X0")), int(need(number(a[i + 1]), "Y0")), int(need(number(a[i + 2]), "X1")), int(need(number(a[i + 3]), "Y1"))};
+        i += 4;
+        return r;
+    }
+
+    const WindowPixels& capture()
+    {
+        app_.requestPixels();
+        frames(1);
+        return app_.lastPixels();
+    }
+
+    static Region clipped(Region r, const WindowPixels& p)
+    {
+        return {std::clamp(r.x0, 0, p.width), std::clamp(r.y0, 0, p.height), std::clamp(r.x1, 0, p.width), std::clamp(r.y1, 0, p.height)};
+    }
+
+    static double meanLevel(const WindowPixels& p, Region r)
+    {
+        r = clipped(r, p);
+        double sum = 0.0;
+        std::size_t count = 0;
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x, ++count) {
+                const std::uint8_t* px = &p.rgba[(std::size_t(y) * std::size_t(p.width) + std::size_t(x)) * 4];
+                sum += (double(px[0]) + double(px[1]) + double(px[2])) / 3.0;
+            }
+        if (count == 0) throw StepFailed("empty region");
+        return sum / double(count);
+    }
+
+    static double meanDifference(const Snapshot& before, const WindowPixels& now)
+    {
+        if (before.pixels.width != now.width || before.pixels.height != now.height) return 255.0;
+        const Region r = clipped(before.region, now);
+        double sum = 0.0;
+        std::size_t count = 0;
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x)
+                for (int ch = 0; ch < 3; ++ch, ++count) {
+                    const std::size_t at = (std::size_t(y) * std::size_t(now.width) + std::size_t(x)) * 4 + std::size_t(ch);
+                    sum += std::abs(double(now.rgba[at]) - double(before.pixels.rgba[at]));
+                }
+        if (count == 0) throw StepFailed("empty region");
+        return sum / double(count);
+    }
+
+    static bool compare(const nlohmann::json& actual, const std::string& op, const nlohmann::json& expected, std::string& why)
+    {
+        bool ok = false;
+        if (actual.is_number() && expected.is_number()) {
+            const double a = actual.get<double>(), e = expected.get<double>();
+            // Settings travel as float: 0.3 reads back as 0.30000001.
+            const double tolerance = 1e-5 * std::max(1.0, std::abs(e));
+            if (op == "==") ok = std::abs(a - e) <= tolerance;
+            else if (op == "!=") ok = std::abs(a - e) > tolerance;
+            else if (op == "<") ok = a < e;
+            else if (op == "<=") ok = a <= e + tolerance;
+            else if (op == ">") ok = a > e;
+            else if (op == ">=") ok = a >= e - tolerance;
+            else if (op == "~") ok = std::abs(a - e) <= 0.01 * std::max(1.0, std::abs(e));
+            else throw StepFailed("unknown comparison \"" + op + "\" (== != < <= > >= ~ contains)");
+        } else if (op == "==") {
+            ok = actual == expected;
+        } else if (op == "!=") {
+            ok = actual != expected;
+        } else if (op == "contains" || op == "~") {
+            ok = actual.is_string() && expected.is_string() && actual.get<std::string>().find(expected.get<std::string>()) != std::string::npos;
+            if (actual.is_array()) ok = std::find(actual.begin(), actual.end(), expected) != actual.end();
+        } else {
+            throw StepFailed("\"" + op + "\" compares numbers only; got " + actual.dump() + " and " + expected.dump());
+        }
+        if (!ok) why = "got " + actual.dump() + ", expected " + op + " " + expected.dump();
+        return ok;
+    }
+
+    bool check(const std::string& pointerText, const std::string& op, const std::string& valueText, std::string& why) const
+    {
+        const nlohmann::json state = app_.state();
+        nlohmann::json::json_pointer pointer;
+        try {
+            pointer = nlohmann::json::json_pointer(pointerText);
+        } catch (const std::exception&) {
+            throw StepFailed("\"" + pointerText + "\" is not a JSON pointer (like /settings/scene/kind)");
+        }
+        if (!state.contains(pointer)) throw StepFailed("the state has no " + pointerText);
+        nlohmann::json expected;
+        try {
+            expected = nlohmann::json::parse(valueText);
+        } catch (const std::exception&) {
+            expected = valueText; // a bare word is a string: grid, splitsum
+        }
+        return compare(state.at(pointer), op, expected, why);
+    }
+
+    GuiApp& app_;
+    std::map<std::string, Snapshot> snapshots_;
+    int frames_ = 0;
+};
+
+void writeCoverage(const std::string& path, const ui::ItemRegistry& items)
+{
+    nlohmann::json shown = nlohmann::json::object();
+    for (const auto& [itemPath, kind] : items.everShown()) shown[itemPath] = kind;
+    nlohmann::json used = nlohmann::json::array();
+    for (const std::string& itemPath : items.interacted()) used.push_back(itemPath);
+    writeTextFileAtomic(path, nlohmann::json{{"shown", shown}, {"used", used}}.dump(1) + "\n");
+}
+
+} // namespace
+
+int runGuiScript(GuiApp& app, const std::string& path, const std::string& coverageOut)
+{
+    std::vector<ScriptStep> steps;
+    try {
+        steps = parseGuiScript(readTextFile(path));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "iblab: %s: %s\n", path.c_str(), e.what());
+        return 2;
+    }
+    app.setScripted(true);
+    ScriptRunner runner(app);
+    const auto start = Clock::now();
+    int status = 0;
+    try {
+        runner.run({0, "frames", {"2"}, "(start)"});
+        for (const ScriptStep& step : steps) {
+            try {
+                runner.run(step);
+            } catch (const StepFailed& e) {
+                std::fprintf(stderr, "%s:%d: %s: %s\n", path.c_str(), step.line, step.text.c_str(), e.what());
+                status = 1;
+                break;
+            } catch (const std::exception& e) {
+                std::fprintf(stderr, "%s:%d: %s: %s\n", path.c_str(), step.line, step.text.c_str(), e.what());
+                status = 1;
+                break;
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
+        status = 1;
+    }
+    if (app.glErrorCount() > 0) {
+        std::fprintf(stderr, "%s: %d GL errors (KHR_debug); the script fails on any\n", path.c_str(), app.glErrorCount());
+        status = 1;
+    }
+    if (!coverageOut.empty()) try {
+            writeCoverage(coverageOut, app.items());
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
+            status = 1;
+        }
+    std::printf("gui script %s: %s, %zu steps, %d frames, %s, %.1f s\n", path.c_str(), status == 0 ? "passed" : "FAILED", steps.size(),
+                runner.framesRun(), app.platform().kind().c_str(), std::chrono::duration<double>(Clock::now() - start).count());
+    return status;
+}
+
+} // namespace iblab::app

@@ -1,0 +1,169 @@
+#include "widgets.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace iblab::ui {
+
+std::string visibleLabel(std::string_view label)
+{
+    const std::size_t hashes = label.find("##");
+    if (hashes == std::string_view::npos) return std::string(label);
+    if (hashes > 0) return std::string(label.substr(0, hashes));
+    return std::string(label.substr(2));
+}
+
+void ItemRegistry::beginFrame()
+{
+    building_.clear();
+    scope_.clear();
+}
+
+void ItemRegistry::endFrame() { shown_ = std::exchange(building_, {}); }
+
+void ItemRegistry::pushScope(std::string_view name) { scope_.push_back(visibleLabel(name)); }
+
+void ItemRegistry::popScope()
+{
+    if (!scope_.empty()) scope_.pop_back();
+}
+
+void ItemRegistry::recordLastItem(std::string_view label, std::string_view kind)
+{
+    recordRect(label, kind, ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
+    if (ImGui::IsItemActivated() || ImGui::IsItemClicked() || ImGui::IsItemEdited()) interacted_.insert(building_.back().path);
+}
+
+void ItemRegistry::recordRect(std::string_view label, std::string_view kind, ImVec2 min, ImVec2 max)
+{
+    std::string path;
+    for (const std::string& part : scope_) path += part + "/";
+    path += visibleLabel(label);
+    // Two controls of one scope with the same visible text (two "Load" buttons) stay apart.
+    const std::string base = path;
+    for (int n = 2; std::any_of(building_.begin(), building_.end(), [&](const TrackedItem& item) { return item.path == path; }); ++n)
+        path = base + "#" + std::to_string(n);
+    building_.push_back({path, std::string(kind), min, max});
+    everShown_.emplace(path, std::string(kind));
+}
+
+const TrackedItem* ItemRegistry::find(std::string_view path) const
+{
+    const TrackedItem* suffixMatch = nullptr;
+    int suffixMatches = 0;
+    const std::string suffix = "/" + std::string(path);
+    for (const TrackedItem& item : shown_) {
+        if (item.path == path) return &item;
+        if (item.path.size() > suffix.size() && item.path.compare(item.path.size() - suffix.size(), suffix.size(), suffix) == 0) {
+            suffixMatch = &item;
+            ++suffixMatches;
+        }
+    }
+    return suffixMatches == 1 ? suffixMatch : nullptr;
+}
+
+ItemRegistry& itemRegistry()
+{
+    static ItemRegistry registry;
+    return registry;
+}
+
+namespace {
+
+template <typename Result>
+Result recorded(Result result, const char* label, std::string_view kind)
+{
+    itemRegistry().recordLastItem(label, kind);
+    return result;
+}
+
+} // namespace
+
+Section::Section(const char* label, bool defaultOpen)
+    : open_(recorded(ImGui::CollapsingHeader(label, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0), label, "header"))
+{
+    if (!open_) return;
+    ImGui::PushID(label);
+    itemRegistry().pushScope(label);
+}
+
+Section::~Section()
+{
+    if (!open_) return;
+    itemRegistry().popScope();
+    ImGui::PopID();
+}
+
+Combo::Combo(const char* label, const char* preview, ImGuiComboFlags flags)
+    : open_(recorded(ImGui::BeginCombo(label, preview, flags), label, "combo"))
+{
+    if (open_) itemRegistry().pushScope(label);
+}
+
+Combo::~Combo()
+{
+    if (!open_) return;
+    itemRegistry().popScope();
+    ImGui::EndCombo();
+}
+
+bool Combo::entry(const char* label, bool selected)
+{
+    const bool chosen = recorded(ImGui::Selectable(label, selected), label, "entry");
+    if (selected) ImGui::SetItemDefaultFocus();
+    return chosen;
+}
+
+bool button(const char* label, ImVec2 size) { return recorded(ImGui::Button(label, size), label, "button"); }
+bool smallButton(const char* label) { return recorded(ImGui::SmallButton(label), label, "button"); }
+bool checkbox(const char* label, bool* value) { return recorded(ImGui::Checkbox(label, value), label, "checkbox"); }
+bool radioButton(const char* label, bool active) { return recorded(ImGui::RadioButton(label, active), label, "radio"); }
+
+bool sliderFloat(const char* label, float* value, float min, float max, const char* format, ImGuiSliderFlags flags)
+{
+    return recorded(ImGui::SliderFloat(label, value, min, max, format, flags), label, "slider");
+}
+
+bool sliderInt(const char* label, int* value, int min, int max, const char* format, ImGuiSliderFlags flags)
+{
+    return recorded(ImGui::SliderInt(label, value, min, max, format, flags), label, "slider");
+}
+
+bool inputInt(const char* label, int* value, int step, int stepFast)
+{
+    return recorded(ImGui::InputInt(label, value, step, stepFast), label, "input");
+}
+
+bool inputText(const char* label, char* buffer, std::size_t size, ImGuiInputTextFlags flags)
+{
+    return recorded(ImGui::InputText(label, buffer, size, flags), label, "input");
+}
+
+bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::size_t size)
+{
+    return recorded(ImGui::InputTextWithHint(label, hint, buffer, size), label, "input");
+}
+
+bool colourEdit3(const char* label, float colour[3])
+{
+    // The three component fields get paths of their own ("Base colour/R"), placed as
+    // ImGui's ColorEdit4 lays them out: equal widths, inner spacing between, the swatch after.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float inputsWidth = ImGui::CalcItemWidth() - (ImGui::GetFrameHeight() + style.ItemInnerSpacing.x);
+    const float componentWidth = std::max(1.0f, float(int((inputsWidth - 2.0f * style.ItemInnerSpacing.x) / 3.0f)));
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    const bool changed = recorded(ImGui::ColorEdit3(label, colour, ImGuiColorEditFlags_Float), label, "colour");
+    ItemRegistry& registry = itemRegistry();
+    registry.pushScope(label);
+    const char* names[] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+        const float x = origin.x + float(c) * (componentWidth + style.ItemInnerSpacing.x);
+        registry.recordRect(names[c], "part", ImVec2(x, origin.y), ImVec2(x + componentWidth, origin.y + ImGui::GetFrameHeight()));
+    }
+    registry.popScope();
+    return changed;
+}
+
+bool canvas(const char* label, ImVec2 size, std::string_view kind) { return recorded(ImGui::InvisibleButton(label, size), label, kind); }
+
+} // namespace iblab::ui
