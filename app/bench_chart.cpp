@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "environment/image_writer.hpp"
+#include "io/image_writer.hpp"
 #include "gl/render_target.hpp"
 #include "view_overlays.hpp"
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/bench_sweep.hpp"
-#include "pareto_chart.hpp"
+#include "lab/bench_sweep.hpp"
+#include "ui/pareto_chart.hpp"
 
 namespace iblab::app {
 

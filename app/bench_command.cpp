@@ -10,14 +10,14 @@
 #include <vector>
 
 #include "asset_paths.hpp"
-#include "bench/auto_quality.hpp"
+#include "lab/auto_quality.hpp"
 #include "bench_chart.hpp"
 #include "command_support.hpp"
 #include "commands.hpp"
-#include "environment/atomic_file.hpp"
-#include "environment/builtin_environments.hpp"
-#include "environment/environment.hpp"
-#include "renderer.hpp"
+#include "io/atomic_file.hpp"
+#include "io/builtin_environments.hpp"
+#include "io/environment.hpp"
+#include "frame/renderer.hpp"
 
 namespace iblab::app {
 namespace {

@@ -12,8 +12,8 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
-#include "conventions.hpp"
-#include "environment/builtin_environments.hpp"
+#include "frame/conventions.hpp"
+#include "io/builtin_environments.hpp"
 #include "gui_app.hpp"
 #include "headless_render.hpp"
 #include "ibl/tonemap.hpp"

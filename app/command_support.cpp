@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 
 namespace iblab::app {
 

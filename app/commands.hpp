@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "settings.hpp"
+#include "frame/settings.hpp"
 
 namespace iblab::app {
 

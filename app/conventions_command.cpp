@@ -14,11 +14,11 @@
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.hpp"
-#include "camera.hpp"
+#include "frame/camera.hpp"
 #include "command_support.hpp"
 #include "commands.hpp"
-#include "conventions.hpp"
-#include "environment/image_writer.hpp"
+#include "frame/conventions.hpp"
+#include "io/image_writer.hpp"
 #include "lab_session.hpp"
 #include "view_overlays.hpp"
 

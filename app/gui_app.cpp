@@ -19,20 +19,20 @@
 #include <imgui_internal.h>
 
 #include "asset_paths.hpp"
-#include "camera.hpp"
-#include "conventions.hpp"
-#include "environment/atomic_file.hpp"
-#include "environment/builtin_environments.hpp"
-#include "environment/error.hpp"
+#include "frame/camera.hpp"
+#include "frame/conventions.hpp"
+#include "io/atomic_file.hpp"
+#include "io/builtin_environments.hpp"
+#include "io/error.hpp"
 #include "gl/context_info.hpp"
 #include "gl/debug_output.hpp"
 #include "gui_script.hpp"
 #include "lab_session.hpp"
-#include "panels.hpp"
-#include "renderer.hpp"
+#include "ui/panels.hpp"
+#include "frame/renderer.hpp"
 #include "study_run.hpp"
 #include "view_overlays.hpp"
-#include "widgets.hpp"
+#include "ui/widgets.hpp"
 
 namespace iblab::app {
 namespace {

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gui_platform.hpp"
-#include "settings.hpp"
+#include "frame/settings.hpp"
 
 namespace iblab::ui {
 class ItemRegistry;

@@ -13,11 +13,11 @@
 #include <GLFW/glfw3.h>
 #include <nlohmann/json.hpp>
 
-#include "environment/atomic_file.hpp"
-#include "environment/error.hpp"
-#include "environment/image_writer.hpp"
+#include "io/atomic_file.hpp"
+#include "io/error.hpp"
+#include "io/image_writer.hpp"
 #include "gui_app.hpp"
-#include "widgets.hpp"
+#include "ui/widgets.hpp"
 
 namespace iblab::app {
 namespace {

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.hpp"
-#include "camera.hpp"
+#include "frame/camera.hpp"
 #include "commands.hpp"
-#include "conventions.hpp"
+#include "frame/conventions.hpp"
 #include "command_support.hpp"
 #include "gl/shader_library.hpp"
 #include "lab_session.hpp"

@@ -2,7 +2,7 @@
 #include <chrono>
 #include <string>
 
-#include "settings.hpp"
+#include "frame/settings.hpp"
 
 namespace iblab::app {
 

@@ -5,9 +5,9 @@
 #include <utility>
 
 #include "asset_paths.hpp"
-#include "environment/builtin_environments.hpp"
-#include "environment/error.hpp"
-#include "environment/image_writer.hpp"
+#include "io/builtin_environments.hpp"
+#include "io/error.hpp"
+#include "io/image_writer.hpp"
 #include "scene/gltf_model.hpp"
 
 namespace iblab::app {

@@ -11,9 +11,9 @@
 
 #include "bake/bake_cache.hpp"
 #include "bake/bake_job.hpp"
-#include "environment/environment.hpp"
-#include "panels.hpp"
-#include "renderer.hpp"
+#include "io/environment.hpp"
+#include "ui/panels.hpp"
+#include "frame/renderer.hpp"
 #include "scene/material.hpp"
 
 namespace iblab::app {

@@ -12,10 +12,10 @@
 #include "asset_paths.hpp"
 #include "command_support.hpp"
 #include "commands.hpp"
-#include "environment/atomic_file.hpp"
-#include "environment/image_writer.hpp"
-#include "renderer.hpp"
-#include "stress/stress_suite.hpp"
+#include "io/atomic_file.hpp"
+#include "io/image_writer.hpp"
+#include "frame/renderer.hpp"
+#include "lab/stress_suite.hpp"
 
 namespace iblab::app {
 namespace {

@@ -7,11 +7,11 @@
 #include <memory>
 #include <optional>
 
-#include "bench/auto_quality.hpp"
-#include "bench/bench_sweep.hpp"
+#include "lab/auto_quality.hpp"
+#include "lab/bench_sweep.hpp"
 #include "lab_session.hpp"
-#include "panels.hpp"
-#include "renderer.hpp"
+#include "ui/panels.hpp"
+#include "frame/renderer.hpp"
 
 namespace iblab::app {
 

@@ -6,8 +6,8 @@
 #include <imgui.h>
 #include <imgui_impl_opengl3.h>
 
-#include "debug_layout.hpp"
-#include "panels.hpp"
+#include "frame/debug_layout.hpp"
+#include "ui/panels.hpp"
 
 namespace iblab::app {
 

@@ -8,7 +8,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "renderer.hpp"
+#include "frame/renderer.hpp"
 
 struct ImGuiContext;
 

@@ -1,4 +1,4 @@
-#include "panels.hpp"
+#include "ui/panels.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,10 +9,10 @@
 
 #include <imgui.h>
 
-#include "conventions.hpp"
+#include "frame/conventions.hpp"
 #include "ibl/error_metrics.hpp"
 #include "ibl/tonemap.hpp"
-#include "widgets.hpp"
+#include "ui/widgets.hpp"
 
 namespace iblab::ui {
 namespace {

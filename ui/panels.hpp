@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "camera.hpp"
-#include "debug_layout.hpp"
-#include "pareto_chart.hpp"
-#include "renderer.hpp"
-#include "settings.hpp"
+#include "frame/camera.hpp"
+#include "frame/debug_layout.hpp"
+#include "ui/pareto_chart.hpp"
+#include "frame/renderer.hpp"
+#include "frame/settings.hpp"
 
 namespace iblab::ui {
 

@@ -1,4 +1,4 @@
-#include "pareto_chart.hpp"
+#include "ui/pareto_chart.hpp"
 
 #include <algorithm>
 #include <array>

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/bake_passes.hpp"
-#include "bake/prefilter_lod.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "ibl/brdf_lut.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/reference.hpp"

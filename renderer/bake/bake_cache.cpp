@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/bake_files.hpp"
-#include "environment/error.hpp"
+#include "io/error.hpp"
 
 namespace iblab::bake {
 namespace {

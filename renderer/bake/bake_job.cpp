@@ -4,7 +4,7 @@
 #include <bit>
 #include <stdexcept>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 
 namespace iblab::bake {
 namespace {

@@ -23,7 +23,7 @@
 #include "bake/bake_cache.hpp"
 #include "bake/bake_passes.hpp"
 #include "bake/bake_result.hpp"
-#include "environment/environment.hpp"
+#include "io/environment.hpp"
 #include "gl/shader_library.hpp"
 
 namespace iblab::bake {

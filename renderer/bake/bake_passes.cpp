@@ -9,9 +9,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
-#include "bake/prefilter_lod.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "bake/source_samples.hpp"
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
 

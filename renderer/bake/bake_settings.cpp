@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bake/prefilter_lod.hpp"
-#include "environment/error.hpp"
+#include "ibl/prefilter_lod.hpp"
+#include "io/error.hpp"
 
 namespace iblab::bake {
 namespace {

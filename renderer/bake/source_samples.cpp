@@ -2,7 +2,7 @@
 
 #include <cstdint>
 
-#include "bake/prefilter_lod.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "ibl/sampling.hpp"
 
 namespace iblab::bake {

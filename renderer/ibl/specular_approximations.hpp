@@ -23,7 +23,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "bake/prefilter_lod.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "ibl/brdf.hpp"
 #include "ibl/glsl_shared.hpp"
 #include "ibl/image.hpp"

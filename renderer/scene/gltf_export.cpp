@@ -5,8 +5,8 @@
 #include <cmath>
 #include <optional>
 
-#include "environment/atomic_file.hpp"
-#include "environment/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/error.hpp"
 #include "scene/gltf_model.hpp"
 #include "scene/internal/gltf_document.hpp"
 

@@ -15,7 +15,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "scene/internal/gltf_document.hpp"
 #include "scene/internal/image_codec.hpp"
 

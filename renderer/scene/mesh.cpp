@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 
 namespace iblab {
 namespace {

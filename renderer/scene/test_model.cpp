@@ -5,7 +5,7 @@
 #include <functional>
 #include <numbers>
 
-#include "environment/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "scene/internal/gltf_document.hpp"
 #include "scene/internal/image_codec.hpp"
 #include "scene/sphere.hpp"

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bench/auto_quality.hpp"
+#include "lab/auto_quality.hpp"
 
 namespace iblab::bench {
 namespace {

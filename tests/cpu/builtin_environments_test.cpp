@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "environment/builtin_environments.hpp"
-#include "environment/error.hpp"
+#include "io/builtin_environments.hpp"
+#include "io/error.hpp"
 #include "ibl/conventions.hpp"
 
 using namespace iblab;

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "bake/bake_settings.hpp"
-#include "bake/prefilter_lod.hpp"
-#include "conventions.hpp"
+#include "ibl/prefilter_lod.hpp"
+#include "frame/conventions.hpp"
 
 namespace iblab {
 namespace {

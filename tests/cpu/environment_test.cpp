@@ -17,8 +17,8 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "environment/environment.hpp"
-#include "environment/error.hpp"
+#include "io/environment.hpp"
+#include "io/error.hpp"
 #include "temp_dir.hpp"
 
 namespace fs = std::filesystem;

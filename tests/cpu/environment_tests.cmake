@@ -1,4 +1,4 @@
-# iblab_environment: loading/validating environments, builtins, image writing.
+# iblab_io: loading/validating environments, builtins, image writing.
 iblab_add_cpu_test(environment_test ${CMAKE_CURRENT_SOURCE_DIR}/environment_test.cpp)
 iblab_add_cpu_test(builtin_environments_test ${CMAKE_CURRENT_SOURCE_DIR}/builtin_environments_test.cpp)
 iblab_add_cpu_test(image_writer_test ${CMAKE_CURRENT_SOURCE_DIR}/image_writer_test.cpp)
@@ -12,10 +12,10 @@ endforeach()
 
 # Reads the bundled courtyard.exr, so it lives with the suites that read files.
 iblab_add_cpu_test(split_sum_bias_test ${CMAKE_CURRENT_SOURCE_DIR}/split_sum_bias_test.cpp)
-target_link_libraries(split_sum_bias_test PRIVATE iblab_environment)
+target_link_libraries(split_sum_bias_test PRIVATE iblab_io)
 target_compile_definitions(split_sum_bias_test PRIVATE IBLAB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # The real-time specular approximations against the full integral (issue #14); reads
-# builtin:white through iblab_environment.
+# builtin:white through iblab_io.
 iblab_add_cpu_test(specular_approximations_test ${CMAKE_CURRENT_SOURCE_DIR}/specular_approximations_test.cpp)
-target_link_libraries(specular_approximations_test PRIVATE iblab_environment)
+target_link_libraries(specular_approximations_test PRIVATE iblab_io)

@@ -1,4 +1,4 @@
-# iblab_core suites: the IBL math, no GL context and no image files needed.
+# iblab_ibl suites: the IBL math, no GL context and no image files needed.
 iblab_add_cpu_test(conventions_test ${CMAKE_CURRENT_SOURCE_DIR}/conventions_test.cpp)
 iblab_add_cpu_test(sampling_test ${CMAKE_CURRENT_SOURCE_DIR}/sampling_test.cpp)
 iblab_add_cpu_test(brdf_test ${CMAKE_CURRENT_SOURCE_DIR}/brdf_test.cpp)

@@ -14,9 +14,9 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
-#include "environment/atomic_file.hpp"
-#include "environment/error.hpp"
-#include "environment/image_writer.hpp"
+#include "io/atomic_file.hpp"
+#include "io/error.hpp"
+#include "io/image_writer.hpp"
 #include "temp_dir.hpp"
 
 namespace fs = std::filesystem;

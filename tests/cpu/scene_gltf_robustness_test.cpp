@@ -18,7 +18,7 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "scene/gltf_model.hpp"
 #include "temp_dir.hpp"
 

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "scene/gltf_model.hpp"
 #include "scene/sphere.hpp"
 #include "scene/test_model.hpp"

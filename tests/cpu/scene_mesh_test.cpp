@@ -7,7 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "scene/mesh.hpp"
 #include "scene/sphere.hpp"
 

@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "scene/sphere.hpp"
 
 using namespace iblab;

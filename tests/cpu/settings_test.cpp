@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "settings.hpp"
+#include "frame/settings.hpp"
 
 namespace iblab {
 namespace {

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
-#include "bake/prefilter_lod.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "bake/source_samples.hpp"
 #include "ibl/sampling.hpp"
 

@@ -12,7 +12,7 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "environment/environment.hpp"
+#include "io/environment.hpp"
 #include "ibl/brdf_lut.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/error_metrics.hpp"

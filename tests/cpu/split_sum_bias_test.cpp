@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
-#include "environment/environment.hpp"
+#include "io/environment.hpp"
 #include "ibl/brdf_lut.hpp"
 #include "ibl/reference.hpp"
 

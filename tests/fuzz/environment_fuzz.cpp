@@ -9,8 +9,8 @@
 
 #include <unistd.h>
 
-#include "environment/environment.hpp"
-#include "environment/error.hpp"
+#include "io/environment.hpp"
+#include "io/error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

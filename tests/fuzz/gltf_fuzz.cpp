@@ -7,7 +7,7 @@
 
 #include <unistd.h>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "scene/gltf_model.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)

@@ -8,10 +8,10 @@
 #include <glm/glm.hpp>
 
 #include "bake/bake_passes.hpp"
-#include "bake/prefilter_lod.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "bake_test_support.hpp"
-#include "environment/builtin_environments.hpp"
-#include "environment/environment.hpp"
+#include "io/builtin_environments.hpp"
+#include "io/environment.hpp"
 #include "gl_test_fixture.hpp"
 #include "ibl/brdf_lut.hpp"
 #include "ibl/equirect.hpp"

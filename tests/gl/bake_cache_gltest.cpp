@@ -13,8 +13,8 @@
 #include "bake/bake_cache.hpp"
 #include "bake/bake_files.hpp"
 #include "bake_test_support.hpp"
-#include "environment/error.hpp"
-#include "environment/image_writer.hpp"
+#include "io/error.hpp"
+#include "io/image_writer.hpp"
 #include "gl_test_fixture.hpp"
 
 namespace iblab {

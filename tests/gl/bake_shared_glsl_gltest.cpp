@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/prefilter_lod.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "compute_probe.hpp"
 #include "gl_test_fixture.hpp"
 #include "ibl/brdf.hpp"

@@ -7,7 +7,7 @@
 
 #include "bake/bake_job.hpp"
 #include "bake/bake_settings.hpp"
-#include "environment/environment.hpp"
+#include "io/environment.hpp"
 #include "gl/shader_library.hpp"
 
 namespace iblab::testing {

@@ -15,10 +15,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench/bench_sweep.hpp"
-#include "environment/error.hpp"
+#include "lab/bench_sweep.hpp"
+#include "io/error.hpp"
 #include "gl_test_fixture.hpp"
-#include "renderer.hpp"
+#include "frame/renderer.hpp"
 
 namespace iblab {
 namespace {

@@ -12,7 +12,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "bake_test_support.hpp"
-#include "camera.hpp"
+#include "frame/camera.hpp"
 #include "ibl/error_metrics.hpp"
 #include "renderer_fixture.hpp"
 #include "scene/gltf_model.hpp"

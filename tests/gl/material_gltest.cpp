@@ -8,8 +8,8 @@
 #include <glm/glm.hpp>
 
 #include "bake/bake_job.hpp"
-#include "camera.hpp"
-#include "environment/environment.hpp"
+#include "frame/camera.hpp"
+#include "io/environment.hpp"
 #include "bake_test_support.hpp"
 #include "renderer_fixture.hpp"
 

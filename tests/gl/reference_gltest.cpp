@@ -10,8 +10,8 @@
 
 #include "bake/bake_job.hpp"
 #include "bake_test_support.hpp"
-#include "camera.hpp"
-#include "environment/environment.hpp"
+#include "frame/camera.hpp"
+#include "io/environment.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/error_metrics.hpp"
 #include "ibl/reference.hpp"

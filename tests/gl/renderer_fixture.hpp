@@ -4,9 +4,9 @@
 #include <string>
 
 #include "bake/bake_job.hpp"
-#include "environment/environment.hpp"
+#include "io/environment.hpp"
 #include "gl_test_fixture.hpp"
-#include "renderer.hpp"
+#include "frame/renderer.hpp"
 
 namespace iblab::testing {
 

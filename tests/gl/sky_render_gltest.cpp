@@ -7,9 +7,9 @@
 
 #include <glm/glm.hpp>
 
-#include "environment/environment.hpp"
+#include "io/environment.hpp"
 #include "gl_test_fixture.hpp"
-#include "renderer.hpp"
+#include "frame/renderer.hpp"
 
 namespace iblab {
 namespace {

@@ -4,11 +4,11 @@
 #include <string>
 
 #include "bake/bake_job.hpp"
-#include "environment/environment.hpp"
+#include "io/environment.hpp"
 #include "gl/handles.hpp"
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
-#include "renderer.hpp"
+#include "frame/renderer.hpp"
 #include "scene/gltf_model.hpp"
 
 namespace iblab {

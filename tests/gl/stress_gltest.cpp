@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "gl_test_fixture.hpp"
-#include "renderer.hpp"
-#include "stress/stress_suite.hpp"
+#include "frame/renderer.hpp"
+#include "lab/stress_suite.hpp"
 
 namespace iblab {
 namespace {

@@ -10,7 +10,7 @@
 #include <optional>
 #include <string_view>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 
 namespace iblab::scene_detail {
 namespace {

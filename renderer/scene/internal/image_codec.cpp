@@ -5,7 +5,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include "environment/error.hpp"
+#include "io/error.hpp"
 #include "scene/internal/gltf_document.hpp"
 
 namespace iblab::scene_detail {

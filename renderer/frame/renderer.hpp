@@ -1,0 +1,211 @@
+#pragma once
+// The frame renderer: environment, bake and scene in, tone-mapped frame out. Its public
+// interface hides GL so that the UI and the app never issue GL calls; it needs a current
+// 4.5 context.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ibl/error_metrics.hpp"
+#include "ibl/image.hpp"
+#include "frame/settings.hpp"
+
+namespace iblab {
+
+namespace gl {
+class ShaderLibrary;
+}
+namespace bake {
+struct BakeResult;
+}
+struct ModelData;
+
+struct FrameReadback {
+    int width = 0;
+    int height = 0;
+    // Linear HDR before exposure and tone mapping, bottom row first. In the HDR frame, alpha
+    // is the fraction of the pixel's MSAA samples covered by surfaces (the sky's are not):
+    // 1 inside a surface, 0 on the background, in between on silhouettes.
+    std::vector<float> rgba;
+};
+
+struct DisplayReadback {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba; // sRGB-encoded 8-bit, bottom row first
+};
+
+struct SceneInfo {
+    std::size_t draws = 0;
+    std::size_t gpuBytes = 0;
+    glm::vec3 centre{0.0f};      // of the bounding box, for framing the camera
+    glm::vec3 halfExtents{1.0f};
+};
+
+// What the texel under the cursor of a debug view holds.
+struct TexelProbe {
+    bool valid = false;
+    std::string text; // "mip 2 (roughness 0.50), face +Z, texel (12, 30): 0.412 0.380 0.301"
+};
+
+// The mean radiance over the central disc of one sphere of a procedural scene.
+struct SphereReading {
+    glm::vec2 pixel{0.0f}; // projected centre, y up
+    glm::vec3 radiance{0.0f};
+    float metallic = 0.0f;  // the draw's own factors (the grid's), else the sliders'
+    float roughness = 0.0f;
+};
+
+struct ScreenLabel {
+    glm::vec2 pixel{0.0f}; // y up
+    std::string text;
+    bool title = false;
+};
+
+// The reference renderer's G-buffer layers (what the mesh pass leaves for the integral),
+// for read-back: N and V are in the environment's frame (its yaw undone).
+enum class ReferenceLayer {
+    Normal,    // N, coverage (1 on surfaces, 0 on the background)
+    View,      // V, perceptual roughness
+    Specular,  // F0, metallic
+    BaseColor, // base colour, occlusion
+    Emissive,
+    Count
+};
+
+// How the reference integral is cut into slices: one slice sums the rows of one band of
+// the environment for one tileSize x tileSize tile of pixels. rowsPerSlice 0 sizes the band
+// so that a slice is about 2^21 texel evaluations. The result does not depend on either.
+struct ReferenceSlicing {
+    int tileSize = 32;
+    int rowsPerSlice = 0;
+    bool operator==(const ReferenceSlicing&) const = default;
+};
+
+struct ReferenceStatus {
+    bool current = false;  // a reference of these settings and size is under way or done
+    bool complete = false;
+    float progress = 0.0f; // fraction of the slices done
+    int environmentWidth = 0; // of the environment it sums over (after downsampling)
+    int environmentHeight = 0;
+    double texelDegrees = 0.0;         // angular width of one of its texels at the equator
+    double minResolvedRoughness = 0.0; // referenceMinResolvedRoughness: below it, it is not converged
+};
+
+// The error of the last frame against the reference, over surface pixels. With the split
+// view, `left` covers the pixels left of the divider (settings A) and `right` the others
+// (settings B); without it, `left` covers the whole frame.
+struct ErrorReport {
+    bool valid = false; // false until a complete reference of the frame's settings and size exists
+    ErrorMetrics left;
+    std::optional<ErrorMetrics> right;
+};
+
+// The first pixel column that shows settings B in the split view of a frame width wide.
+int splitColumn(const ViewSettings& view, int width);
+
+class Renderer {
+public:
+    explicit Renderer(std::filesystem::path shaderDirectory);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Uploads an equirect environment (with mips) for the background. The previous one
+    // stays until this returns.
+    void setEnvironment(const ImageRGB32F& equirect);
+    // The baked IBL that lit surfaces use; until one is set only the background is drawn.
+    void setBake(std::shared_ptr<const bake::BakeResult> bake);
+    bool hasBake() const;
+    // A bake of builtin:white used by ViewMode::Furnace (the app makes it on demand).
+    void setFurnaceBake(std::shared_ptr<const bake::BakeResult> bake);
+    bool hasFurnaceBake() const;
+    // After a frame: per-sphere readings of the HDR frame (the furnace view prints them).
+    std::vector<SphereReading> measureSpheres(const FrameSettings& settings) const;
+    // A loaded glTF model for SceneKind::Model (uploads meshes and textures).
+    void setModel(const ModelData& model, const std::string& path);
+    // Counts the calls above that change what a frame shows besides its settings
+    // (setEnvironment, setBake, setFurnaceBake, setModel). Accumulation restarts when it
+    // moves; the app may key its own "is this frame final" on it too.
+    std::uint64_t contentRevision() const;
+
+    // Renders the HDR frame and its tone-mapped display image at the given size. With the
+    // split view, pixels from splitColumn on are rendered with view.compare as sampling.
+    // ViewMode::Error shows the frame's error in false colour once advanceReference has
+    // completed the reference of these settings and size, and the plain frame until then.
+    // resolutionScale < 1 renders fewer pixels (the view is scaled up when presented), for
+    // interaction with expensive settings; accumulate averages successive frames of the
+    // same settings and content revision with rotated sample sets (progressive refinement
+    // of the sampled method), except where keepsExactSampleCount holds (for both sides of
+    // the split view): those frames stay one set of N samples per pixel. The lit frame is
+    // drawn with ViewSettings::msaaSamples per pixel and resolved.
+    struct Options {
+        float resolutionScale = 1.0f;
+        bool accumulate = false;
+    };
+    void renderFrame(const FrameSettings& settings, int width, int height, const Options& options);
+    void renderFrame(const FrameSettings& settings, int width, int height) { renderFrame(settings, width, height, Options{}); }
+    // Frames averaged into the current image (1 without accumulation).
+    int accumulatedFrames() const;
+    // Whether the last frame drew anything with the sampled method and a sample set that
+    // rotates under accumulation (so later frames differ); a frame without it is final
+    // after one render.
+    bool lastFrameWasSampled() const;
+    // MSAA samples per pixel of the last frame: msaaSamples as the driver allocated it
+    // (clamped to the most it supports, or raised to the next count it has); 1 for the
+    // debug views of baked data.
+    int frameSamples() const;
+
+    // The reference renderer: the frame of these settings at this size with the full
+    // integral over the (downsampled) environment's texels, no split sum and no N = V = R.
+    // Starts it when the settings, size, slicing, environment or model changed (the mesh
+    // pass fills a G-buffer at once), then runs slices until `budget` is spent (glFinish
+    // after each, so the budget is GPU time) or it is complete; a complete reference is
+    // resolved into an RGBA32F frame. Needs a bake, like any lit frame.
+    ReferenceStatus advanceReference(const FrameSettings& settings, int width, int height, std::chrono::steady_clock::duration budget,
+                                     const ReferenceSlicing& slicing = {});
+    ReferenceStatus referenceStatus(const FrameSettings& settings, int width, int height) const;
+    FrameReadback readReferenceFrame() const; // of the last complete reference
+    FrameReadback readReferenceLayer(ReferenceLayer layer) const;
+    // Compares the last rendered frame with the reference (ViewSettings::errorSpace decides
+    // linear HDR or display values); invalid unless the reference of that frame is complete.
+    // Measures the pixels that the reference covers at their centre and the frame's
+    // surfaces cover entirely (isMeasuredPixel): an MSAA edge pixel mixes in the sky, which
+    // the single-sampled reference does not, so it is left out like the background.
+    ErrorReport measureError(const FrameSettings& settings) const;
+
+    SceneInfo sceneInfo(const FrameSettings& settings);
+    std::vector<float> prefilterMipRoughness() const; // the roughness of each prefiltered mip; empty before the first bake
+    // The scene's text anchors (grid axes) projected for a width x height frame.
+    std::vector<ScreenLabel> sceneLabels(const FrameSettings& settings, int width, int height) const;
+
+    // The texel of the debug view under pixel (x, y) (y up) of a width x height frame.
+    TexelProbe probe(const FrameSettings& settings, int width, int height, float x, float y) const;
+
+    // GL name of the display texture (RGBA8, sRGB-encoded) for ImGui::Image or a blit.
+    unsigned int displayTexture() const;
+    // Copies the display image into a rectangle (y up) of a framebuffer (0: the window's).
+    void presentTo(unsigned int framebuffer, int x0, int y0, int x1, int y1) const;
+
+    // Binds the display image as the draw framebuffer (viewport included), for overlays
+    // drawn into it after renderFrame.
+    void bindDisplayFramebuffer() const;
+
+    FrameReadback readHdrFrame() const;
+    DisplayReadback readDisplayImage() const;
+
+    // The shader library, for passes that run outside a frame (the bake).
+    gl::ShaderLibrary& shaders();
+    // Recompiles shaders edited on disk; returns compile errors (the old shaders stay).
+    std::vector<std::string> reloadShaders();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace iblab

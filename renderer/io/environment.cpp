@@ -1,0 +1,496 @@
+#include "io/environment.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <mutex>
+#include <optional>
+#include <sstream>
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include "ibl/equirect.hpp"
+
+#include "io/builtin_environments.hpp"
+#include "io/error.hpp"
+#include "ibl/conventions.hpp"
+
+namespace iblab {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Rec. 709 / sRGB-primaries luminance weights.
+constexpr double kLuminance[3] = {0.2126, 0.7152, 0.0722};
+
+std::string lower(std::string s)
+{
+    for (char& c : s)
+        if (c >= 'A' && c <= 'Z')
+            c = char(c - 'A' + 'a');
+    return s;
+}
+
+std::string formatShort(double v, int precision = 3)
+{
+    std::ostringstream out;
+    out.precision(precision);
+    out << v;
+    return out.str();
+}
+
+// Streams rows through the repair, accumulating the report. Row y of an H-row map.
+class TexelRepairer {
+public:
+    TexelRepairer(int width, int height) : width_(width), height_(height) {}
+
+    void row(float* rgb, int y)
+    {
+        const double omega = equirectTexelSolidAngle(y, width_, height_);
+        double positive = 0.0;
+        double negative = 0.0;
+        for (int x = 0; x < width_; ++x) {
+            bool repaired = false;
+            for (int c = 0; c < 3; ++c) {
+                float& v = rgb[std::size_t(x) * 3 + std::size_t(c)];
+                if (std::isnan(v)) {
+                    ++report.nanComponents;
+                } else if (std::isinf(v)) {
+                    ++(v > 0 ? report.positiveInfComponents : report.negativeInfComponents);
+                } else if (v < 0.0f) {
+                    ++report.negativeComponents;
+                    report.mostNegative = std::min(report.mostNegative, double(v));
+                    negative += kLuminance[c] * -double(v);
+                } else {
+                    positive += kLuminance[c] * double(v);
+                    if (v == 0.0f)
+                        v = 0.0f; // -0.0 -> +0.0
+                    continue;
+                }
+                v = 0.0f;
+                repaired = true;
+            }
+            report.repairedTexels += repaired ? 1 : 0;
+        }
+        report.positiveEnergy += omega * positive;
+        report.negativeEnergy += omega * negative;
+    }
+
+    TexelRepairReport report;
+
+private:
+    int width_;
+    int height_;
+};
+
+// Energy-preserving equirect downsampling. Destination texel (i, j) is the solid-angle
+// weighted mean of the source texels it overlaps: horizontally by overlap length (solid
+// angle is uniform in u), vertically by the overlap in cos(theta). The sum of L * Omega
+// over the map is therefore unchanged, and unlike Lanczos there are no negative lobes
+// to ring around a sun. Rows are fed one at a time, so a huge file never sits in memory.
+class EquirectDownsampler {
+public:
+    EquirectDownsampler(int srcWidth, int srcHeight, ImageRGB32F& dst)
+        : srcHeight_(srcHeight), dst_(dst), rowTmp_(std::size_t(dst.width) * 3)
+    {
+        const double scale = double(srcWidth) / dst.width;
+        for (int i = 0; i < dst.width; ++i) {
+            const double a = i * scale;
+            const double b = std::min(double(srcWidth), (i + 1) * scale);
+            Span span;
+            span.first = int(std::floor(a));
+            const int last = std::min(srcWidth - 1, int(std::ceil(b)) - 1);
+            for (int c = span.first; c <= last; ++c)
+                span.weights.push_back(float((std::min(b, c + 1.0) - std::max(a, double(c))) / scale));
+            columns_.push_back(std::move(span));
+        }
+    }
+
+    void addRow(const float* src, int y)
+    {
+        std::fill(rowTmp_.begin(), rowTmp_.end(), 0.0f);
+        for (int i = 0; i < dst_.width; ++i) {
+            const Span& span = columns_[std::size_t(i)];
+            float* out = &rowTmp_[std::size_t(i) * 3];
+            for (std::size_t k = 0; k < span.weights.size(); ++k) {
+                const float* p = src + (std::size_t(span.first) + k) * 3;
+                for (int c = 0; c < 3; ++c)
+                    out[c] += span.weights[k] * p[c];
+            }
+        }
+        const double s0 = kPi * y / srcHeight_;
+        const double s1 = kPi * (y + 1) / srcHeight_;
+        const int h = dst_.height;
+        const int j0 = std::max(0, int(std::floor(s0 / kPi * h)));
+        const int j1 = std::min(h - 1, int(std::ceil(s1 / kPi * h)));
+        for (int j = j0; j <= j1; ++j) {
+            const double d0 = kPi * j / h;
+            const double d1 = kPi * (j + 1) / h;
+            const double t0 = std::max(s0, d0);
+            const double t1 = std::min(s1, d1);
+            if (t1 <= t0)
+                continue;
+            const float w = float((std::cos(t0) - std::cos(t1)) / (std::cos(d0) - std::cos(d1)));
+            float* out = &dst_.texels[dst_.offset(0, j)];
+            for (std::size_t k = 0; k < rowTmp_.size(); ++k)
+                out[k] += w * rowTmp_[k];
+        }
+    }
+
+private:
+    struct Span {
+        int first = 0;
+        std::vector<float> weights;
+    };
+    int srcHeight_;
+    ImageRGB32F& dst_;
+    std::vector<Span> columns_;
+    std::vector<float> rowTmp_;
+};
+
+enum class Encoding { Linear, Srgb, Gamma };
+
+float srgbToLinear(float v)
+{
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+// "1536x512 is 3:1", or "1000x431 is 2.32:1" when the reduced ratio is not small.
+std::string aspectText(int w, int h)
+{
+    const int g = std::gcd(w, h);
+    std::string text = std::to_string(w) + "x" + std::to_string(h) + " is ";
+    if (w / g <= 32 && h / g <= 32)
+        return text + std::to_string(w / g) + ":" + std::to_string(h / g);
+    return text + formatShort(double(w) / h) + ":1";
+}
+
+std::string oiioError(const OIIO::ImageInput* in, const char* fallback)
+{
+    std::string e = in ? in->geterror() : OIIO::geterror();
+    if (e.empty())
+        e = OIIO::geterror();
+    return e.empty() ? std::string(fallback) : e;
+}
+
+// OpenEXR 3.1 allocates each header attribute at the size the file claims before reading it,
+// so a 41-byte file claiming a 1.8 GB string attribute makes it allocate 1.8 GB (found by
+// scripts/fuzz.sh; tests/fuzz/corpus/environment/exr-attribute-claims-gigabytes). Walk the
+// attribute list first (name, type, int32 size, payload; an empty name ends a header) and
+// refuse any size that the rest of the file cannot hold. Multi-part files list several
+// headers, each ended by an empty name, and the list by one more.
+void checkExrAttributeSizes(const std::string& path, std::uintmax_t fileSize)
+{
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    std::uint32_t version = 0;
+    if (!in.read(magic, 4) || std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0)
+        return; // not an EXR: nothing to check
+    if (!in.read(reinterpret_cast<char*>(&version), 4))
+        throw Error(path, "truncated EXR header");
+    const bool multiPart = (version & 0x1000u) != 0;
+    auto readName = [&](std::string& name) {
+        name.clear();
+        for (char c; in.get(c);) {
+            if (c == '\0') return true;
+            if (name.size() >= 255) throw Error(path, "corrupt EXR header: a name longer than 255 bytes");
+            name += c;
+        }
+        throw Error(path, "truncated EXR header");
+    };
+    for (std::string name, type;;) {
+        readName(name);
+        if (name.empty()) {
+            // The end of a header. A single-part file has one; a multi-part list ends with an
+            // empty header, i.e. a second empty name in a row.
+            if (!multiPart || in.peek() == '\0') return;
+            continue;
+        }
+        readName(type);
+        std::int32_t size = 0;
+        if (!in.read(reinterpret_cast<char*>(&size), 4))
+            throw Error(path, "truncated EXR header");
+        const std::uintmax_t position = std::uintmax_t(in.tellg());
+        if (size < 0 || std::uintmax_t(size) > fileSize - std::min(fileSize, position))
+            throw Error(path, "corrupt EXR header: attribute '" + name + "' claims " + std::to_string(size) + " bytes, more than the " +
+                                  std::to_string(fileSize - std::min(fileSize, position)) + " left in the file");
+        in.seekg(size, std::ios::cur);
+    }
+}
+
+// libpng prints "libpng error: ..." to stderr itself although OpenImageIO installs an error
+// handler: the handler returns, so libpng falls back to its default one, which prints before
+// it unwinds. OpenImageIO reports the same text through geterror(), which our one-line error
+// already carries, so the print only breaks the one-line contract. While a file is read,
+// stderr goes to a temporary file; afterwards every line except libpng's is written back, so
+// no one else's output is lost (only delayed). fd 2 is process-wide: one reader at a time.
+class LibpngStderrFilter {
+public:
+    LibpngStderrFilter() : lock_(processMutex())
+    {
+        std::fflush(stderr);
+        capture_ = std::tmpfile();
+        if (!capture_) return;
+        savedStderr_ = ::dup(STDERR_FILENO);
+        if (savedStderr_ < 0 || ::dup2(::fileno(capture_), STDERR_FILENO) < 0) {
+            if (savedStderr_ >= 0) ::close(savedStderr_);
+            std::fclose(capture_);
+            capture_ = nullptr;
+        }
+    }
+    ~LibpngStderrFilter()
+    {
+        if (!capture_) return;
+        std::fflush(stderr);
+        ::dup2(savedStderr_, STDERR_FILENO);
+        ::close(savedStderr_);
+        std::rewind(capture_);
+        char line[1024];
+        while (std::fgets(line, sizeof line, capture_))
+            if (std::strncmp(line, "libpng ", 7) != 0) std::fputs(line, stderr);
+        std::fclose(capture_);
+    }
+    LibpngStderrFilter(const LibpngStderrFilter&) = delete;
+    LibpngStderrFilter& operator=(const LibpngStderrFilter&) = delete;
+
+private:
+    static std::mutex& processMutex()
+    {
+        static std::mutex mutex;
+        return mutex;
+    }
+    std::lock_guard<std::mutex> lock_;
+    std::FILE* capture_ = nullptr;
+    int savedStderr_ = -1;
+};
+
+Environment loadFile(const std::string& path, const EnvironmentLoadOptions& options)
+{
+    const LibpngStderrFilter quietLibpng;
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status))
+        throw Error(path, "no such file");
+    if (fs::is_directory(status))
+        throw Error(path, "is a directory, not an image file");
+    if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0 && !ec)
+        throw Error(path, "empty file (0 bytes)");
+
+    checkExrAttributeSizes(path, fs::file_size(path, ec));
+    auto in = OIIO::ImageInput::open(path);
+    if (!in)
+        throw Error(path, "cannot read as an image: " + oiioError(nullptr, "unknown format"));
+    const OIIO::ImageSpec spec = in->spec();
+
+    // Header checks, all before allocating anything.
+    if (spec.deep)
+        throw Error(path, "deep images are not supported");
+    if (spec.width <= 0 || spec.height <= 0)
+        throw Error(path, "image has no pixels (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ")");
+    if (spec.depth > 1)
+        throw Error(path, "volume images are not supported (depth " + std::to_string(spec.depth) + ")");
+    if (spec.nchannels < 1)
+        throw Error(path, "image has no channels");
+    const std::uint64_t texels = std::uint64_t(spec.width) * std::uint64_t(spec.height);
+    if (texels > kMaxEnvironmentTexels)
+        throw Error(path, std::to_string(spec.width) + "x" + std::to_string(spec.height) + " is " +
+                              std::to_string(texels) + " texels, more than the limit of " +
+                              std::to_string(kMaxEnvironmentTexels) + " (2^28)");
+    // Below this an "environment" is a handful of colours, and 1x1 passes the aspect check
+    // by rounding: refuse it rather than bake a cube of 1-texel faces.
+    if (spec.width < kMinEnvironmentWidth || spec.height < kMinEnvironmentWidth / 2)
+        throw Error(path, "too small for an environment: " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                              " (at least " + std::to_string(kMinEnvironmentWidth) + "x" + std::to_string(kMinEnvironmentWidth / 2) + ")");
+    // Equirect maps are 2:1; allow one texel of rounding either way.
+    if (std::abs(std::int64_t(spec.width) - 2 * std::int64_t(spec.height)) > 1)
+        throw Error(path, "not equirectangular: " + aspectText(spec.width, spec.height) + ", expected 2:1");
+    if (options.maxWidth < 2 || options.maxWidth % 2 != 0)
+        throw Error(path, "invalid size cap maxWidth=" + std::to_string(options.maxWidth) + " (must be even and >= 2)");
+
+    const int srcW = spec.width;
+    const int srcH = spec.height;
+    const bool downsample = srcW > options.maxWidth || srcH > options.maxWidth / 2;
+    Environment env;
+    env.source = path;
+    env.image = downsample ? ImageRGB32F(options.maxWidth, options.maxWidth / 2) : ImageRGB32F(srcW, srcH);
+
+    // Encoding of the stored values.
+    const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(spec.format.basetype);
+    const bool eightBit = base == OIIO::TypeDesc::UINT8 || base == OIIO::TypeDesc::INT8;
+    const bool integer = eightBit || base == OIIO::TypeDesc::UINT16 || base == OIIO::TypeDesc::INT16;
+    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+    const std::string cs = lower(colorSpace);
+    Encoding encoding = Encoding::Linear;
+    float gamma = 1.0f;
+    if (cs.starts_with("srgb") && cs != "srgb_linear" && cs != "srgb-linear") {
+        encoding = Encoding::Srgb;
+    } else if (cs.starts_with("gamma")) {
+        // OpenImageIO spells it "Gamma2.2" or "GammaCorrected2.2".
+        const std::size_t digit = cs.find_first_of("0123456789");
+        gamma = digit == std::string::npos ? 2.2f : std::strtof(cs.c_str() + digit, nullptr);
+        encoding = gamma > 0.0f && gamma != 1.0f ? Encoding::Gamma : Encoding::Linear;
+    } else if (cs.empty() && integer) {
+        encoding = Encoding::Srgb; // integer images that name no colour space are display-referred
+    } else if (!cs.empty() && cs.find("lin") == std::string::npos && cs != "raw" && cs.find("aces") == std::string::npos &&
+               cs != "scene_linear") {
+        env.warnings.push_back("unknown colour space '" + colorSpace + "', treated as linear");
+    }
+
+    // Read in bands of rows (whole tile rows for tiled files), decode, repair, store.
+    const int channelsRead = spec.nchannels >= 3 ? 3 : 1; // grey (+alpha) -> replicate
+    const int band = spec.tile_width > 0 ? spec.tile_height * std::max(1, 64 / std::max(1, spec.tile_height)) : 64;
+    std::vector<float> buffer(std::size_t(band) * std::size_t(srcW) * std::size_t(channelsRead));
+    std::vector<float> row(std::size_t(srcW) * 3);
+    TexelRepairer repairer(srcW, srcH);
+    std::optional<EquirectDownsampler> downsampler;
+    if (downsample)
+        downsampler.emplace(srcW, srcH, env.image);
+    float maxValue = 0.0f;
+    for (int y0 = 0; y0 < srcH; y0 += band) {
+        const int y1 = std::min(srcH, y0 + band);
+        const bool ok = spec.tile_width > 0
+                            ? in->read_tiles(0, 0, spec.x, spec.x + srcW, spec.y + y0, spec.y + y1, spec.z, spec.z + 1, 0,
+                                             channelsRead, OIIO::TypeFloat, buffer.data())
+                            : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channelsRead,
+                                                 OIIO::TypeFloat, buffer.data());
+        if (!ok || in->has_error())
+            throw Error(path, "cannot read pixels (truncated or corrupt file?): " +
+                                  oiioError(in.get(), "no reason given"));
+        for (int y = y0; y < y1; ++y) {
+            const float* src = &buffer[std::size_t(y - y0) * std::size_t(srcW) * std::size_t(channelsRead)];
+            for (int x = 0; x < srcW; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    float v = src[std::size_t(x) * std::size_t(channelsRead) + std::size_t(channelsRead == 3 ? c : 0)];
+                    if (encoding == Encoding::Srgb)
+                        v = srgbToLinear(v);
+                    else if (encoding == Encoding::Gamma && v > 0.0f)
+                        v = std::pow(v, gamma);
+                    row[std::size_t(x) * 3 + std::size_t(c)] = v;
+                }
+            repairer.row(row.data(), y);
+            for (float v : row)
+                maxValue = std::max(maxValue, v);
+            if (downsampler)
+                downsampler->addRow(row.data(), y);
+            else
+                std::memcpy(&env.image.texels[env.image.offset(0, y)], row.data(), row.size() * sizeof(float));
+        }
+    }
+    in->close();
+
+    env.repair = repairer.report;
+    if (eightBit || maxValue <= 1.0f) {
+        std::string w = eightBit ? "8-bit input" : "no value above 1 (max " + formatShort(maxValue) + ")";
+        w += ": limited dynamic range, not an HDR environment; lighting will look flat";
+        if (encoding == Encoding::Srgb)
+            w += " (decoded from sRGB to linear)";
+        else if (encoding == Encoding::Gamma)
+            w += " (decoded from gamma " + formatShort(gamma) + " to linear)";
+        env.warnings.push_back(w);
+    }
+    if (downsample)
+        env.warnings.push_back("downsampled from " + std::to_string(srcW) + "x" + std::to_string(srcH) + " to " +
+                               std::to_string(env.image.width) + "x" + std::to_string(env.image.height) +
+                               " (size cap " + std::to_string(options.maxWidth) + " wide)");
+    if (!env.repair.clean())
+        env.warnings.push_back(env.repair.summary());
+    env.contentHash = contentHash(env.image);
+    return env;
+}
+
+Environment loadBuiltin(const std::string& specText, const EnvironmentLoadOptions& options)
+{
+    const BuiltinSpec spec = parseBuiltinSpec(specText);
+    const int width = int(spec.get("width"));
+    if (width > options.maxWidth)
+        throw Error(specText, "width " + std::to_string(width) + " exceeds the size cap of " +
+                                  std::to_string(options.maxWidth));
+    Environment env;
+    env.source = spec.canonical();
+    env.image = makeBuiltinEnvironment(spec);
+    env.repair = repairTexels(env.image);
+    if (!env.repair.clean())
+        env.warnings.push_back(env.repair.summary());
+    env.contentHash = contentHash(env.image);
+    return env;
+}
+
+} // namespace
+
+std::string TexelRepairReport::summary() const
+{
+    if (clean())
+        return "no invalid texels";
+    std::ostringstream out;
+    out << "repaired " << repairedComponents() << " texel components in " << repairedTexels << " texels (set to 0): "
+        << negativeComponents << " negative";
+    if (negativeComponents > 0)
+        out << " down to " << formatShort(mostNegative, 4) << ", " << formatShort(100.0 * negativeEnergyShare(), 3)
+            << "% of the positive energy";
+    out << "; " << nanComponents << " NaN; " << positiveInfComponents << " +Inf; " << negativeInfComponents << " -Inf";
+    return out.str();
+}
+
+TexelRepairReport repairTexels(ImageRGB32F& image)
+{
+    TexelRepairer repairer(image.width, image.height);
+    for (int y = 0; y < image.height; ++y)
+        repairer.row(&image.texels[image.offset(0, y)], y);
+    return repairer.report;
+}
+
+std::uint64_t contentHash(const ImageRGB32F& image)
+{
+    std::uint64_t h = 14695981039346656037ull;
+    const auto mix = [&h](std::uint32_t word) {
+        for (int i = 0; i < 4; ++i) {
+            h ^= (word >> (8 * i)) & 0xffu; // little-endian byte order, whatever the host
+            h *= 1099511628211ull;
+        }
+    };
+    mix(std::uint32_t(image.width));
+    mix(std::uint32_t(image.height));
+    for (float v : image.texels)
+        mix(std::bit_cast<std::uint32_t>(v));
+    return h;
+}
+
+Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOptions& options)
+{
+    if (spec.empty())
+        throw Error("(no environment)", "empty file name");
+    if (isBuiltinSpec(spec))
+        return loadBuiltin(spec, options);
+    // The image libraries below OpenImageIO throw on their own (std::bad_alloc for a header
+    // that asks for more than the machine has, std::exception from OpenEXR): every way out
+    // of a file load is one Error naming the file.
+    return rethrowAsError(spec, "reading (a corrupt header claiming a huge size?)", "cannot read", [&] { return loadFile(spec, options); });
+}
+
+std::string defaultEnvironmentPath(const std::string& assetDir)
+{
+    return (fs::path(assetDir) / "environments" / "courtyard.exr").string();
+}
+
+std::vector<std::string> galleryEnvironments(const std::string& assetDir)
+{
+    std::vector<std::string> paths;
+    std::error_code ec;
+    const fs::path dir = fs::path(assetDir) / "environments";
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path& p = it->path();
+        const std::string name = p.filename().string();
+        if (!name.empty() && name[0] != '.' && lower(p.extension().string()) == ".exr" && it->is_regular_file(ec))
+            paths.push_back(p.string());
+    }
+    std::sort(paths.begin(), paths.end());
+    return paths;
+}
+
+} // namespace iblab
