@@ -96,13 +96,14 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
     shaders_.program({kDownsample}, {{"CUBE", "1"}, {"FORMAT", imageFormatName(format)}});
     if (settings.sh.device == ShDevice::Gpu)
         shaders_.program({kSh9Project});
-    if (settings.riemann.enabled)
-        shaders_.program({kIrradianceRiemann});
-    if (settings.importance.enabled)
-        shaders_.program({kIrradianceImportance});
-    if (settings.moments.enabled) {
+    switch (settings.irradiance) {
+    case IrradianceMethod::None: break;
+    case IrradianceMethod::Riemann: shaders_.program({kIrradianceRiemann}); break;
+    case IrradianceMethod::Importance: shaders_.program({kIrradianceImportance}); break;
+    case IrradianceMethod::Moments:
         shaders_.program({kIrradianceMomentsBuild}, {{"FORMAT", imageFormatName(format)}});
         momentsProgram(settings.moments.sourceFaceSize);
+        break;
     }
     shaders_.program({kPrefilter});
     if (lut)

@@ -167,7 +167,7 @@ struct Renderer::Impl {
         const bake::BakeResult& b = *active;
         glBindTextureUnit(kUnitEnvironmentCube, b.environmentCube.id());
         glBindTextureUnit(kUnitPrefiltered, b.prefiltered.id());
-        const bake::BakedTexture& irradiance = b.irradianceCube();
+        const bake::BakedTexture& irradiance = b.irradianceCube;
         glBindTextureUnit(kUnitIrradianceCube, irradiance.id());
         const bake::BakedTexture& lut = b.lut(settings.sampling.geometry) ? b.lut(settings.sampling.geometry)
                                                                          : b.lut(GeometryTerm::SchlickGGX) ? b.lut(GeometryTerm::SchlickGGX)

@@ -96,9 +96,7 @@ bake::BakeSettings benchBaseBake(bool quick)
 {
     bake::BakeSettings b = bake::defaultPreset();
     b.preset = quick ? "bench-quick" : "bench";
-    b.riemann.enabled = false;
-    b.importance.enabled = false;
-    b.moments.enabled = false;
+    b.irradiance = bake::IrradianceMethod::None; // the diffuse points choose theirs
     b.lut.schlickGgx = SamplingSettings{}.geometry == GeometryTerm::SchlickGGX;
     b.lut.heightCorrelatedSmith = !b.lut.schlickGgx;
     if (quick) {
@@ -169,7 +167,7 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.label = "diffuse irradiance cube, Riemann, sampleDelta " + formatNumber(delta);
         p.parameter = 1.0 / delta;
         p.bake = base;
-        p.bake.riemann.enabled = true;
+        p.bake.irradiance = bake::IrradianceMethod::Riemann;
         p.bake.riemann.sampleDelta = float(delta);
         if (quick) p.bake.riemann.faceSize = 16;
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
@@ -182,7 +180,7 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.label = "diffuse irradiance cube, cosine importance, " + std::to_string(samples) + " samples";
         p.parameter = samples;
         p.bake = base;
-        p.bake.importance.enabled = true;
+        p.bake.irradiance = bake::IrradianceMethod::Importance;
         p.bake.importance.samples = samples;
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
         points.push_back(p);
@@ -194,7 +192,7 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.label = "diffuse irradiance cube, moments of " + std::to_string(groups) + "^2 texel groups per face";
         p.parameter = groups;
         p.bake = base;
-        p.bake.moments.enabled = true;
+        p.bake.irradiance = bake::IrradianceMethod::Moments;
         p.bake.moments.sourceFaceSize = groups;
         if (quick) p.bake.moments.faceSize = 16;
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
@@ -236,9 +234,7 @@ std::vector<std::string> bakePhasesRead(const SweepPoint& point)
     std::vector<std::string> phases{"upload", "environment_cube"};
     if (point.sampling.method == ShadingMethod::SplitSum) phases.push_back("prefilter");
     if (point.sampling.diffuse == DiffuseSource::Sh9 || point.sampling.method == ShadingMethod::Sampled) phases.push_back("sh9");
-    else if (point.bake.moments.enabled) phases.push_back("irradiance_moments");
-    else if (point.bake.importance.enabled) phases.push_back("irradiance_importance");
-    else phases.push_back("irradiance_riemann");
+    else phases.push_back("irradiance_" + std::string(enumName(point.bake.irradiance)));
     return phases;
 }
 
@@ -523,7 +519,9 @@ namespace {
 std::string diffuseName(const SweepPoint& p)
 {
     if (p.sampling.diffuse == DiffuseSource::Sh9 || p.sampling.method == ShadingMethod::Sampled) return p.plainSh ? "sh9" : "sh9-windowed";
-    return p.bake.moments.enabled ? "moment-cube" : p.bake.importance.enabled ? "importance-cube" : "riemann-cube";
+    return p.bake.irradiance == bake::IrradianceMethod::Moments      ? "moment-cube"
+           : p.bake.irradiance == bake::IrradianceMethod::Importance ? "importance-cube"
+                                                                     : "riemann-cube";
 }
 
 bool pdfFiltering(const SweepPoint& p)
@@ -566,14 +564,14 @@ std::string benchCsvText(const BenchReport& report)
                                            s.family,
                                            csvField(s.series),
                                            csvField(s.label),
-                                           std::string(shadingMethodName(s.sampling.method)),
+                                           std::string(enumName(s.sampling.method)),
                                            diffuseName(s),
                                            splitSum ? std::to_string(s.bake.prefilter.faceSize) : "",
                                            splitSum ? std::to_string(s.bake.prefilter.samples) : "",
                                            pdfFiltering(s) ? "1" : "0",
                                            splitSum ? "" : std::to_string(s.sampling.samples),
-                                           s.bake.riemann.enabled ? formatNumber(s.bake.riemann.sampleDelta) : "",
-                                           s.bake.importance.enabled ? std::to_string(s.bake.importance.samples) : "",
+                                           s.bake.irradiance == bake::IrradianceMethod::Riemann ? formatNumber(s.bake.riemann.sampleDelta) : "",
+                                           s.bake.irradiance == bake::IrradianceMethod::Importance ? std::to_string(s.bake.importance.samples) : "",
                                            formatNumber(p.bakeMilliseconds, "%.3f"),
                                            formatNumber(p.frameMilliseconds, "%.3f"),
                                            formatNumber(p.costMilliseconds, "%.3f"),
@@ -601,7 +599,7 @@ std::string benchJsonText(const BenchReport& report)
     j["renderer"] = report.renderer;
     j["timing_method"] = "steady clock around glFinish, median of the repeats";
     j["options"] = {{"quick", o.quick},
-                    {"scene", sceneKindName(o.frame.scene.kind)},
+                    {"scene", enumName(o.frame.scene.kind)},
                     {"width", o.width},
                     {"height", o.height},
                     {"repeats", o.repeats},
@@ -610,7 +608,7 @@ std::string benchJsonText(const BenchReport& report)
                     {"cost", "bake_ms + " + std::to_string(o.costFrames) + " x frame_ms"},
                     {"error", "relative RMSE, linear HDR, surface pixels with roughness >= min_resolved_roughness; null where there is none (references' not_measured)"},
                     {"display_error", "largest channel difference after exposure, tone mapping and sRGB encoding, in 8-bit steps, same pixels"},
-                    {"tone_map", std::string(toneMapOperatorName(o.frame.toneMap.op)) + ", exposure " + formatNumber(o.frame.toneMap.exposureEv) + " EV"}};
+                    {"tone_map", std::string(enumName(o.frame.toneMap.op)) + ", exposure " + formatNumber(o.frame.toneMap.exposureEv) + " EV"}};
     for (const BenchEnvironment& e : o.environments) j["environments"].push_back({{"name", e.name}, {"spec", e.spec}});
     for (const ReferenceSummary& r : report.references) {
         nlohmann::ordered_json reference{{"environment", r.environment},
@@ -626,14 +624,14 @@ std::string benchJsonText(const BenchReport& report)
                                      {"family", s.family},
                                      {"series", s.series},
                                      {"label", s.label},
-                                     {"method", shadingMethodName(s.sampling.method)},
+                                     {"method", enumName(s.sampling.method)},
                                      {"diffuse", diffuseName(s)},
                                      {"pdf_mips", pdfFiltering(s)}};
         if (s.sampling.method == ShadingMethod::SplitSum)
             point["prefilter"] = {{"face", s.bake.prefilter.faceSize}, {"samples", s.bake.prefilter.samples}, {"levels", s.bake.prefilter.levels}};
         else point["sampled_n"] = s.sampling.samples;
-        if (s.bake.riemann.enabled) point["riemann_delta"] = s.bake.riemann.sampleDelta;
-        if (s.bake.importance.enabled) point["importance_samples"] = s.bake.importance.samples;
+        if (s.bake.irradiance == bake::IrradianceMethod::Riemann) point["riemann_delta"] = s.bake.riemann.sampleDelta;
+        if (s.bake.irradiance == bake::IrradianceMethod::Importance) point["importance_samples"] = s.bake.importance.samples;
         point["bake_phases"] = bakePhasesRead(s);
         point["bake_ms"] = p.bakeMilliseconds;
         point["frame_ms"] = p.frameMilliseconds;

@@ -279,8 +279,7 @@ BakeHealth measureBakeHealth(const std::string& name, const bake::BakeResult& re
 {
     BakeHealth health;
     health.environment = name;
-    for (const bake::BakedTexture* t : {&result.environmentCube, &result.prefiltered, &result.irradianceImportance, &result.irradianceRiemann,
-                                        &result.irradianceMoments}) {
+    for (const bake::BakedTexture* t : {&result.environmentCube, &result.prefiltered, &result.irradianceCube}) {
         if (!*t) continue;
         for (int level = 0; level < t->levels; ++level) countInvalid(bake::readCubeLevel(*t, level).texels, health);
     }
@@ -357,7 +356,7 @@ double shRelativeMinimum(const SH9Color& sh)
 LutBanding measureLut(const bake::BakedTexture& lut, int samples, GeometryTerm term)
 {
     LutBanding b;
-    b.geometry = std::string(geometryTermName(term));
+    b.geometry = std::string(enumName(term));
     b.size = lut.size;
     const bake::Image2D baked = bake::read2D(lut);
     const std::vector<glm::vec3> cpu = computeBrdfLut(lut.size, std::uint32_t(samples), term);
@@ -515,18 +514,18 @@ StressOptions defaultStressOptions(bool quick)
     o.quick = quick;
     o.bake = bake::defaultPreset();
     o.bake.preset = quick ? "stress-quick" : "stress";
-    o.bake.riemann.enabled = false;
+    // The default's moment cube is what shading reads (until this change an importance cube
+    // was baked beside it and never read).
+    o.bake.irradiance = bake::IrradianceMethod::Moments;
     if (quick) {
         o.environmentWidth = 64;
         o.frameSize = 32;
         o.gridCell = 32;
-        o.bake.importance = {.enabled = true, .faceSize = 8, .samples = 128, .mipFiltering = true, .mipBias = 0.0f};
         o.bake.prefilter = {.faceSize = 16, .levels = 5, .samples = 32, .sampleGrowth = 2.0f, .mipFiltering = true, .mipBias = 0.0f};
         // The LUT clamps roughness 1 to its last texel centre, 1 - 0.5 / size: at 32 that alone
         // moves the rough furnace by 5%, at 128 by about 1%. 128^2 x 256 costs ~0.1 s.
         o.bake.lut = {.size = 128, .samples = 256, .schlickGgx = false, .heightCorrelatedSmith = true};
     } else {
-        o.bake.importance = {.enabled = true, .faceSize = 16, .samples = 512, .mipFiltering = true, .mipBias = 0.0f};
         o.bake.prefilter = {.faceSize = 64, .levels = 5, .samples = 64, .sampleGrowth = 2.0f, .mipFiltering = true, .mipBias = 0.0f};
         o.bake.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     }
@@ -681,8 +680,8 @@ StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
                        kSeamWarn, kSeamFail, "jump across cube edges / step inside faces");
             report.seams.push_back(seam);
         }
-        if (result->irradianceCube()) {
-            SeamReading seam = measureSeams(bake::readCubeLevel(result->irradianceCube(), 0));
+        if (result->irradianceCube) {
+            SeamReading seam = measureSeams(bake::readCubeLevel(result->irradianceCube, 0));
             seam.environment = env.name;
             seam.texture = "irradiance";
             addFinding(report.findings, {"seams", env.name, "splitsum-irradiance-cube", "irradiance cube", seam.ratio, "", Verdict::Pass}, kSeamWarn,

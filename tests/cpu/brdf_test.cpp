@@ -142,8 +142,8 @@ TEST(Brdf, Fresnel)
 
 TEST(Brdf, GeometryTermNames)
 {
-    EXPECT_EQ(iblab::geometryTermName(GeometryTerm::SchlickGGX), "schlick-ggx");
-    EXPECT_EQ(iblab::geometryTermName(GeometryTerm::HeightCorrelatedSmith), "height-correlated-smith");
+    EXPECT_EQ(enumName(GeometryTerm::SchlickGGX), "schlick-ggx");
+    EXPECT_EQ(enumName(GeometryTerm::HeightCorrelatedSmith), "height-correlated-smith");
 }
 
 } // namespace
