@@ -211,7 +211,9 @@ std::unique_ptr<ShaderProgram> ShaderLibrary::build(const std::vector<std::strin
 
 std::filesystem::file_time_type ShaderLibrary::newestInput(const ShaderProgram& program) const
 {
-    std::filesystem::file_time_type newest{};
+    // From the clock's minimum, not its epoch: libstdc++'s file clock counts from 2174, so
+    // every real modification time is negative and a zero start would hide them all.
+    auto newest = std::filesystem::file_time_type::min();
     for (const auto& f : program.files()) {
         std::error_code ec;
         const auto t = std::filesystem::last_write_time(locate(roots_, f), ec);
