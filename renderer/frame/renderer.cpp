@@ -174,7 +174,9 @@ struct Renderer::Impl {
                                                                                                            : b.lut(GeometryTerm::HeightCorrelatedSmith);
         glBindTextureUnit(kUnitBrdfLut, lut.id());
         std::array<glm::vec3, 9> sh{};
-        for (std::size_t i = 0; i < 9; ++i) sh[i] = glm::vec3(b.sh.irradianceWindowed.c[i]);
+        // Plain or windowed SH9 is the settings' choice: the bake holds both and stays as it is.
+        const SH9Color& shIrradiance = settings.sampling.diffuse == DiffuseSource::Sh9Plain ? b.sh.irradiance : b.sh.irradianceWindowed;
+        for (std::size_t i = 0; i < 9; ++i) sh[i] = glm::vec3(shIrradiance.c[i]);
         glProgramUniform3fv(p.id(), p.uniformLocation("uShIrradiance"), 9, glm::value_ptr(sh[0]));
         p.set("uPrefilteredLevels", float(b.prefiltered.levels));
         p.set("uPrefilteredLayout", int(b.settings.prefilter.layout));

@@ -30,7 +30,8 @@ constexpr NameTable<BackgroundMode, 4> kBackgroundModes{{{BackgroundMode::Enviro
                                                          {BackgroundMode::Irradiance, "irradiance"},
                                                          {BackgroundMode::PrefilterMip, "prefilter-mip"},
                                                          {BackgroundMode::SolidColour, "solid"}}};
-constexpr NameTable<DiffuseSource, 2> kDiffuseSources{{{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
+constexpr NameTable<DiffuseSource, 3> kDiffuseSources{
+    {{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::Sh9Plain, "sh9-plain"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
 constexpr NameTable<GeometryTerm, 2> kGeometryTerms{
     {{GeometryTerm::SchlickGGX, "schlick"}, {GeometryTerm::HeightCorrelatedSmith, "correlated"}}};
 constexpr NameTable<ErrorSpace, 2> kErrorSpaces{{{ErrorSpace::Linear, "linear"}, {ErrorSpace::Display, "display"}}};

@@ -49,7 +49,9 @@ struct MaterialSettings {
 };
 
 enum class ShadingMethod { SplitSum, Sampled };
-enum class DiffuseSource { Sh9, IrradianceCube };
+// Sh9: the bake's SH9 irradiance as it windowed it (BakeSettings::sh.window); Sh9Plain: the
+// same projection without the window, so that its ringing can be seen.
+enum class DiffuseSource { Sh9, Sh9Plain, IrradianceCube };
 
 // The sampled method's largest N: the Hammersley table the renderer uploads holds this many.
 inline constexpr int kMaxSampleCount = 1024;
