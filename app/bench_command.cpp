@@ -1,4 +1,4 @@
-// `iblab bench`: the speed-against-accuracy sweep (renderer/bench/bench_sweep.hpp),
+// `iblab bench`: the speed-against-accuracy sweep (renderer/lab/bench_sweep.hpp),
 // headless. Writes bench.csv, bench.json, bench.md (the points nothing dominates, per
 // environment) and pareto.png to --out, and prints the CSV's path (or the JSON with --json).
 #include <algorithm>

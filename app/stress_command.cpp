@@ -1,4 +1,4 @@
-// `iblab stress`: the stability suite (renderer/stress/stress_suite.hpp), headless. Writes
+// `iblab stress`: the stability suite (renderer/lab/stress_suite.hpp), headless. Writes
 // stress.md, stress.json and the labelled image grid stress.png to --out, prints the path
 // of the Markdown (or the JSON itself with --json), and exits 0 whatever the findings: a
 // failing method is the report's content, not the command's failure.

@@ -123,7 +123,7 @@ void StudyRun::finishAutoQuality(ui::StudyState& study)
     shown.chosen = bench::describeSettings(choice_->chosen.setting);
     shown.numbers = numbers(choice_->chosen);
     for (const bench::BenchPoint& p : report.points)
-        if (p.setting.family == "preset") shown.presets.push_back(p.setting.mark + " preset: " + numbers(p));
+        if (p.setting.family == bench::SweepFamily::Preset) shown.presets.push_back(p.setting.mark + " preset: " + numbers(p));
 }
 
 } // namespace iblab::app

@@ -35,7 +35,9 @@ void IblUniforms::bind(const Lighting& lighting, const FrameSettings& settings) 
                                                                       : b.lut(GeometryTerm::HeightCorrelatedSmith);
     glBindTextureUnit(kUnitBrdfLut, lut.id());
     std::array<glm::vec3, 9> sh{};
-    for (std::size_t i = 0; i < 9; ++i) sh[i] = glm::vec3(b.sh.irradianceWindowed.c[i]);
+    // Plain or windowed SH9 is the settings' choice: the bake holds both and stays as it is.
+    const SH9Color& shCoefficients = settings.sampling.diffuse == DiffuseSource::Sh9Plain ? b.sh.irradiance : b.sh.irradianceWindowed;
+    for (std::size_t i = 0; i < 9; ++i) sh[i] = glm::vec3(shCoefficients.c[i]);
     shIrradiance.set(sh);
     prefilteredLevels.set(float(b.prefiltered.levels));
     prefilteredLayout.set(int(b.settings.prefilter.layout));

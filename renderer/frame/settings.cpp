@@ -30,7 +30,7 @@ const FieldTable<SamplingSettings>& samplingSettingsFields()
          fieldRef<S>([](S& s) -> auto& { return s.mipBias; }), {-16, 16}, "--mip-bias", value},
         {"geometry", "Geometry term", "Geometry term: schlick-ggx|height-correlated-smith",
          fieldRef<S>([](S& s) -> auto& { return s.geometry; }), {}, "--geometry", value},
-        {"diffuse", "Diffuse", "Diffuse source: sh9|irradiance-cube", fieldRef<S>([](S& s) -> auto& { return s.diffuse; }), {}, "--diffuse",
+        {"diffuse", "Diffuse", "Diffuse source: sh9|sh9-plain|irradiance-cube", fieldRef<S>([](S& s) -> auto& { return s.diffuse; }), {}, "--diffuse",
          value},
         {"cosine_sampled_diffuse", "Cosine-sampled diffuse", "Sampled method: diffuse from N cosine samples instead of SH9",
          fieldRef<S>([](S& s) -> auto& { return s.cosineSampledDiffuse; }), {}, "--cosine-diffuse", flag},

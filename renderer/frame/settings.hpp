@@ -54,10 +54,13 @@ template <>
 struct EnumNames<ShadingMethod> {
     static constexpr std::array<EnumName<ShadingMethod>, 2> entries{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}}};
 };
-enum class DiffuseSource { Sh9, IrradianceCube };
+// Sh9: the bake's SH9 irradiance as it windowed it (BakeSettings::sh.window); Sh9Plain: the
+// same projection without the window, so that its ringing can be seen.
+enum class DiffuseSource { Sh9, Sh9Plain, IrradianceCube };
 template <>
 struct EnumNames<DiffuseSource> {
-    static constexpr std::array<EnumName<DiffuseSource>, 2> entries{{{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
+    static constexpr std::array<EnumName<DiffuseSource>, 3> entries{
+        {{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::Sh9Plain, "sh9-plain"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
 };
 
 // The sampled method's largest N: the Hammersley table the renderer uploads holds this many.

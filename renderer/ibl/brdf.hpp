@@ -152,4 +152,25 @@ glm::vec<3, T> fresnelSchlickRoughness(T cosTheta, glm::vec<3, T> F0, T roughnes
     return F0 + (F90 - F0) * schlickWeight(cosTheta);
 }
 
+// What shading knows of a surface point besides its geometry (ibl_lighting.glsl's
+// SurfacePoint without N and V).
+struct SurfaceMaterial {
+    glm::dvec3 baseColor{1.0};
+    double metallic = 0.0;
+    double roughness = 0.5; // perceptual
+    glm::dvec3 F0{0.04};
+    double occlusion = 1.0;
+};
+
+// The shading model every estimator shares (ibl_lighting.glsl's combineLobes, where the
+// split sum, the sampled method and the reference renderer all end): a Lambertian layer under
+// the specular one. The roughness-aware Fresnel at n.v leaves kD = (1 - F)(1 - metallic) of
+// the light to the diffuse layer (metals have none), which reflects E / pi of the irradiance
+// E. `specular` is the reflected radiance, energy compensation included.
+inline glm::dvec3 combineLobes(const SurfaceMaterial& s, double NdotV, glm::dvec3 irradiance, glm::dvec3 specular)
+{
+    const glm::dvec3 kD = (glm::dvec3(1.0) - fresnelSchlickRoughness(NdotV, s.F0, s.roughness)) * (1.0 - s.metallic);
+    return (kD * s.baseColor / kPi * irradiance + specular) * s.occlusion;
+}
+
 } // namespace iblab

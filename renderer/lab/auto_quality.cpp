@@ -10,16 +10,12 @@
 
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/reference.hpp"
+#include "lab/format.hpp"
 
 namespace iblab::bench {
 namespace {
 
-std::string formatNumber(double v, const char* format = "%.3g")
-{
-    char text[48];
-    std::snprintf(text, sizeof text, format, v);
-    return text;
-}
+using lab::formatNumber;
 
 constexpr double kPi = 3.14159265358979323846;
 // Pixels more than this many times the reference are fireflies (common/error_metrics.glsl's isFirefly).
@@ -61,7 +57,7 @@ bool readsCube(const SweepPoint& p) { return p.sampling.method == ShadingMethod:
 
 std::string pointSummary(const BenchPoint& p)
 {
-    return p.setting.label + ": cost " + formatNumber(p.costMilliseconds) + " ms, p99 " + formatNumber(p.display.p99Steps) + " steps";
+    return p.setting.label + ": cost " + formatNumber(p.costMilliseconds, "%.3g") + " ms, p99 " + formatNumber(p.display.p99Steps, "%.3g") + " steps";
 }
 
 } // namespace
@@ -92,13 +88,13 @@ SceneFacts sceneFacts(const FrameSettings& frame, const ImageRGB32F& environment
     const auto fromSliders = [&](const std::string& what) {
         f.minRoughness = f.maxRoughness = m.roughness;
         f.minMetallic = f.maxMetallic = m.metallic;
-        f.surfaces = what + ": roughness " + formatNumber(m.roughness) + ", metallic " + formatNumber(m.metallic) + " (the material sliders)";
+        f.surfaces = what + ": roughness " + formatNumber(m.roughness, "%.3g") + ", metallic " + formatNumber(m.metallic, "%.3g") + " (the material sliders)";
     };
     switch (frame.scene.kind) {
     case SceneKind::Grid: f.surfaces = "the metallic x roughness grid: roughness 0..1, metallic 0..1"; break;
     case SceneKind::Sweep:
         f.minMetallic = f.maxMetallic = m.metallic;
-        f.surfaces = "the roughness sweep: roughness 0..1, metallic " + formatNumber(m.metallic);
+        f.surfaces = "the roughness sweep: roughness 0..1, metallic " + formatNumber(m.metallic, "%.3g");
         break;
     case SceneKind::Sphere: fromSliders("the sphere"); break;
     case SceneKind::Counting: fromSliders("the counting strip"); break;
@@ -136,7 +132,7 @@ std::string describeSettings(const SweepPoint& p)
         text = "sampled, N = " + std::to_string(p.sampling.samples);
     else
         text = "split-sum, prefilter face " + std::to_string(p.bake.prefilter.faceSize) + ", " + std::to_string(p.bake.prefilter.levels) + " mips, " +
-               std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth) + " per mip)";
+               std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth, "%.3g") + " per mip)";
     text += pdfFiltered(p) ? ", PDF mips" : ", no PDF mips";
     if (readsCube(p)) {
         if (p.bake.irradiance == bake::IrradianceMethod::Moments)
@@ -144,8 +140,8 @@ std::string describeSettings(const SweepPoint& p)
                     std::to_string(p.bake.moments.sourceFaceSize) + "^2 groups per face";
         else if (p.bake.irradiance == bake::IrradianceMethod::Importance)
             text += ", irradiance cube " + std::to_string(p.bake.importance.faceSize) + "^2 x " + std::to_string(p.bake.importance.samples) + " samples";
-        else text += ", Riemann irradiance cube " + std::to_string(p.bake.riemann.faceSize) + "^2, delta " + formatNumber(p.bake.riemann.sampleDelta);
-    } else text += ", SH9";
+        else text += ", Riemann irradiance cube " + std::to_string(p.bake.riemann.faceSize) + "^2, delta " + formatNumber(p.bake.riemann.sampleDelta, "%.3g");
+    } else text += p.sampling.diffuse == DiffuseSource::Sh9Plain ? ", plain SH9" : ", SH9";
     return text;
 }
 
@@ -169,7 +165,7 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
                 for (bool pdf : {true, false})
                     for (int samples : space.prefilterSamples) {
                         SweepPoint p;
-                        p.family = "split-sum";
+                        p.family = SweepFamily::SplitSum;
                         p.parameter = samples;
                         p.bake = base;
                         p.bake.prefilter.faceSize = face;
@@ -186,7 +182,7 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
     for (bool pdf : {true, false})
         for (int n : space.sampledN) {
             SweepPoint p;
-            p.family = "sampled";
+            p.family = SweepFamily::Sampled;
             p.parameter = n;
             p.bake = base;
             p.sampling.method = ShadingMethod::Sampled;
@@ -229,13 +225,13 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
                                                    " samples dropped (one sample on the peak would be a firefly, > 3x the reference)"
                                              : std::string("low enough that no unfiltered candidate risks fireflies")));
     if (droppedFaces)
-        out.reasons.push_back("roughness: the smoothest surface (" + formatNumber(facts.minRoughness) + ") reads a mip that a face of " +
+        out.reasons.push_back("roughness: the smoothest surface (" + formatNumber(facts.minRoughness, "%.3g") + ") reads a mip that a face of " +
                               std::to_string(largestKept) + " already resolves; " + std::to_string(droppedFaces) + " candidates with larger faces dropped");
     else if (largestUsefulFace(facts.minRoughness, space.levels.front()) == std::numeric_limits<int>::max())
-        out.reasons.push_back("roughness: the scene shows a mirror (roughness " + formatNumber(facts.minRoughness) +
+        out.reasons.push_back("roughness: the scene shows a mirror (roughness " + formatNumber(facts.minRoughness, "%.3g") +
                               "), which reads the prefilter's full-size mip 0: no face size dropped");
     else
-        out.reasons.push_back("roughness: the smoothest surface (" + formatNumber(facts.minRoughness) + ") has two texels across its lobe only from a face of " +
+        out.reasons.push_back("roughness: the smoothest surface (" + formatNumber(facts.minRoughness, "%.3g") + ") has two texels across its lobe only from a face of " +
                               std::to_string(largestUsefulFace(facts.minRoughness, space.levels.back())) + " (" + std::to_string(space.levels.back()) +
                               " mips) up: no candidate face is larger, none dropped");
     if (droppedCubes) out.reasons.push_back("metallic: every surface is metal, no diffuse term: " + std::to_string(droppedCubes) + " irradiance cube candidates dropped");
@@ -252,7 +248,7 @@ AutoChoice chooseAuto(const std::vector<BenchPoint>& measured, double targetStep
     if (!measured.empty()) choice.chosen.environment = measured.front().environment;
     std::vector<const BenchPoint*> candidates;
     for (const BenchPoint& p : measured)
-        if (p.setting.family != "preset" && p.display.pixels > 0) candidates.push_back(&p);
+        if (p.setting.family != SweepFamily::Preset && p.display.pixels > 0) candidates.push_back(&p);
     choice.candidates = candidates.size();
     if (candidates.empty()) {
         choice.reasons.push_back("no candidate was measured on any surface pixel: nothing to choose from");
@@ -268,7 +264,7 @@ AutoChoice chooseAuto(const std::vector<BenchPoint>& measured, double targetStep
     choice.meetsTarget = !meeting.empty();
     const BenchPoint* best = *std::min_element(candidates.begin(), candidates.end(), moreAccurate);
     const BenchPoint* cheapest = *std::min_element(candidates.begin(), candidates.end(), cheaper);
-    const std::string target = formatNumber(targetSteps) + " 8-bit steps";
+    const std::string target = formatNumber(targetSteps, "%.3g") + " 8-bit steps";
     if (choice.meetsTarget) {
         const BenchPoint* chosen = *std::min_element(meeting.begin(), meeting.end(), cheaper);
         choice.chosen = *chosen;
@@ -280,7 +276,7 @@ AutoChoice chooseAuto(const std::vector<BenchPoint>& measured, double targetStep
                                      "x the cost");
     } else {
         choice.chosen = *best;
-        choice.reasons.push_back("target out of reach: no candidate is within " + target + "; the most accurate reaches " + formatNumber(best->display.p99Steps) +
+        choice.reasons.push_back("target out of reach: no candidate is within " + target + "; the most accurate reaches " + formatNumber(best->display.p99Steps, "%.3g") +
                                  " steps, " + formatNumber(best->display.p99Steps / targetSteps, "%.2g") + "x the target: chosen " + pointSummary(*best));
     }
     return choice;
@@ -295,7 +291,7 @@ void markChosen(std::vector<BenchPoint>& points, const AutoChoice& choice)
 std::string referenceReason(const SceneFacts& facts, const ReferenceSummary& reference)
 {
     const std::string map = "the reference over a " + std::to_string(reference.environmentWidth) + "-wide map";
-    const std::string floor = formatNumber(reference.minResolvedRoughness);
+    const std::string floor = formatNumber(reference.minResolvedRoughness, "%.3g");
     if (reference.minResolvedRoughness > facts.maxRoughness) return "measured: nothing: " + map + " resolves roughness >= " + floor + " only, and no surface is that rough";
     if (reference.minResolvedRoughness > facts.minRoughness)
         return "measured: surfaces with roughness >= " + floor + " only: " + map + " resolves no smoother ones, so the choice is not judged on them";
@@ -315,7 +311,7 @@ std::vector<SweepPoint> presetPoints(bool quick)
     std::vector<SweepPoint> points;
     for (const bool tutorial : {true, false}) {
         SweepPoint p;
-        p.family = "preset";
+        p.family = SweepFamily::Preset;
         p.bake = tutorial ? bake::tutorialPreset() : bake::defaultPreset();
         p.bake.lut = base.lut; // shared, like every point's: it depends on no environment and is not in the cost
         if (quick) {
@@ -367,18 +363,18 @@ std::string autoMarkdown(const BenchReport& report, const std::vector<AutoChoice
         << "measured the same way (cost as a multiple of the auto choice's).\n\n";
     for (const AutoChoice& c : choices) {
         const std::string environment = c.chosen.environment;
-        out << "**" << environment << "**: target " << formatNumber(c.targetSteps) << " steps, "
+        out << "**" << environment << "**: target " << formatNumber(c.targetSteps, "%.3g") << " steps, "
             << (c.meetsTarget ? "met" : c.found ? "out of reach" : "nothing measured") << "\n\n";
         if (c.found) {
             out << "| setting | cost ms | cost / auto | display p99 (steps) | display RMS (steps) | relative RMSE |\n|---|---|---|---|---|---|\n";
             const double autoCost = std::max(c.chosen.costMilliseconds, 1e-9);
             const auto row = [&](const std::string& name, const BenchPoint& p) {
                 out << "| " << name << " | " << formatNumber(p.costMilliseconds, "%.1f") << " | " << formatNumber(p.costMilliseconds / autoCost, "%.2f") << " | "
-                    << formatNumber(p.display.p99Steps) << " | " << formatNumber(p.display.rmsSteps) << " | " << formatNumber(p.error.relativeRmse) << " |\n";
+                    << formatNumber(p.display.p99Steps, "%.3g") << " | " << formatNumber(p.display.rmsSteps, "%.3g") << " | " << formatNumber(p.error.relativeRmse, "%.3g") << " |\n";
             };
             row("**auto**: " + describeSettings(c.chosen.setting), c.chosen);
             for (const BenchPoint& p : report.points)
-                if (p.environment == environment && p.setting.family == "preset") row(p.setting.label, p);
+                if (p.environment == environment && p.setting.family == SweepFamily::Preset) row(p.setting.label, p);
             out << "\n";
         }
         for (const std::string& reason : c.reasons) out << "- " << reason << "\n";

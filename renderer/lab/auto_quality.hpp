@@ -62,7 +62,7 @@ int referenceWidthFor(const SceneFacts& facts, bool quick);
 
 struct AutoCandidates {
     SceneFacts facts;                 // what they were pruned by
-    std::vector<SweepPoint> points;   // family "split-sum" or "sampled"; each a whole configuration
+    std::vector<SweepPoint> points;   // family SplitSum or Sampled; each a whole configuration
     int referenceWidth = 0;           // referenceWidthFor(facts, quick)
     std::vector<std::string> reasons; // what was pruned and why
 };
@@ -87,7 +87,7 @@ struct AutoChoice {
 
 // The cheapest measured candidate whose display p99 is at most targetSteps; when none is,
 // the one with the lowest p99, with a reason saying by how much the target is out of reach.
-// Points of family "preset" are not candidates. pruningReasons lead the returned reasons.
+// Points of family Preset are not candidates. pruningReasons lead the returned reasons.
 AutoChoice chooseAuto(const std::vector<BenchPoint>& measured, double targetSteps, std::vector<std::string> pruningReasons);
 // The same on a bench run of the candidates, its reasons saying which surfaces the run's
 // reference resolved (and so which the choice was judged on).
@@ -98,7 +98,7 @@ std::string referenceReason(const SceneFacts& facts, const ReferenceSummary& ref
 // Sets BenchPoint::chosen on the choice's point (same environment and setting) and clears it elsewhere.
 void markChosen(std::vector<BenchPoint>& points, const AutoChoice& choice);
 
-// The fixed presets measured beside the auto choice, family "preset": the tutorial's and the
+// The fixed presets measured beside the auto choice, family Preset: the tutorial's and the
 // default bake with split-sum shading (the tutorial reading its Riemann irradiance cube). The
 // quick run caps them like its candidates (environment cube 64, prefilter 64, cube faces 16);
 // every point shares the bench's LUT.

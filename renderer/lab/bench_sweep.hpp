@@ -12,15 +12,18 @@
 //   while (job.runFor(std::chrono::milliseconds(30))) drawChart(job.report());   // GUI
 //   BenchReport report = BenchJob(renderer, options).runToCompletion();           // CLI
 //
-// The job replaces the renderer's environment, bake and model: give it a renderer of its
-// own when another one shows something else. Needs the context that was current when the
+// The job runs on a lab::Harness (harness.hpp: the LUTs shared between bakes by its rule) and
+// replaces the renderer's environment, bake and model: give it a renderer of its own when
+// another one shows something else. Needs the context that was current when the
 // job was made to be current at every call. Public header: no GL.
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bake/bake_settings.hpp"
@@ -28,8 +31,11 @@
 #include "ibl/error_metrics.hpp"
 #include "frame/renderer.hpp"
 #include "frame/settings.hpp"
+#include "lab/harness.hpp"
 
 namespace iblab::bench {
+
+using lab::DisplayError;
 
 struct BenchEnvironment {
     std::string name; // short key for tables, unique in a run: "courtyard", "builtin-sun-1e3"
@@ -38,22 +44,28 @@ struct BenchEnvironment {
     std::shared_ptr<const Environment> loaded;
 };
 
+// What a sweep point varies: the split sum's prefilter, the sampled method's N, the diffuse
+// source, or (auto quality) a fixed preset measured beside the candidates.
+enum class SweepFamily { SplitSum, Sampled, Diffuse, Preset };
+// The reports' spelling, in the enum's order.
+inline constexpr std::array<std::string_view, 4> kSweepFamilyNames{"split-sum", "sampled", "diffuse", "preset"};
+inline std::string_view sweepFamilyName(SweepFamily family) { return kSweepFamilyNames[std::size_t(family)]; }
+
 // One method and its settings. `series` names the curve it belongs to on the chart (every
 // setting but the swept one), `parameter` its place along that curve.
 struct SweepPoint {
-    std::string family; // "split-sum" | "sampled" | "diffuse"
+    SweepFamily family = SweepFamily::SplitSum;
     std::string series; // "split-sum 64 PDF", "sampled no mip filter", "Riemann cube"
     std::string label;  // the whole setting in words, for tooltips and tables
     double parameter = 0.0;
-    // SH9 diffuse unless the point says otherwise: a specular point's error must not depend
-    // on which irradiance cube its bake happens to have.
+    // Windowed SH9 diffuse unless the point says otherwise: a specular point's error must not
+    // depend on which irradiance cube its bake happens to have.
     SamplingSettings sampling = [] {
         SamplingSettings s;
         s.diffuse = DiffuseSource::Sh9;
         return s;
     }();
     bake::BakeSettings bake;
-    bool plainSh = false; // the bake's SH9 irradiance without the window
     bool scatter = false; // its series varies more than one setting: no curve joins its points
     std::string mark;     // drawn beside the point on the chart (a preset's name)
 };
@@ -87,18 +99,8 @@ bake::BakeSettings benchBaseBake(bool quick);
 // reference width left to the scene (referenceWidth 0).
 BenchOptions defaultBenchOptions(bool quick, const std::string& assetDirectory);
 
-// The stress environments the default run adds, at `width` (stress_suite.hpp's specs).
+// The stress environments the default run adds (StressEnvironment::inBench), at `width`.
 std::vector<BenchEnvironment> builtinBenchEnvironments(int width);
-
-// The error as the eye is shown it: both frames through the view's exposure, tone mapping and
-// sRGB encoding (displayEncode, as ErrorSpace::Display), per pixel the largest channel
-// difference in 8-bit steps (1 step = 1/255).
-struct DisplayError {
-    std::size_t pixels = 0;
-    double p99Steps = 0.0; // nearest rank, as ErrorMetrics::p99Relative
-    double rmsSteps = 0.0;
-    double maxSteps = 0.0;
-};
 
 struct BenchPoint {
     std::string environment;
@@ -107,9 +109,9 @@ struct BenchPoint {
     double frameMilliseconds = 0.0; // median of the repeats, steady clock around glFinish
     double costMilliseconds = 0.0;  // bake + costFrames x frame
     // NaN where the reference resolved no surface pixel (measured() is false): not 0, which
-    // would read as exact. The pixel counts are 0 then.
-    ErrorMetrics error;             // linear HDR, resolved surface pixels (measureResolvedError)
-    DisplayError display;           // the same pixels after tone mapping (measureResolvedDisplayError)
+    // would read as exact. The pixel counts are 0 then (lab::Harness::compareWithReference).
+    ErrorMetrics error;             // linear HDR, resolved surface pixels (lab::measureResolvedError)
+    DisplayError display;           // the same pixels after tone mapping (lab::measureResolvedDisplayError)
     bool dominated = false;
     bool chosen = false;            // the auto quality mode's pick (auto_quality.hpp)
 };
@@ -144,19 +146,6 @@ std::vector<std::string> unmeasuredEnvironments(const BenchReport& report);
 // then the prefilter (split-sum), SH9 or the irradiance cube that was baked. Not the
 // shaders (compiled once per process) nor the LUTs (no environment in them; cached).
 std::vector<std::string> bakePhasesRead(const SweepPoint& point);
-
-// The per-pixel relative error of `frame` against `reference` over the surface pixels (the
-// G-buffer's normal layer has coverage in alpha) whose perceptual roughness (the view
-// layer's alpha) is at least minRoughness: below it the reference's midpoint rule is not
-// converged, and its error would swamp the estimators' (referenceMinResolvedRoughness).
-// With no such pixel, every error field is NaN and `pixels` 0.
-ErrorMetrics measureResolvedError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
-                                  const FrameReadback& viewLayer, double minRoughness);
-
-// The same pixels as measureResolvedError, compared after `toneMap` in 8-bit steps (NaN
-// steps when there are none).
-DisplayError measureResolvedDisplayError(const FrameReadback& frame, const FrameReadback& reference, const FrameReadback& normalLayer,
-                                         const FrameReadback& viewLayer, double minRoughness, const ToneMapSettings& toneMap);
 
 // A point is dominated when another point of the same environment is both cheaper and
 // more accurate (strictly: lower cost and lower relative RMSE). A point without an error

@@ -97,7 +97,7 @@ std::string stressJsonText(const StressReport& report)
                            {"window_width", s.windowWidth}});
     for (const SeamReading& s : report.seams)
         j["seams"].push_back({{"environment", s.environment},
-                              {"texture", s.texture},
+                              {"texture", seamTextureName(s.texture)},
                               {"level", s.level},
                               {"roughness", s.roughness},
                               {"edge_jump", number(s.edgeJump)},
@@ -117,7 +117,7 @@ std::string stressJsonText(const StressReport& report)
                 {"texels_with_display_step", report.lut.texelsWithDisplayStep}};
     j["findings"] = ordered_json::array();
     for (const Finding& f : report.findings)
-        j["findings"].push_back({{"check", f.check},
+        j["findings"].push_back({{"check", stressCheckName(f.check)},
                                  {"environment", f.environment},
                                  {"method", f.method},
                                  {"condition", f.condition},
@@ -142,18 +142,19 @@ std::string stressMarkdown(const StressReport& report)
        << "(a mirror there), on a 64-wide copy for wider ones.\n\n";
 
     // Per method and check: the worst finding, and where.
-    std::vector<std::string> checks = {"fireflies", "non-finite", "negative", "furnace", "sh-ringing", "seams"};
+    const std::vector<StressCheck> checks = {StressCheck::Fireflies, StressCheck::NonFinite, StressCheck::Negative,
+                                             StressCheck::Furnace,   StressCheck::ShRinging, StressCheck::Seams};
     md << "## Where each method fails\n\nEach cell: the worst value of the check over every environment, roughness and view, and where. "
           "Fireflies: render max / exact max; furnace: |reflected - 1| with multiscatter, energy lost without; SH ringing: -(minimum / mean) "
           "irradiance; seams: jump across cube edges / step inside faces.\n\n";
     md << "| method |";
-    for (const std::string& c : checks) md << " " << c << " |";
+    for (StressCheck c : checks) md << " " << stressCheckName(c) << " |";
     md << "\n|---|";
     for (std::size_t i = 0; i < checks.size(); ++i) md << "---|";
     md << "\n";
     for (const std::string& method : report.methods) {
         md << "| " << method << " |";
-        for (const std::string& check : checks) {
+        for (StressCheck check : checks) {
             const Finding* worst = nullptr;
             for (const Finding& f : report.findings) {
                 if (f.method != method || f.check != check) continue;
@@ -183,6 +184,10 @@ std::string stressMarkdown(const StressReport& report)
     md << "\n|---|---|---|";
     for (std::size_t i = 0; i < report.options.roughnesses.size(); ++i) md << "---|";
     md << "\n";
+    std::vector<std::string> furnaces;
+    for (const EnvironmentSummary& e : report.environments)
+        if (e.furnace) furnaces.push_back(e.name);
+    const auto inFurnace = [&](const RenderMeasurement& r) { return std::find(furnaces.begin(), furnaces.end(), r.environment) != furnaces.end(); };
     for (const StressMethod& m : stressMethods()) {
         if (m.material != StressMaterial::WhiteMetal) continue; // the furnace identity holds for F0 = 1 alone
         const std::string& method = m.name;
@@ -190,7 +195,7 @@ std::string stressMarkdown(const StressReport& report)
             for (ViewBin bin : {ViewBin::Normal, ViewBin::Grazing}) {
                 std::string cells;
                 for (const RenderMeasurement& r : report.renders)
-                    if (r.environment == "white" && r.method == method && r.multiscatter == multiscatter)
+                    if (inFurnace(r) && r.method == method && r.multiscatter == multiscatter)
                         cells += " " + fixed(r.view(bin).renderMean, 4) + " |";
                 if (!cells.empty()) md << "| " << method << " | " << (multiscatter ? "on" : "off") << " | " << viewBinName(bin) << " |" << cells << "\n";
             }
@@ -204,7 +209,7 @@ std::string stressMarkdown(const StressReport& report)
     md << "\n## Seams across cube faces (jump across edges / step inside faces)\n\n| environment |";
     std::vector<std::string> levels;
     for (const SeamReading& s : report.seams) {
-        const std::string name = s.texture == "irradiance" ? "irradiance cube" : "mip " + std::to_string(s.level) + " (r " + fixed(s.roughness) + ")";
+        const std::string name = s.texture == SeamTexture::Irradiance ? "irradiance cube" : "mip " + std::to_string(s.level) + " (r " + fixed(s.roughness) + ")";
         if (std::find(levels.begin(), levels.end(), name) == levels.end()) levels.push_back(name);
     }
     for (const std::string& l : levels) md << " " << l << " |";
@@ -231,7 +236,7 @@ std::string stressMarkdown(const StressReport& report)
     std::stable_sort(bad.begin(), bad.end(), [](const Finding* a, const Finding* b) { return severity(a->verdict) > severity(b->verdict); });
     md << "\n## Every warning and failure (" << bad.size() << ")\n\n| verdict | check | method | where | value | threshold |\n|---|---|---|---|---|---|\n";
     for (const Finding* f : bad)
-        md << "| " << verdictCell(f->verdict) << " | " << f->check << " | " << (f->method.empty() ? "-" : f->method) << " | " << where(*f) << " | "
+        md << "| " << verdictCell(f->verdict) << " | " << stressCheckName(f->check) << " | " << (f->method.empty() ? "-" : f->method) << " | " << where(*f) << " | "
            << fixed(f->value) << " | " << f->threshold << " |\n";
     md << "\nThe image grid `stress.png`: rows = environments, columns = method x roughness (0, 0.05, 0.5, 1), tone-mapped (ACES Hill) "
           "with the exposure that puts each environment's mean radiance near mid-grey, black = background.\n";

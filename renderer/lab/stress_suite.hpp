@@ -1,9 +1,11 @@
 #pragma once
 // The stability suite behind `iblab stress`: environments made to break IBL methods (a sun
 // swept over five decades of dynamic range, a one-texel light, sub-texel slits, the white
-// furnace, saturated coloured lights, black, NaN/Inf/negative texels), each baked once and
-// rendered with every method at roughness 0, 0.05, 0.5 and 1, and measured for what must
-// hold: finite non-negative outputs, no fireflies above the exact integrals, no SH ringing,
+// furnace, saturated coloured lights, black, NaN/Inf/negative texels), each baked once (on
+// the lab's harness, lab/harness.hpp, which bakes the LUT once for all) and rendered with
+// every method at roughness 0, 0.05, 0.5 and 1, and measured against the exact integrals of
+// the shading model (ibl/reference.hpp's, combined by ibl/brdf.hpp's combineLobes) for what
+// must hold: finite non-negative outputs, no fireflies above the exact integrals, no SH ringing,
 // no seams across cube faces, energy conserved in the furnace, no banding from the LUT's
 // half floats. Every finding is classified pass / warn / fail against a threshold the
 // report states.
@@ -11,6 +13,7 @@
 // The analysis is a library function so that tests assert its invariants directly; the
 // command only writes what it returns. Needs a current GL 4.5 context (the Renderer's).
 // Public header: no GL.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -33,6 +36,8 @@ struct StressEnvironment {
     std::string name;   // short key used in tables and JSON: "sun-1e4", "texel", ...
     std::string spec;   // builtin spec, width set by StressOptions::environmentWidth
     std::string breaks; // what it is made to break
+    bool furnace = false; // uniform radiance 1: the reflected energy is the render itself
+    bool inBench = false; // one of those the default bench adds (bench_sweep.hpp builtinBenchEnvironments)
 };
 
 // The material a method is shown on: white metal (F0 = 1, specular only) for estimators of
@@ -42,8 +47,7 @@ enum class StressMaterial { WhiteMetal, WhitePlastic };
 
 struct StressMethod {
     std::string name;
-    SamplingSettings sampling;   // method, N, PDF filtering, diffuse source
-    bool windowedSh = true;      // false: the bake's plain SH9 irradiance (no window)
+    SamplingSettings sampling;   // method, N, PDF filtering, diffuse source (plain or windowed SH9, the cube)
     StressMaterial material = StressMaterial::WhiteMetal;
 };
 
@@ -109,9 +113,13 @@ struct ShRinging {
     double windowWidth = 0.0;
 };
 
+enum class SeamTexture { Prefiltered, Irradiance };
+inline constexpr std::array<std::string_view, 2> kSeamTextureNames{"prefiltered", "irradiance"}; // in the enum's order
+inline std::string_view seamTextureName(SeamTexture texture) { return kSeamTextureNames[std::size_t(texture)]; }
+
 struct SeamReading {
     std::string environment;
-    std::string texture; // "prefiltered" or "irradiance"
+    SeamTexture texture = SeamTexture::Prefiltered;
     int level = 0;
     float roughness = 0.0f; // prefiltered mips only
     double edgeJump = 0.0;     // mean |L(a) - L(across the edge)| over every edge texel (luminance)
@@ -131,6 +139,7 @@ struct EnvironmentSummary {
     std::string name;
     std::string spec;
     std::string breaks;
+    bool furnace = false; // StressEnvironment::furnace
     double meanLuminance = 0.0; // solid-angle mean of the loaded map
     double peakLuminance = 0.0; // brightest texel
     std::string repair;         // the loader's repair summary
@@ -147,8 +156,13 @@ struct LutBanding {
     int texelsWithDisplayStep = 0;
 };
 
+// What a finding checks, and the reports' spelling of it (in the enum's order).
+enum class StressCheck { Fireflies, NonFinite, Negative, ShRinging, Seams, Furnace, Lut, Bake };
+inline constexpr std::array<std::string_view, 8> kStressCheckNames{"fireflies", "non-finite", "negative", "sh-ringing", "seams", "furnace", "lut", "bake"};
+inline std::string_view stressCheckName(StressCheck check) { return kStressCheckNames[std::size_t(check)]; }
+
 struct Finding {
-    std::string check;       // "fireflies", "non-finite", "negative", "sh-ringing", "seams", "furnace", "lut", "bake"
+    StressCheck check = StressCheck::Bake;
     std::string environment; // "" for environment-independent checks
     std::string method;
     std::string condition;   // "roughness 0.5, grazing", ...

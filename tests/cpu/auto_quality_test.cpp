@@ -14,7 +14,7 @@
 namespace iblab::bench {
 namespace {
 
-BenchPoint point(const std::string& label, double cost, double p99Steps, const std::string& family = "split-sum")
+BenchPoint point(const std::string& label, double cost, double p99Steps, SweepFamily family = SweepFamily::SplitSum)
 {
     BenchPoint p;
     p.environment = "env";
@@ -38,7 +38,7 @@ TEST(AutoQuality, ChoosesTheCheapestCandidateWithinTheTarget)
         point("within, dearer", 30.0, 0.5),
         point("within, cheapest", 20.0, 0.9),
         point("exactly at the target", 25.0, 1.0),
-        point("preset, cheaper and better", 5.0, 0.1, "preset"), // not a candidate
+        point("preset, cheaper and better", 5.0, 0.1, SweepFamily::Preset), // not a candidate
     };
     const AutoChoice c = chooseAuto(measured, 1.0, {"pruned: nothing"});
     ASSERT_TRUE(c.found);

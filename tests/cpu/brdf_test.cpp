@@ -140,6 +140,28 @@ TEST(Brdf, Fresnel)
     EXPECT_NEAR(iblab::fresnelSchlickRoughness(1.0, F0, 0.7).x, 0.04, 1e-15);
 }
 
+TEST(Brdf, CombineLobesWeightsTheDiffuseLayerByWhatFresnelLeaves)
+{
+    const glm::dvec3 irradiance = kPi * glm::dvec3(1.0, 2.0, 3.0); // E / pi = (1, 2, 3)
+    const glm::dvec3 specular(0.1, 0.2, 0.3);
+    // Roughness 1 caps the grazing Fresnel at F0: F = F0 = 0.04 at any n.v, so
+    // kD = 0.96 (1 - 0.25) = 0.72, diffuse = 0.72 (0.5, 0.25, 1) (1, 2, 3) = (0.36, 0.36, 2.16),
+    // and occlusion halves both layers.
+    iblab::SurfaceMaterial m{.baseColor = {0.5, 0.25, 1.0}, .metallic = 0.25, .roughness = 1.0, .F0 = glm::dvec3(0.04), .occlusion = 0.5};
+    const glm::dvec3 shaded = iblab::combineLobes(m, 0.3, irradiance, specular);
+    EXPECT_NEAR(shaded.x, 0.23, 1e-12);
+    EXPECT_NEAR(shaded.y, 0.28, 1e-12);
+    EXPECT_NEAR(shaded.z, 1.23, 1e-12);
+    // Grazing (n.v = 0) at roughness 0.3: F = max(1 - 0.3, F0) = 0.7 leaves kD = 0.3 (1 - 0.25).
+    m.roughness = 0.3;
+    m.occlusion = 1.0;
+    EXPECT_NEAR(iblab::combineLobes(m, 0.0, irradiance, glm::dvec3(0.0)).x, 0.3 * 0.75 * 0.5, 1e-12);
+    // A metal has no diffuse layer: the specular alone, whatever the irradiance.
+    m.metallic = 1.0;
+    const glm::dvec3 metal = iblab::combineLobes(m, 0.3, irradiance, specular);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(metal[c], specular[c]);
+}
+
 TEST(Brdf, GeometryTermNames)
 {
     EXPECT_EQ(enumName(GeometryTerm::SchlickGGX), "schlick-ggx");

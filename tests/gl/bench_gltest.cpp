@@ -25,6 +25,7 @@ namespace {
 
 using testing::GlTest;
 using namespace bench;
+using namespace lab;
 
 class Bench : public GlTest {};
 
@@ -71,7 +72,7 @@ TEST_F(Bench, QuickSweepMeasuresEveryPointAgainstTheReference)
     // bias (5% of it), never by more.
     std::map<std::string, std::vector<const BenchPoint*>> bySeries;
     for (const BenchPoint& p : r.points)
-        if (p.setting.family == "split-sum") bySeries[p.setting.series].push_back(&p);
+        if (p.setting.family == SweepFamily::SplitSum) bySeries[p.setting.series].push_back(&p);
     ASSERT_GE(bySeries.size(), 2u);
     for (auto& [series, points] : bySeries) {
         std::sort(points.begin(), points.end(), [](auto* a, auto* b) { return a->setting.parameter < b->setting.parameter; });
@@ -83,7 +84,7 @@ TEST_F(Bench, QuickSweepMeasuresEveryPointAgainstTheReference)
     // N = 16 against N = 1, same mip filtering: the estimator's variance falls as 1/N.
     std::map<std::string, std::map<int, double>> errors;
     for (const BenchPoint& p : r.points)
-        if (p.setting.family == "sampled") errors[p.setting.series][p.setting.sampling.samples] = p.error.relativeRmse;
+        if (p.setting.family == SweepFamily::Sampled) errors[p.setting.series][p.setting.sampling.samples] = p.error.relativeRmse;
     ASSERT_EQ(errors.size(), 2u);
     for (auto& [series, byN] : errors) {
         ASSERT_TRUE(byN.count(1) && byN.count(16)) << series;
