@@ -20,6 +20,7 @@
 #include "bake/bake_job.hpp"
 #include "bake/bake_passes.hpp"
 #include "command_support.hpp"
+#include "field_options.hpp"
 #include "commands.hpp"
 #include "io/environment.hpp"
 #include "io/error.hpp"
@@ -41,45 +42,12 @@ ordered_json shArray(const SH9Color& sh)
     return a;
 }
 
-// Settings given on the command line; each one that is set replaces the preset's value.
-struct BakeOverrides {
-    std::optional<std::string> precision;
-    std::optional<bool> exactTexelSolidAngle;
-    std::optional<int> cubeSize;
-    std::optional<std::string> shDevice;
-    std::optional<std::string> shWindow;
-    std::optional<double> shWindowWidth;
-    std::optional<bool> riemann;
-    std::optional<int> riemannSize;
-    std::optional<float> riemannDelta;
-    std::optional<bool> riemannMipFilter;
-    std::optional<float> riemannMipBias;
-    std::optional<bool> importance;
-    std::optional<int> importanceSize;
-    std::optional<int> importanceSamples;
-    std::optional<bool> importanceMipFilter;
-    std::optional<float> importanceMipBias;
-    std::optional<bool> moments;
-    std::optional<int> momentsSize;
-    std::optional<int> momentsSourceSize;
-    std::optional<int> prefilterSize;
-    std::optional<int> prefilterLevels;
-    std::optional<std::string> prefilterLayout;
-    std::optional<int> prefilterSamples;
-    std::optional<float> prefilterSampleGrowth;
-    std::optional<bool> prefilterMipFilter;
-    std::optional<float> prefilterMipBias;
-    std::optional<bool> prefilterMirrorCopy;
-    std::optional<int> lutSize;
-    std::optional<int> lutSamples;
-    std::optional<std::string> lutGeometry;
-    std::optional<std::int64_t> samplesPerStep;
-};
-
 struct BakeCommandOptions {
     std::string environment;
     std::string preset = "default";
-    BakeOverrides overrides;
+    // Each option given replaces the preset's value (bakeSettingsFields() makes them).
+    RecordedFieldOptions<bake::BakeSettings> overrides;
+    std::optional<std::string> lutGeometry;
     std::string out;
     std::string cacheDir;
     bool json = false;
@@ -88,77 +56,25 @@ struct BakeCommandOptions {
     int repeat = 1;
 };
 
-template <typename T, typename U>
-void apply(const std::optional<T>& value, U& field)
-{
-    if (value)
-        field = U(*value);
-}
-
 bake::BakeSettings resolveSettings(const BakeCommandOptions& o)
 {
     bake::BakeSettings s = bake::presetByName(o.preset);
-    const BakeOverrides& v = o.overrides;
-    if (v.precision) {
-        const auto p = bake::parsePrecision(*v.precision);
-        if (!p) throw Error("--precision", "expected half or float, got \"" + *v.precision + "\"");
-        s.precision = *p;
-    }
-    apply(v.exactTexelSolidAngle, s.exactTexelSolidAngle);
-    apply(v.cubeSize, s.cube.faceSize);
-    if (v.shDevice) {
-        const auto d = bake::parseShDevice(*v.shDevice);
-        if (!d) throw Error("--sh-device", "expected cpu or gpu, got \"" + *v.shDevice + "\"");
-        s.sh.device = *d;
-    }
-    if (v.shWindow) {
-        const auto w = bake::parseShWindow(*v.shWindow);
-        if (!w) throw Error("--sh-window", "expected none, hanning or lanczos, got \"" + *v.shWindow + "\"");
-        s.sh.window = *w;
-    }
-    apply(v.shWindowWidth, s.sh.windowWidth);
-    apply(v.riemann, s.riemann.enabled);
-    apply(v.riemannSize, s.riemann.faceSize);
-    apply(v.riemannDelta, s.riemann.sampleDelta);
-    apply(v.riemannMipFilter, s.riemann.mipFiltering);
-    apply(v.riemannMipBias, s.riemann.mipBias);
-    apply(v.importance, s.importance.enabled);
-    apply(v.importanceSize, s.importance.faceSize);
-    apply(v.importanceSamples, s.importance.samples);
-    apply(v.importanceMipFilter, s.importance.mipFiltering);
-    apply(v.importanceMipBias, s.importance.mipBias);
-    apply(v.moments, s.moments.enabled);
-    apply(v.momentsSize, s.moments.faceSize);
-    apply(v.momentsSourceSize, s.moments.sourceFaceSize);
-    apply(v.prefilterSize, s.prefilter.faceSize);
-    apply(v.prefilterLevels, s.prefilter.levels);
-    if (v.prefilterLayout) {
-        const auto layout = bake::parseRoughnessLayout(*v.prefilterLayout);
-        if (!layout) throw Error("--prefilter-layout", "expected linear or quadratic, got \"" + *v.prefilterLayout + "\"");
-        s.prefilter.layout = *layout;
-    }
-    apply(v.prefilterSamples, s.prefilter.samples);
-    apply(v.prefilterSampleGrowth, s.prefilter.sampleGrowth);
-    apply(v.prefilterMipFilter, s.prefilter.mipFiltering);
-    apply(v.prefilterMipBias, s.prefilter.mipBias);
-    apply(v.prefilterMirrorCopy, s.prefilter.mirrorCopy);
-    apply(v.lutSize, s.lut.size);
-    apply(v.lutSamples, s.lut.samples);
-    if (v.lutGeometry) {
-        if (*v.lutGeometry == "both") {
+    // No frame to keep responsive here: each pass is one step per mip unless asked otherwise.
+    s.samplesPerStep = bake::kUnslicedBake;
+    o.overrides.applyTo(s);
+    // One option for the two LUT switches.
+    if (o.lutGeometry) {
+        if (*o.lutGeometry == "both") {
             s.lut.schlickGgx = s.lut.heightCorrelatedSmith = true;
-        } else if (*v.lutGeometry == "none") {
+        } else if (*o.lutGeometry == "none") {
             s.lut.schlickGgx = s.lut.heightCorrelatedSmith = false;
         } else {
-            const auto g = bake::parseGeometryTerm(*v.lutGeometry);
-            if (!g) throw Error("--lut-geometry", "expected schlick, correlated, both or none, got \"" + *v.lutGeometry + "\"");
+            const auto g = parseEnum<GeometryTerm>(*o.lutGeometry);
+            if (!g) throw Error("--lut-geometry", "expected " + enumChoicesText<GeometryTerm>() + ", both or none, got \"" + *o.lutGeometry + "\"");
             s.lut.schlickGgx = *g == GeometryTerm::SchlickGGX;
             s.lut.heightCorrelatedSmith = *g == GeometryTerm::HeightCorrelatedSmith;
         }
     }
-    // No frame to keep responsive here: each pass is one step per mip unless asked otherwise.
-    s.samplesPerStep = bake::kUnslicedBake;
-    apply(v.samplesPerStep, s.samplesPerStep);
     bake::validate(s);
     return s;
 }
@@ -178,7 +94,7 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
                 r.fromCache ? " (loaded from the cache)" : "");
     std::printf("environment cube %d (%d mips), prefiltered %d x %d mips (%s layout), GPU memory %.2f MiB\n", r.environmentCube.size,
                 r.environmentCube.levels, r.prefiltered.size, r.prefiltered.levels,
-                std::string(bake::roughnessLayoutName(r.settings.prefilter.layout)).c_str(), double(r.gpuBytes()) / (1024.0 * 1024.0));
+                std::string(enumName(r.settings.prefilter.layout)).c_str(), double(r.gpuBytes()) / (1024.0 * 1024.0));
     std::printf("timings (steady clock around glFinish):\n");
     for (const auto& t : r.timings)
         std::printf("  %-22s %10.1f ms\n", t.phase.c_str(), t.milliseconds);
@@ -193,17 +109,13 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
         std::printf("  irradiance SH9:           mean %.4f max %.4f\n", errors->shIrradiance.mean, errors->shIrradiance.max);
         std::printf("  irradiance SH9 windowed:  mean %.4f max %.4f\n", errors->shIrradianceWindowed.mean,
                     errors->shIrradianceWindowed.max);
-        auto irradianceLine = [](const char* name, const std::optional<bake::ErrorStats>& texels, const std::optional<bake::ErrorStats>& shaded) {
-            if (texels && shaded)
-                std::printf("  irradiance cube %-9s mean %.4f max %.4f; as shaded mean %.4f max %.4f\n", name, texels->mean, texels->max,
-                            shaded->mean, shaded->max);
-        };
-        irradianceLine("Riemann:", errors->irradianceRiemann, errors->irradianceRiemannShaded);
-        irradianceLine("cos-IS:", errors->irradianceImportance, errors->irradianceImportanceShaded);
-        irradianceLine("moments:", errors->irradianceMoments, errors->irradianceMomentsShaded);
+        if (errors->irradianceCube && errors->irradianceCubeShaded)
+            std::printf("  irradiance cube %-9s mean %.4f max %.4f; as shaded mean %.4f max %.4f\n",
+                        (std::string(enumName(errors->irradianceMethod)) + ":").c_str(), errors->irradianceCube->mean,
+                        errors->irradianceCube->max, errors->irradianceCubeShaded->mean, errors->irradianceCubeShaded->max);
         for (GeometryTerm term : bake::kGeometryTerms)
             if (errors->lutMaxAbs[std::size_t(term)])
-                std::printf("  LUT %-24s max abs %.5f\n", std::string(geometryTermName(term)).c_str(), *errors->lutMaxAbs[std::size_t(term)]);
+                std::printf("  LUT %-24s max abs %.5f\n", std::string(enumName(term)).c_str(), *errors->lutMaxAbs[std::size_t(term)]);
     }
     if (!out.empty()) std::printf("written to %s\n", out.c_str());
 }
@@ -252,7 +164,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
             bake::writeBakeDirectory(dir, result, extra.empty() ? std::string() : extra.dump());
             for (GeometryTerm term : bake::kGeometryTerms)
                 if (const bake::BakedTexture& lut = result.lut(term))
-                    bake::writeLutExr(dir / ("brdf_lut_" + std::string(geometryTermName(term)) + ".exr"), bake::read2D(lut),
+                    bake::writeLutExr(dir / ("brdf_lut_" + std::string(enumName(term)) + ".exr"), bake::read2D(lut),
                                       settings.lut.samples, term, true, false);
         }
         glFinish();
@@ -283,12 +195,11 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
             }
             j["gpu_bytes"] = result.gpuBytes();
             j["textures"] = {{"environment_cube", textureJson(result.environmentCube)},
-                             {"irradiance_riemann", textureJson(result.irradianceRiemann)},
-                             {"irradiance_importance", textureJson(result.irradianceImportance)},
-                             {"irradiance_moments", textureJson(result.irradianceMoments)},
+                             {"irradiance", textureJson(result.irradianceCube)},
                              {"prefiltered", textureJson(result.prefiltered)},
                              {"brdf_lut_schlick-ggx", textureJson(result.brdfLut[0])},
                              {"brdf_lut_height-correlated-smith", textureJson(result.brdfLut[1])}};
+            j["textures"]["irradiance"]["method"] = enumName(result.settings.irradiance);
             j["sh"] = ordered_json::parse(bake::shJsonText(result.sh));
             if (errors) j["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
             j["notes"] = notes;
@@ -314,9 +225,9 @@ struct ShCommandOptions {
 int runSh(const ShCommandOptions& o)
 {
     try {
-        const auto device = bake::parseShDevice(o.device);
+        const auto device = parseEnum<bake::ShDevice>(o.device);
         if (!device) throw Error("--device", "expected cpu or gpu, got \"" + o.device + "\"");
-        const auto window = bake::parseShWindow(o.window);
+        const auto window = parseEnum<ShWindow>(o.window);
         if (!window) throw Error("--window", "expected none, hanning or lanczos, got \"" + o.window + "\"");
         const Environment environment = loadEnvironment(o.environment);
         SH9Color radiance;
@@ -348,7 +259,7 @@ int runSh(const ShCommandOptions& o)
             j["radiance"] = shArray(radiance);
             j["irradiance"] = shArray(irradiance);
             j["irradiance_windowed"] = shArray(windowed);
-            j["window"] = bake::shWindowName(*window);
+            j["window"] = enumName(*window);
             j["window_width"] = width;
             j["source"] = environment.source;
             j["device"] = o.device;
@@ -382,7 +293,7 @@ struct LutCommandOptions {
 int runLut(const LutCommandOptions& o)
 {
     try {
-        const auto term = bake::parseGeometryTerm(o.geometry);
+        const auto term = parseEnum<GeometryTerm>(o.geometry);
         if (!term) throw Error("--geometry", "expected schlick or correlated, got \"" + o.geometry + "\"");
         HeadlessGl gl(/*debugContext=*/true);
         gl::ShaderLibrary shaders(shaderDirectory());
@@ -400,7 +311,7 @@ int runLut(const LutCommandOptions& o)
             j["output"] = o.output;
             j["size"] = o.size;
             j["samples"] = o.samples;
-            j["geometry"] = geometryTermName(*term);
+            j["geometry"] = enumName(*term);
             j["multiscatter"] = o.multiscatter;
             j["bake_ms"] = ms;
             j["timing_method"] = "steady clock around the dispatch and glFinish";
@@ -430,41 +341,8 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_option("--preset", o->preset, "Starting settings: default (fast, accurate) or tutorial (LearnOpenGL's)")
         ->capture_default_str()
         ->check(CLI::IsMember({"default", "tutorial"}));
-    BakeOverrides& v = o->overrides;
-    c->add_option("--precision", v.precision, "Cube storage: half (RGBA16F) or float (RGBA32F)");
-    c->add_option("--exact-texel-solid-angle", v.exactTexelSolidAngle,
-                  "PDF mip selection against the solid angle of the texel read (on) or the face average (off)");
-    c->add_option("--cube-size", v.cubeSize, "Environment cube face size; 0 = from the source (6 f^2 <= W H)");
-    c->add_option("--sh-device", v.shDevice, "SH9 projection on the cpu or the gpu");
-    c->add_option("--sh-window", v.shWindow, "SH window against ringing: none, hanning or lanczos");
-    c->add_option("--sh-window-width", v.shWindowWidth, "SH window width in bands; 0 = the gentlest non-negative one");
-    c->add_option("--riemann", v.riemann, "Bake the Riemann-sum irradiance cube (on/off)");
-    c->add_option("--riemann-size", v.riemannSize, "Riemann irradiance cube face size");
-    c->add_option("--riemann-delta", v.riemannDelta, "Riemann sample delta, radians");
-    c->add_option("--riemann-mip-filter", v.riemannMipFilter, "Read each Riemann cell from the mip matching its size (on/off)");
-    c->add_option("--riemann-mip-bias", v.riemannMipBias, "Bias added to the Riemann cells' source lod");
-    c->add_option("--importance", v.importance, "Bake the cosine-importance-sampled irradiance cube (on/off)");
-    c->add_option("--importance-size", v.importanceSize, "Importance-sampled irradiance cube face size");
-    c->add_option("--importance-samples", v.importanceSamples, "Cosine samples per irradiance texel");
-    c->add_option("--importance-mip-filter", v.importanceMipFilter, "PDF-based source-mip selection for irradiance (on/off)");
-    c->add_option("--importance-mip-bias", v.importanceMipBias, "Bias added to the irradiance source lod");
-    c->add_option("--moments", v.moments, "Bake the irradiance cube from texel groups' flux and first moments (on/off)");
-    c->add_option("--moments-size", v.momentsSize, "Moment irradiance cube face size");
-    c->add_option("--moments-source-size", v.momentsSourceSize, "Texel groups per face edge the moment irradiance sums over");
-    c->add_option("--prefilter-size", v.prefilterSize, "Prefiltered cube face size (power of two)");
-    c->add_option("--prefilter-levels", v.prefilterLevels, "Prefiltered mips, roughness 0 at mip 0 to 1 at the last");
-    c->add_option("--prefilter-layout", v.prefilterLayout,
-                  "Roughness per mip: linear (m / (levels - 1), LearnOpenGL) or quadratic (Filament: 1 - sqrt(1 - m / (levels - 1)))");
-    c->add_option("--prefilter-samples", v.prefilterSamples, "GGX samples per prefiltered texel at mip 1");
-    c->add_option("--prefilter-sample-growth", v.prefilterSampleGrowth, "Mip m takes samples * growth^(m-1)");
-    c->add_option("--prefilter-mip-filter", v.prefilterMipFilter, "PDF-based source-mip selection for the prefilter (on/off)");
-    c->add_option("--prefilter-mip-bias", v.prefilterMipBias, "Bias added to the prefilter source lod (0 LearnOpenGL, 1 Filament)");
-    c->add_option("--prefilter-mirror-copy", v.prefilterMirrorCopy,
-                  "Mip 0 as a copy of the matching source mip (on), or sampled like the other mips as LearnOpenGL does (off)");
-    c->add_option("--lut-size", v.lutSize, "BRDF LUT size");
-    c->add_option("--lut-samples", v.lutSamples, "BRDF LUT samples per texel");
-    c->add_option("--lut-geometry", v.lutGeometry, "LUT geometry terms: schlick, correlated, both or none");
-    c->add_option("--step-samples", v.samplesPerStep, "Work per bake step, in texture samples, as the GUI slices a bake (default: one step per pass and mip)");
+    o->overrides.add(*c, bake::bakeSettingsFields());
+    c->add_option("--lut-geometry", o->lutGeometry, "LUT geometry terms: " + enumChoicesText<GeometryTerm>() + ", both or none");
     c->add_option("--out", o->out, "Write the results to DIR (EXR + JSON, see docs/bake.md)");
     c->add_option("--cache-dir", o->cacheDir, "Cache directory (default $IBLAB_CACHE_DIR, $XDG_CACHE_HOME/iblab or ~/.cache/iblab)");
     c->add_flag("--no-cache", o->noCache, "Neither read nor write the cache");

@@ -24,7 +24,7 @@ std::vector<ui::ParetoChart> benchCharts(const bench::BenchReport& report, Chart
     std::vector<ui::ParetoChart> charts;
     for (const bench::BenchEnvironment& e : report.options.environments) {
         ui::ParetoChart chart;
-        chart.title = e.name + " (" + std::string(sceneKindName(report.options.frame.scene.kind)) + ", " + std::to_string(report.options.width) + "x" +
+        chart.title = e.name + " (" + std::string(enumName(report.options.frame.scene.kind)) + ", " + std::to_string(report.options.width) + "x" +
                       std::to_string(report.options.height) + ")";
         chart.xLabel = "cost, ms: bake + " + std::to_string(report.options.costFrames) + " frame" + (report.options.costFrames == 1 ? "" : "s") + " (log)";
         chart.yLabel = display ? "display error against the reference: 99th percentile, 8-bit steps (log)" : "relative RMSE against the reference (log)";

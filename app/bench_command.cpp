@@ -164,7 +164,10 @@ Command addBenchCommand(CLI::App& app, ProcessClock::time_point)
     c->add_option_function<std::string>(
          "--scene",
          [o](const std::string& value) {
-             if (parseSceneKind(value, o->scene.kind) && o->scene.kind != SceneKind::Model && o->scene.kind != SceneKind::None) return;
+             if (const auto kind = parseEnum<SceneKind>(value); kind && *kind != SceneKind::Model && *kind != SceneKind::None) {
+                     o->scene.kind = *kind;
+                     return;
+                 }
              const std::string ext = std::filesystem::path(value).extension().string();
              if (ext != ".gltf" && ext != ".glb") throw CLI::ValidationError("--scene", "expected sphere, grid, counting, sweep or a .gltf/.glb file, got \"" + value + "\"");
              o->scene.kind = SceneKind::Model;

@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "field_options.hpp"
 #include "frame/conventions.hpp"
 #include "io/builtin_environments.hpp"
 #include "gui_app.hpp"
@@ -21,21 +22,6 @@
 
 namespace iblab::app {
 namespace {
-
-// An option whose value is one of an enum's names (settings.hpp spells them once).
-template <typename Enum>
-void addNamedOption(CLI::App& command, const std::string& name, const std::string& help, Enum& target, bool (*parse)(std::string_view, Enum&),
-                    std::string_view (*nameOf)(Enum))
-{
-    command
-        .add_option_function<std::string>(
-            name,
-            [&target, parse, name](const std::string& value) {
-                if (!parse(value, target)) throw CLI::ValidationError(name, "unknown value \"" + value + "\"");
-            },
-            help)
-        ->default_str(std::string(nameOf(target)));
-}
 
 // "0.9,0.6,0.5" (linear) or "#e6a08c" (sRGB-encoded, as colour pickers give it).
 std::optional<glm::vec3> parseColour(const std::string& text)
@@ -58,41 +44,38 @@ std::optional<glm::vec3> parseColour(const std::string& text)
     return colour;
 }
 
-// The estimator's options. The split view's B side has the same set, prefixed --b-.
-void addSamplingOptions(CLI::App& command, SamplingSettings& sampling, const std::string& prefix, const std::string& helpPrefix)
+// The field of the frame's table with this JSON key (settings.cpp); its help text and range
+// serve the options that need a form of their own.
+const Field<FrameSettings>& frameField(std::string_view key)
 {
-    addNamedOption(command, prefix + "method", helpPrefix + "Shading: splitsum|sampled", sampling.method, parseShadingMethod, shadingMethodName);
-    command.add_option(prefix + "samples", sampling.samples, helpPrefix + "N, samples per pixel for the sampled method")->capture_default_str()->check(CLI::Range(1, kMaxSampleCount));
-    const std::string mipOption = prefix + "mip";
+    const Field<FrameSettings>* field = findField(frameSettingsFields(), key);
+    if (!field) throw std::logic_error("no frame setting " + std::string(key));
+    return *field;
+}
+
+// --mip LEVEL|auto, and --b-mip for the split view's B side.
+void addMipOption(CLI::App& command, const std::string& option, std::string_view key, FrameSettings& settings)
+{
+    const Field<FrameSettings>& field = frameField(key);
     command
         .add_option_function<std::string>(
-            mipOption,
-            [&sampling, mipOption](const std::string& value) {
+            option,
+            [&field, &settings, option](const std::string& value) {
                 if (value == "auto") {
-                    sampling.forcedMip = -1;
+                    setFieldFromText(field, settings, "-1");
                     return;
                 }
+                int level = -1;
                 try {
-                    sampling.forcedMip = std::stoi(value);
+                    level = std::stoi(value);
                 } catch (const std::exception&) {
-                    throw CLI::ValidationError(mipOption, "expected a mip level or auto, got \"" + value + "\"");
+                    throw CLI::ValidationError(option, "expected a mip level or auto, got \"" + value + "\"");
                 }
-                if (sampling.forcedMip < 0) throw CLI::ValidationError(mipOption, "a mip level is >= 0");
+                if (level < 0) throw CLI::ValidationError(option, "a mip level is >= 0");
+                applyFieldText(field, settings, value);
             },
-            helpPrefix + "Mip level to read (prefiltered mip for split-sum, source mip for sampled), or auto")
+            std::string(field.help))
         ->default_str("auto");
-    command.add_flag("!" + prefix + "no-pdf-filtering", sampling.pdfMipFiltering, helpPrefix + "Sampled method: read every sample from mip 0 instead of the PDF-chosen mip");
-    command.add_option(prefix + "mip-bias", sampling.mipBias, helpPrefix + "Bias added to the PDF-chosen mip (0 LearnOpenGL, 1 Filament)")->capture_default_str();
-    addNamedOption(command, prefix + "geometry", helpPrefix + "Geometry term: schlick|correlated", sampling.geometry, parseGeometryTerm, geometryTermShortName);
-    addNamedOption(command, prefix + "diffuse", helpPrefix + "Diffuse source: sh9|irradiance-cube", sampling.diffuse, parseDiffuseSource, diffuseSourceName);
-    command.add_flag(prefix + "cosine-diffuse", sampling.cosineSampledDiffuse, helpPrefix + "Sampled method: diffuse from N cosine samples instead of SH9");
-    command.add_flag(prefix + "multiscatter", sampling.multiscatter, helpPrefix + "Multiple-scattering energy compensation from the LUT");
-    command.add_flag(prefix + "rough-fresnel-lut", sampling.roughFresnelOnLut,
-                     helpPrefix + "Split sum as LearnOpenGL: F_roughness(n.v) * A + B instead of F0 * A + B");
-    command.add_flag(prefix + "normalize-accepted", sampling.normalizeByAccepted,
-                     helpPrefix + "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N");
-    command.add_flag(prefix + "freeze-samples", sampling.freezeSampleSet,
-                     helpPrefix + "Sampled method: keep exactly N samples per pixel (no rotated sample sets added over frames)");
 }
 
 } // namespace
@@ -107,50 +90,31 @@ void addConventionOption(CLI::App& command, std::string& convention)
 
 void addFrameOptions(CLI::App& command, FrameSettings& settings)
 {
+    // Every setting with a plain option comes from its table row (frameSettingsFields());
+    // the ones below take forms of their own.
+    addFieldOptions(command, frameSettingsFields(), settings);
     std::string builtins;
     for (const std::string& name : builtinEnvironmentNames()) builtins += (builtins.empty() ? "" : ", ") + name;
-    command.add_option("--env", settings.environment.source, "Environment: an .exr/.hdr file or builtin:NAME (" + builtins + ")")
+    command.add_option("--env", settings.environment.source, std::string(frameField("environment.source").help) + " (" + builtins + ")")
         ->default_str("the bundled courtyard.exr");
-    command.add_option("--env-yaw", settings.environment.yawDegrees, "Environment rotation about +Y, degrees (+90 brings +X to the front)")
-        ->capture_default_str();
-    command.add_option("--env-intensity", settings.environment.intensityEv, "Environment intensity, EV stops")->capture_default_str();
-    command.add_option("--exposure", settings.toneMap.exposureEv, "Exposure before tone mapping, EV stops")->capture_default_str();
-    std::string operators;
-    for (ToneMapOperator op : allToneMapOperators()) operators += (operators.empty() ? "" : "|") + std::string(toneMapOperatorName(op));
-    command
-        .add_option_function<std::string>(
-            "--tonemap",
-            [&settings](const std::string& name) {
-                const auto op = parseToneMapOperator(name);
-                if (!op) throw CLI::ValidationError("--tonemap", "unknown operator \"" + name + "\"");
-                settings.toneMap.op = *op;
-            },
-            "Tone map operator: " + operators)
-        ->default_str(std::string(toneMapOperatorName(settings.toneMap.op)));
-    command.add_option("--yaw", settings.camera.yawDegrees, "Camera yaw, degrees (0 looks down -Z, +90 down +X)")->capture_default_str();
-    command.add_option("--pitch", settings.camera.pitchDegrees, "Camera pitch, degrees")->capture_default_str()->check(CLI::Range(-89.0f, 89.0f));
-    command.add_option("--fov", settings.camera.fovDegrees, "Vertical field of view, degrees")->capture_default_str()->check(CLI::Range(1.0f, 170.0f));
-    // Scene, material and method: every view of the UI can be rendered headless.
     command
         .add_option_function<std::string>(
             "--scene",
             [&settings](const std::string& value) {
-                if (parseSceneKind(value, settings.scene.kind) && settings.scene.kind != SceneKind::Model) return;
+                const std::optional<SceneKind> kind = parseEnum<SceneKind>(value);
+                if (kind && *kind != SceneKind::Model) {
+                    settings.scene.kind = *kind;
+                    return;
+                }
                 const std::string ext = std::filesystem::path(value).extension().string();
                 if (ext != ".gltf" && ext != ".glb") throw CLI::ValidationError("--scene", "expected sphere, grid, counting, sweep, none or a .gltf/.glb file, got \"" + value + "\"");
                 settings.scene.kind = SceneKind::Model;
                 settings.scene.modelPath = value;
             },
-            "Scene: sphere|grid|counting|sweep|none|FILE.gltf|FILE.glb")
+            std::string(frameField("scene.kind").help))
         ->default_str("sphere");
-    command.add_option("--counting-spheres", settings.scene.countingSpheres, "Spheres in the N = 1..k counting strip")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 64));
-    addSamplingOptions(command, settings.sampling, "--", "");
-    command.add_option("--metallic", settings.material.metallic, "Metallic, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
-    command.add_option("--roughness", settings.material.roughness, "Perceptual roughness, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
-    command.add_option("--ao", settings.material.ambientOcclusion, "Ambient occlusion, 0..1")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
-    command.add_option("--specular", settings.material.specular, "Dielectric reflectance (F0 = 0.16 specular^2)")->capture_default_str()->check(CLI::Range(0.0f, 1.0f));
+    addMipOption(command, "--mip", "sampling.forced_mip", settings);
+    addMipOption(command, "--b-mip", "view.compare.forced_mip", settings);
     command
         .add_option_function<std::string>(
             "--base-color",
@@ -159,26 +123,8 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
                 if (!colour) throw CLI::ValidationError("--base-color", "expected r,g,b in 0..1 (linear) or #rrggbb (sRGB), got \"" + value + "\"");
                 settings.material.baseColor = *colour;
             },
-            "Base colour: r,g,b (linear, 0..1) or #rrggbb (sRGB)");
-    command.add_flag("!--model-material", settings.material.overrideModel, "Keep a glTF model's own material factors instead of the sliders'");
-    addNamedOption(command, "--view", "View: final|prefilter-mips|lut|furnace|irradiance|error", settings.view.mode, parseViewMode, viewModeName);
-    addNamedOption(command, "--background", "Background: environment|irradiance|prefilter-mip|solid", settings.view.background, parseBackgroundMode,
-                   backgroundModeName);
-    command.add_option("--background-mip", settings.view.backgroundMip, "Prefiltered mip shown by --background prefilter-mip")->capture_default_str();
-    command.add_option("--msaa", settings.view.msaaSamples, "Multisample anti-aliasing of the lit frame: samples per pixel, 1 (off), 2, 4 or 8")
-        ->capture_default_str()
-        ->check(CLI::IsMember({1, 2, 4, 8}));
-    command.add_option("--distance", settings.camera.distance, "Camera distance from its target")->default_str("0: frame the scene");
-    // Speed against accuracy: the error view against the reference, and the A/B split.
-    addNamedOption(command, "--error-space", "--view error compares: linear (HDR, before tone mapping)|display (after)", settings.view.errorSpace,
-                   parseErrorSpace, errorSpaceName);
-    command.add_option("--error-scale", settings.view.errorScale, "--view error: the relative error at the top of the colour bar")
-        ->capture_default_str()
-        ->check(CLI::PositiveNumber);
-    command.add_option("--reference-width", settings.view.referenceWidth,
-                       "Width of the environment the reference sums over (halved from the loaded map until it fits; height = width / 2)")
-        ->capture_default_str()
-        ->check(CLI::Range(2, 4096));
+            std::string(frameField("material.base_color").help));
+    command.add_option("--distance", settings.camera.distance, std::string(frameField("camera.distance").help))->default_str("0: frame the scene");
     command
         .add_option_function<float>(
             "--split",
@@ -186,9 +132,8 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
                 settings.view.split = true;
                 settings.view.splitPosition = position;
             },
-            "A/B split view: the divider's position, 0..1 from the left; A (the options above) left, B (--b-*) right")
+            std::string(frameField("view.split_position").help))
         ->check(CLI::Range(0.0f, 1.0f));
-    addSamplingOptions(command, settings.view.compare, "--b-", "Split view, right side: ");
 }
 
 int runCommandLine(int argc, char** argv)

@@ -125,7 +125,7 @@ int runConventions(const ConventionsOptions& o)
 
             renderer.renderFrame(errorView, width, height);
             overlay.drawOver(renderer, errorView, width, height,
-                             {"error against the exact integral (" + std::string(geometryTermShortName(convention.geometry)) +
+                             {"error against the exact integral (" + std::string(enumName(convention.geometry)) +
                                   (convention.multiscatter ? ", energy compensated)" : ")"),
                               "relative RMSE " + percent(row.error.left.relativeRmse) + ", p99 " + percent(row.error.left.p99Relative) +
                                   ", max " + percent(row.error.left.maxRelative)});
@@ -137,7 +137,7 @@ int runConventions(const ConventionsOptions& o)
         nlohmann::ordered_json report;
         report["environment"] = settings.environment.source;
         report["material"] = {{"metallic", settings.material.metallic}, {"roughness", settings.material.roughness}};
-        report["scene"] = std::string(sceneKindName(settings.scene.kind));
+        report["scene"] = std::string(enumName(settings.scene.kind));
         report["image"] = o.output;
         for (const Row& row : rows) {
             nlohmann::ordered_json entry;

@@ -3,7 +3,9 @@
 // injected frame by frame into the GUI's input queue, where GLFW's callbacks put a user's
 // input, with checks on the state (settings, panels, popups) and on the pixels drawn. The
 // language is described in docs/gui-scripts.md; `iblab --script FILE` runs one, in a window
-// when there is a display and offscreen otherwise (or with --offscreen).
+// when there is a display and offscreen otherwise (or with --offscreen). The parser is
+// gui_script_parser.cpp, the runner gui_script_runner.cpp, and what the checks compare and
+// measure gui_script_checks.hpp.
 #include <optional>
 #include <string>
 #include <vector>

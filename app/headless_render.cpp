@@ -112,7 +112,7 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
             if (reference.complete) {
                 const ErrorReport error = renderer.measureError(settings);
                 auto& out = report["error"];
-                out["space"] = errorSpaceName(settings.view.errorSpace);
+                out["space"] = enumName(settings.view.errorSpace);
                 out["reference_environment"] = {{"width", reference.environmentWidth},
                                                 {"height", reference.environmentHeight},
                                                 {"texel_degrees", reference.texelDegrees},

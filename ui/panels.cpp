@@ -12,6 +12,7 @@
 #include "frame/conventions.hpp"
 #include "ibl/error_metrics.hpp"
 #include "ibl/tonemap.hpp"
+#include "ui/field_widgets.hpp"
 #include "ui/widgets.hpp"
 
 namespace iblab::ui {
@@ -198,17 +199,14 @@ void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene)
 {
     Section section("Material", true);
     if (!section) return;
-    if (scene.kind == SceneKind::Model) {
-        checkbox("Override the model's factors", &settings.overrideModel);
-        tooltip("Off: the model's own materials. On: the sliders below replace its base colour, metallic and roughness factors.");
-    }
+    const FieldTable<MaterialSettings>& fields = materialSettingsFields();
+    if (scene.kind == SceneKind::Model) fieldCheckbox(fields, "override_model", settings);
     colourEdit3("Base colour", &settings.baseColor.x);
     if (scene.kind == SceneKind::Grid) ImGui::TextDisabled("The grid sets metallic (rows) and roughness (columns).");
-    sliderFloat("Metallic", &settings.metallic, 0.0f, 1.0f);
-    sliderFloat("Roughness", &settings.roughness, 0.0f, 1.0f);
-    sliderFloat("AO", &settings.ambientOcclusion, 0.0f, 1.0f);
-    sliderFloat("Specular", &settings.specular, 0.0f, 1.0f, "%.2f");
-    tooltip("Dielectric F0 = 0.16 specular^2: 0.5 gives 4%");
+    fieldSlider(fields, "metallic", settings);
+    fieldSlider(fields, "roughness", settings);
+    fieldSlider(fields, "ambient_occlusion", settings);
+    fieldSlider(fields, "specular", settings, "%.2f");
 }
 
 namespace {
@@ -216,7 +214,8 @@ namespace {
 // The estimator's controls; the frame's own (A) and the split view's B use the same.
 void drawSamplingControls(SamplingSettings& settings, bool exactCountForced)
 {
-    enumCombo("Method", settings.method, std::array{ShadingMethod::SplitSum, ShadingMethod::Sampled}, shadingMethodName);
+    const FieldTable<SamplingSettings>& fields = samplingSettingsFields();
+    fieldCombo(fields, "method", settings);
     if (settings.method == ShadingMethod::Sampled) {
         // N is counted in ones for the N = 1..k check: typed (Ctrl+click), stepped with the
         // buttons or the +/- keys, or dragged on a logarithmic scale.
@@ -237,22 +236,18 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced)
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
             ImGui::SetTooltip(exactCountForced ? "The counting strip always keeps exactly N samples per pixel"
                                                : "Exactly N samples per pixel: no progressive refinement with rotated sample sets");
-        checkbox("PDF mip filtering", &settings.pdfMipFiltering);
-        if (settings.pdfMipFiltering) sliderFloat("Mip bias", &settings.mipBias, -1.0f, 3.0f, "%+.2f");
-        checkbox("Cosine-sampled diffuse", &settings.cosineSampledDiffuse);
-        checkbox("Normalise by accepted samples", &settings.normalizeByAccepted);
-        tooltip("LearnOpenGL's normalisation; off divides by N (unbiased)");
+        fieldCheckbox(fields, "pdf_mip_filtering", settings);
+        if (settings.pdfMipFiltering) sliderFloat("Mip bias", &settings.mipBias, -1.0f, 3.0f, "%+.2f"); // the useful part of the range
+        fieldCheckbox(fields, "cosine_sampled_diffuse", settings);
+        fieldCheckbox(fields, "normalize_by_accepted", settings);
     }
     bool automatic = settings.forcedMip < 0;
     if (checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;
     if (!automatic) sliderInt("Forced mip", &settings.forcedMip, 0, 10);
-    enumCombo("Geometry term", settings.geometry, std::array{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith}, geometryTermShortName);
-    enumCombo("Diffuse", settings.diffuse, std::array{DiffuseSource::Sh9, DiffuseSource::IrradianceCube}, diffuseSourceName);
-    checkbox("Multiple-scattering compensation", &settings.multiscatter);
-    if (settings.method == ShadingMethod::SplitSum) {
-        checkbox("F_roughness on the LUT", &settings.roughFresnelOnLut);
-        tooltip("LearnOpenGL's split sum: F_roughness(n.v) A + B; off: F0 A + B (exact)");
-    }
+    fieldCombo(fields, "geometry", settings);
+    fieldCombo(fields, "diffuse", settings);
+    fieldCheckbox(fields, "multiscatter", settings);
+    if (settings.method == ShadingMethod::SplitSum) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
 }
 
 // The smoothest roughness the scene shows, where the settings say it (a glTF's own
@@ -273,10 +268,10 @@ std::optional<float> smoothestRoughness(const FrameSettings& settings)
 // "sampled N=16" or "splitsum", the divider's labels.
 std::string samplingSummary(const SamplingSettings& s)
 {
-    std::string text(shadingMethodName(s.method));
+    std::string text(enumName(s.method));
     if (s.method == ShadingMethod::Sampled) text += " N=" + std::to_string(s.samples) + (s.pdfMipFiltering ? "" : " mip0");
     if (s.forcedMip >= 0) text += " mip " + std::to_string(s.forcedMip);
-    text += ", " + std::string(geometryTermShortName(s.geometry));
+    text += ", " + std::string(enumName(s.geometry));
     if (s.multiscatter) text += ", ms";
     if (s.roughFresnelOnLut && s.method == ShadingMethod::SplitSum) text += ", F_r on LUT";
     return text;
@@ -334,7 +329,7 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
     if (checkbox("Error against the reference", &errorView)) view.mode = errorView ? ViewMode::Error : ViewMode::Final;
     tooltip("The full integral over the environment's texels: no split sum, no N = V = R");
     if (errorView) {
-        enumCombo("Error space", view.errorSpace, std::array{ErrorSpace::Linear, ErrorSpace::Display}, errorSpaceName);
+        enumCombo("Error space", view.errorSpace, std::array{ErrorSpace::Linear, ErrorSpace::Display}, enumName<ErrorSpace>);
         sliderFloat("Colour bar top", &view.errorScale, 0.01f, 4.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
         const std::array widths{32, 64, 128, 256, 512};
         if (Combo combo("Reference map", (std::to_string(view.referenceWidth) + " x " + std::to_string(view.referenceWidth / 2)).c_str()); combo)
@@ -383,7 +378,7 @@ void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requ
     Section section("Scene", true);
     if (!section) return;
     const std::array kinds{SceneKind::Sphere, SceneKind::Grid, SceneKind::Counting, SceneKind::Sweep, SceneKind::Model, SceneKind::None};
-    if (enumCombo("Scene", settings.kind, kinds, sceneKindName)) requests.sceneChanged = true;
+    if (enumCombo("Scene", settings.kind, kinds, enumName<SceneKind>)) requests.sceneChanged = true;
     if (settings.kind == SceneKind::Counting || settings.kind == SceneKind::Sweep) {
         if (sliderInt("Spheres", &settings.countingSpheres, 2, 16)) requests.sceneChanged = true;
         tooltip(settings.kind == SceneKind::Counting ? "Sphere i uses N = i samples" : "Roughness from 0 (left) to 1 (right)");
@@ -409,9 +404,9 @@ void drawViewPanel(ViewSettings& settings)
     Section section("View");
     if (!section) return;
     const std::array modes{ViewMode::Final, ViewMode::PrefilterMips, ViewMode::Lut, ViewMode::Furnace, ViewMode::Irradiance, ViewMode::Error};
-    enumCombo("View", settings.mode, modes, viewModeName);
+    enumCombo("View", settings.mode, modes, enumName<ViewMode>);
     const std::array backgrounds{BackgroundMode::Environment, BackgroundMode::Irradiance, BackgroundMode::PrefilterMip, BackgroundMode::SolidColour};
-    enumCombo("Background", settings.background, backgrounds, backgroundModeName);
+    enumCombo("Background", settings.background, backgrounds, enumName<BackgroundMode>);
     if (settings.background == BackgroundMode::PrefilterMip) sliderInt("Mip", &settings.backgroundMip, 0, 8);
     if (settings.background == BackgroundMode::SolidColour) colourEdit3("Colour", &settings.solidColour.x);
 }

@@ -162,14 +162,10 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
         }
         return cubeIrradianceErrors(cube, texels, reference);
     };
-    texelGridErrors({}, result.irradianceCube() ? result.irradianceCube().size : 32);
+    texelGridErrors({}, result.irradianceCube ? result.irradianceCube.size : 32);
     errors.irradianceReferenceWidth = reduced.width;
-    if (result.irradianceRiemann)
-        errors.irradianceRiemann = texelGridErrors(result.irradianceRiemann, result.irradianceRiemann.size);
-    if (result.irradianceImportance)
-        errors.irradianceImportance = texelGridErrors(result.irradianceImportance, result.irradianceImportance.size);
-    if (result.irradianceMoments)
-        errors.irradianceMoments = texelGridErrors(result.irradianceMoments, result.irradianceMoments.size);
+    errors.irradianceMethod = result.settings.irradiance;
+    if (result.irradianceCube) errors.irradianceCube = texelGridErrors(result.irradianceCube, result.irradianceCube.size);
 
     // Irradiance as shaded: each cube read where shading reads it (bilinear, seamless) at the
     // Fibonacci directions, which counts the interpolation between texel centres that the
@@ -189,12 +185,7 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     for (const glm::dvec3& d : shadedDirections)
         shShaded.push_back(evaluate(result.sh.irradiance, d));
     errors.shIrradianceShaded = relativeErrors(shShaded, shadedReference);
-    if (result.irradianceRiemann)
-        errors.irradianceRiemannShaded = shadedIrradianceErrors(result.irradianceRiemann);
-    if (result.irradianceImportance)
-        errors.irradianceImportanceShaded = shadedIrradianceErrors(result.irradianceImportance);
-    if (result.irradianceMoments)
-        errors.irradianceMomentsShaded = shadedIrradianceErrors(result.irradianceMoments);
+    if (result.irradianceCube) errors.irradianceCubeShaded = shadedIrradianceErrors(result.irradianceCube);
 
     for (GeometryTerm term : kGeometryTerms) {
         const BakedTexture& lut = result.lut(term);
@@ -241,27 +232,18 @@ std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& opti
     nlohmann::ordered_json irr;
     irr["sh"] = statsJson(errors.shIrradiance);
     irr["sh_windowed"] = statsJson(errors.shIrradianceWindowed);
-    if (errors.irradianceRiemann)
-        irr["cube_riemann"] = statsJson(*errors.irradianceRiemann);
-    if (errors.irradianceImportance)
-        irr["cube_importance"] = statsJson(*errors.irradianceImportance);
-    if (errors.irradianceMoments)
-        irr["cube_moments"] = statsJson(*errors.irradianceMoments);
+    const std::string cubeKey = "cube_" + std::string(enumName(errors.irradianceMethod));
+    if (errors.irradianceCube) irr[cubeKey] = statsJson(*errors.irradianceCube);
     irr["reference_width"] = errors.irradianceReferenceWidth;
     j["irradiance"] = irr;
     nlohmann::ordered_json irrShaded;
     irrShaded["sh"] = statsJson(errors.shIrradianceShaded);
-    if (errors.irradianceRiemannShaded)
-        irrShaded["cube_riemann"] = statsJson(*errors.irradianceRiemannShaded);
-    if (errors.irradianceImportanceShaded)
-        irrShaded["cube_importance"] = statsJson(*errors.irradianceImportanceShaded);
-    if (errors.irradianceMomentsShaded)
-        irrShaded["cube_moments"] = statsJson(*errors.irradianceMomentsShaded);
+    if (errors.irradianceCubeShaded) irrShaded[cubeKey] = statsJson(*errors.irradianceCubeShaded);
     j["irradiance_shaded"] = irrShaded;
     nlohmann::ordered_json lut = nlohmann::ordered_json::object();
     for (GeometryTerm term : kGeometryTerms)
         if (errors.lutMaxAbs[std::size_t(term)])
-            lut[std::string(geometryTermName(term))] = *errors.lutMaxAbs[std::size_t(term)];
+            lut[std::string(enumName(term))] = *errors.lutMaxAbs[std::size_t(term)];
     j["lut_max_abs"] = lut;
     j["method"] = "exact references of renderer/ibl (sums over every texel) at the texel centres of a " +
                   std::to_string(options.texelsPerFaceEdge) + "x" + std::to_string(options.texelsPerFaceEdge) +

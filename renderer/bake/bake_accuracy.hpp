@@ -71,15 +71,12 @@ struct BakeErrors {
     // Per direction |baked - reference| / |reference| (RGB vector norms).
     ErrorStats shIrradiance;
     ErrorStats shIrradianceWindowed;
-    std::optional<ErrorStats> irradianceRiemann;
-    std::optional<ErrorStats> irradianceImportance;
-    std::optional<ErrorStats> irradianceMoments;
+    IrradianceMethod irradianceMethod = IrradianceMethod::None; // the bake's, which irradianceCube measures
+    std::optional<ErrorStats> irradianceCube;                    // empty for None
     int irradianceReferenceWidth = 0;
     // As shaded: at AccuracyOptions::shadedDirections, each cube read bilinearly.
     ErrorStats shIrradianceShaded;
-    std::optional<ErrorStats> irradianceRiemannShaded;
-    std::optional<ErrorStats> irradianceImportanceShaded;
-    std::optional<ErrorStats> irradianceMomentsShaded;
+    std::optional<ErrorStats> irradianceCubeShaded;
     // Max |baked - reference| over the grid and the A, B, A + B channels.
     std::array<std::optional<double>, 2> lutMaxAbs;
     double milliseconds = 0.0;

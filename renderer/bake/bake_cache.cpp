@@ -93,7 +93,7 @@ std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& se
 
 std::string BakeCache::lutKey(int size, int samples, GeometryTerm term)
 {
-    return "brdf_lut_" + std::string(geometryTermName(term)) + "_" + std::to_string(size) + "_" + std::to_string(samples) + "_v" +
+    return "brdf_lut_" + std::string(enumName(term)) + "_" + std::to_string(size) + "_" + std::to_string(samples) + "_v" +
            std::to_string(kBakeFormatVersion);
 }
 
@@ -115,9 +115,7 @@ bool BakeCache::loadBake(BakeResult& result, const MipBuilder& buildMips, std::v
     } catch (const BakeFileError& e) {
         notes.push_back(std::string("bake cache: ") + e.what() + "; removed the entry and baked again");
         result.environmentCube = {};
-        result.irradianceRiemann = {};
-        result.irradianceImportance = {};
-        result.irradianceMoments = {};
+        result.irradianceCube = {};
         result.prefiltered = {};
         removeQuietly(dir);
         return false;

@@ -15,6 +15,8 @@
 namespace iblab::bake {
 namespace {
 
+std::string irradianceFileName(IrradianceMethod method) { return "irradiance_" + std::string(enumName(method)) + ".exr"; }
+
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
@@ -127,7 +129,7 @@ std::string shJsonText(const ShResult& sh, int indent)
     j["radiance"] = shArray(sh.radiance);
     j["irradiance"] = shArray(sh.irradiance);
     j["irradiance_windowed"] = shArray(sh.irradianceWindowed);
-    j["window"] = shWindowName(sh.window);
+    j["window"] = enumName(sh.window);
     j["window_width"] = sh.windowWidth;
     return j.dump(indent);
 }
@@ -137,12 +139,8 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
     BakeSnapshot snapshot;
     snapshot.halfPixels = result.environmentCube.internalFormat == GL_RGBA16F;
     snapshot.cubes.push_back({"environment.exr", readCubeLevel(result.environmentCube, 0)});
-    if (result.irradianceRiemann)
-        snapshot.cubes.push_back({"irradiance_riemann.exr", readCubeLevel(result.irradianceRiemann, 0)});
-    if (result.irradianceImportance)
-        snapshot.cubes.push_back({"irradiance_importance.exr", readCubeLevel(result.irradianceImportance, 0)});
-    if (result.irradianceMoments)
-        snapshot.cubes.push_back({"irradiance_moments.exr", readCubeLevel(result.irradianceMoments, 0)});
+    if (result.irradianceCube)
+        snapshot.cubes.push_back({irradianceFileName(result.settings.irradiance), readCubeLevel(result.irradianceCube, 0)});
     for (int level = 0; level < result.prefiltered.levels; ++level)
         snapshot.cubes.push_back({prefilterFile(level), readCubeLevel(result.prefiltered, level)});
     snapshot.shJson = shJsonText(result.sh) + "\n";
@@ -160,12 +158,8 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
     meta["source_size"] = {result.sourceWidth, result.sourceHeight};
     meta["settings"] = ordered_json::parse(toJsonText(result.settings));
     meta["environment_cube"] = textureJson(result.environmentCube);
-    if (result.irradianceRiemann)
-        meta["irradiance_riemann"] = textureJson(result.irradianceRiemann);
-    if (result.irradianceImportance)
-        meta["irradiance_importance"] = textureJson(result.irradianceImportance);
-    if (result.irradianceMoments)
-        meta["irradiance_moments"] = textureJson(result.irradianceMoments);
+    if (result.irradianceCube)
+        meta["irradiance_" + std::string(enumName(result.settings.irradiance))] = textureJson(result.irradianceCube);
     meta["prefiltered"] = textureJson(result.prefiltered);
     ordered_json roughness = ordered_json::array();
     for (int level = 0; level < result.prefiltered.levels; ++level)
@@ -223,18 +217,10 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
     uploadCubeLevel(result.environmentCube, 0, readCubeExr(directory / "environment.exr", face));
     buildMips(result.environmentCube);
 
-    if (s.riemann.enabled) {
-        result.irradianceRiemann = createCubeTexture(format, s.riemann.faceSize, 1);
-        uploadCubeLevel(result.irradianceRiemann, 0, readCubeExr(directory / "irradiance_riemann.exr", s.riemann.faceSize));
-    }
-    if (s.importance.enabled) {
-        result.irradianceImportance = createCubeTexture(format, s.importance.faceSize, 1);
-        uploadCubeLevel(result.irradianceImportance, 0,
-                        readCubeExr(directory / "irradiance_importance.exr", s.importance.faceSize));
-    }
-    if (s.moments.enabled) {
-        result.irradianceMoments = createCubeTexture(format, s.moments.faceSize, 1);
-        uploadCubeLevel(result.irradianceMoments, 0, readCubeExr(directory / "irradiance_moments.exr", s.moments.faceSize));
+    if (s.irradiance != IrradianceMethod::None) {
+        const int irradianceFace = irradianceFaceSize(s);
+        result.irradianceCube = createCubeTexture(format, irradianceFace, 1);
+        uploadCubeLevel(result.irradianceCube, 0, readCubeExr(directory / irradianceFileName(s.irradiance), irradianceFace));
     }
     result.prefiltered = createCubeTexture(format, s.prefilter.faceSize, s.prefilter.levels);
     for (int level = 0; level < s.prefilter.levels; ++level)
@@ -248,7 +234,7 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
     result.sh.radiance = shFromArray(shPath, sh["radiance"]);
     result.sh.irradiance = shFromArray(shPath, sh["irradiance"]);
     result.sh.irradianceWindowed = shFromArray(shPath, sh["irradiance_windowed"]);
-    result.sh.window = parseShWindow(sh.value("window", std::string("none"))).value_or(ShWindow::None);
+    result.sh.window = parseEnum<ShWindow>(sh.value("window", std::string("none"))).value_or(ShWindow::None);
     result.sh.windowWidth = sh.value("window_width", 0.0);
 }
 

@@ -32,16 +32,10 @@ int rowsPerStep(double budget, double rowCost, int size)
 
 std::size_t BakeResult::gpuBytes() const
 {
-    std::size_t total = environmentCube.bytes() + irradianceRiemann.bytes() + irradianceImportance.bytes() +
-                        irradianceMoments.bytes() + prefiltered.bytes();
+    std::size_t total = environmentCube.bytes() + irradianceCube.bytes() + prefiltered.bytes();
     for (const BakedTexture& lut : brdfLut)
         total += lut.bytes();
     return total;
-}
-
-const BakedTexture& BakeResult::irradianceCube() const
-{
-    return irradianceMoments ? irradianceMoments : irradianceImportance ? irradianceImportance : irradianceRiemann;
 }
 
 double BakeResult::phaseMilliseconds(std::string_view phase) const
@@ -116,12 +110,8 @@ void BakeJob::plan()
                           equirect_ = passes_.uploadEquirect(image_, equirectLevels);
                           const BakeSettings& st = result_.settings;
                           result_.environmentCube = createCubeTexture(format, envFace, envLevels);
-                          if (st.riemann.enabled)
-                              result_.irradianceRiemann = createCubeTexture(format, st.riemann.faceSize, 1);
-                          if (st.importance.enabled)
-                              result_.irradianceImportance = createCubeTexture(format, st.importance.faceSize, 1);
-                          if (st.moments.enabled)
-                              result_.irradianceMoments = createCubeTexture(format, st.moments.faceSize, 1);
+                          if (st.irradiance != IrradianceMethod::None)
+                              result_.irradianceCube = createCubeTexture(format, irradianceFaceSize(st), 1);
                           result_.prefiltered = createCubeTexture(format, st.prefilter.faceSize, st.prefilter.levels);
                       }});
 
@@ -146,30 +136,35 @@ void BakeJob::plan()
                           out.irradianceWindowed = applyWindow(out.irradiance, sh.window, out.windowWidth);
                       }});
 
-    if (s.riemann.enabled) {
+    const std::string irradiancePhase = "irradiance_" + std::string(enumName(s.irradiance));
+    switch (s.irradiance) {
+    case IrradianceMethod::None: break;
+    case IrradianceMethod::Riemann: {
         const double perTexel = double(BakePasses::riemannPhiSteps(s.riemann.sampleDelta)) *
                                 double(BakePasses::riemannThetaSteps(s.riemann.sampleDelta));
-        planCubeSlices("irradiance_riemann", kEnvironmentGroup, s.riemann.faceSize, 0, perTexel, [this](const CubeSlice& slice) {
-            passes_.irradianceRiemann(result_.environmentCube, result_.irradianceRiemann, slice, result_.settings.riemann,
+        planCubeSlices(irradiancePhase, kEnvironmentGroup, s.riemann.faceSize, 0, perTexel, [this](const CubeSlice& slice) {
+            passes_.irradianceRiemann(result_.environmentCube, result_.irradianceCube, slice, result_.settings.riemann,
                                       result_.settings.exactTexelSolidAngle);
         });
+        break;
     }
-    if (s.importance.enabled)
-        planCubeSlices("irradiance_importance", kEnvironmentGroup, s.importance.faceSize, 0, s.importance.samples,
-                       [this](const CubeSlice& slice) {
-                           passes_.irradianceImportance(result_.environmentCube, result_.irradianceImportance, slice,
-                                                        result_.settings.importance, result_.settings.exactTexelSolidAngle);
-                       });
-
-    if (s.moments.enabled) {
-        steps_.push_back({"irradiance_moments", kEnvironmentGroup, double(envFace) * envFace * 6.0, [this] {
+    case IrradianceMethod::Importance:
+        planCubeSlices(irradiancePhase, kEnvironmentGroup, s.importance.faceSize, 0, s.importance.samples, [this](const CubeSlice& slice) {
+            passes_.irradianceImportance(result_.environmentCube, result_.irradianceCube, slice, result_.settings.importance,
+                                         result_.settings.exactTexelSolidAngle);
+        });
+        break;
+    case IrradianceMethod::Moments: {
+        steps_.push_back({irradiancePhase, kEnvironmentGroup, double(envFace) * envFace * 6.0, [this] {
                               momentTexels_ = passes_.buildIrradianceMoments(result_.environmentCube, result_.settings.moments);
                           }});
         const double groups = 6.0 * s.moments.sourceFaceSize * s.moments.sourceFaceSize;
         // A group costs a few multiply-adds, about a tenth of a filtered texture read.
-        planCubeSlices("irradiance_moments", kEnvironmentGroup, s.moments.faceSize, 0, groups / 10.0, [this](const CubeSlice& slice) {
-            passes_.irradianceMoments(momentTexels_, result_.irradianceMoments, slice);
+        planCubeSlices(irradiancePhase, kEnvironmentGroup, s.moments.faceSize, 0, groups / 10.0, [this](const CubeSlice& slice) {
+            passes_.irradianceMoments(momentTexels_, result_.irradianceCube, slice);
         });
+        break;
+    }
     }
 
     for (int level = 0; level < s.prefilter.levels; ++level)
@@ -182,7 +177,7 @@ void BakeJob::plan()
     for (GeometryTerm term : kGeometryTerms) {
         if (!s.lut.wants(term))
             continue;
-        const std::string group = "lut_" + std::string(geometryTermName(term));
+        const std::string group = "lut_" + std::string(enumName(term));
         const std::size_t index = std::size_t(term);
         if (cache_)
             steps_.push_back({"brdf_lut", "", 1.0e5, [this, term, index, group] {

@@ -14,6 +14,7 @@
 #include "io/error.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
+#include "gl/uniform.hpp"
 
 namespace iblab::bake {
 namespace {
@@ -67,6 +68,103 @@ void clearPassBindings()
 
 GLuint groupsFor(int n) { return GLuint((n + 7) / 8); }
 
+// The uniforms each bake shader declares, located once per program link (gl/uniform.hpp).
+struct DownsampleUniforms {
+    explicit DownsampleUniforms(const gl::ShaderProgram& p) : sourceSize(p, "uSourceSize"), targetSize(p, "uTargetSize") {}
+    gl::Uniform<glm::ivec2> sourceSize;
+    gl::Uniform<glm::ivec2> targetSize;
+};
+
+// bake/cube_texel.glsl's, for every pass that writes a slice of a cube.
+struct CubeSliceUniforms {
+    explicit CubeSliceUniforms(const gl::ShaderProgram& p)
+        : firstFace(p, "uFirstFace"), faceSize(p, "uFaceSize"), rowOffset(p, "uRowOffset"), rowCount(p, "uRowCount"), storeMax(p, "uStoreMax"),
+          output(p, "uOutput")
+    {
+    }
+    gl::Uniform<int> firstFace;
+    gl::Uniform<int> faceSize;
+    gl::Uniform<int> rowOffset;
+    gl::Uniform<int> rowCount;
+    gl::Uniform<float> storeMax;
+    gl::Uniform<int> output;
+};
+
+struct EquirectToCubeUniforms {
+    explicit EquirectToCubeUniforms(const gl::ShaderProgram& p) : equirect(p, "uEquirect") {}
+    gl::Uniform<int> equirect;
+};
+
+struct Sh9ProjectUniforms {
+    explicit Sh9ProjectUniforms(const gl::ShaderProgram& p) : equirect(p, "uEquirect"), rowsPerGroup(p, "uRowsPerGroup") {}
+    gl::Uniform<int> equirect;
+    gl::Uniform<int> rowsPerGroup;
+};
+
+// bake/source_read.glsl's.
+struct SourceReadUniforms {
+    explicit SourceReadUniforms(const gl::ShaderProgram& p)
+        : environment(p, "uEnvironment"), mipFiltering(p, "uMipFiltering"), sourceFaceSize(p, "uSourceFaceSize"),
+          exactTexelSolidAngle(p, "uExactTexelSolidAngle"), maxSourceLod(p, "uMaxSourceLod")
+    {
+    }
+    gl::Uniform<int> environment;
+    gl::Uniform<int> mipFiltering;
+    gl::Uniform<float> sourceFaceSize;
+    gl::Uniform<int> exactTexelSolidAngle;
+    gl::Uniform<float> maxSourceLod;
+};
+
+struct RiemannUniforms {
+    explicit RiemannUniforms(const gl::ShaderProgram& p) : phiSteps(p, "uPhiSteps"), thetaSteps(p, "uThetaSteps"), mipBias(p, "uMipBias") {}
+    gl::Uniform<int> phiSteps;
+    gl::Uniform<int> thetaSteps;
+    gl::Uniform<float> mipBias;
+};
+
+struct MomentsBuildUniforms {
+    explicit MomentsBuildUniforms(const gl::ShaderProgram& p) : groupFaceSize(p, "uGroupFaceSize"), fineFaceSize(p, "uFineFaceSize") {}
+    gl::Uniform<int> groupFaceSize;
+    gl::Uniform<int> fineFaceSize;
+};
+
+struct MomentsUniforms {
+    explicit MomentsUniforms(const gl::ShaderProgram& p) : groupCount(p, "uGroupCount") {}
+    gl::Uniform<int> groupCount;
+};
+
+struct PrefilterUniforms {
+    explicit PrefilterUniforms(const gl::ShaderProgram& p)
+        : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod")
+    {
+    }
+    gl::Uniform<float> roughness;
+    gl::Uniform<float> weightSum;
+    gl::Uniform<int> mirrorCopy;
+    gl::Uniform<float> copyLod;
+};
+
+struct SamplePrefilteredUniforms {
+    explicit SamplePrefilteredUniforms(const gl::ShaderProgram& p) : count(p, "uCount"), prefiltered(p, "uPrefiltered"), levels(p, "uLevels"), layout(p, "uLayout") {}
+    gl::Uniform<int> count;
+    gl::Uniform<int> prefiltered;
+    gl::Uniform<float> levels;
+    gl::Uniform<int> layout;
+};
+
+struct BrdfLutUniforms {
+    explicit BrdfLutUniforms(const gl::ShaderProgram& p)
+        : size(p, "uSize"), sampleCount(p, "uSampleCount"), geometry(p, "uGeometry"), rowOffset(p, "uRowOffset"), rowCount(p, "uRowCount"), lut(p, "uLut")
+    {
+    }
+    gl::Uniform<int> size;
+    gl::Uniform<int> sampleCount;
+    gl::Uniform<int> geometry;
+    gl::Uniform<int> rowOffset;
+    gl::Uniform<int> rowCount;
+    gl::Uniform<int> lut;
+};
+
 // Levels of a full mip chain down to 1 texel on the longer side.
 int fullMipLevels(int width, int height) { return std::bit_width(unsigned(std::max({width, height, 1}))); }
 
@@ -96,13 +194,14 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
     shaders_.program({kDownsample}, {{"CUBE", "1"}, {"FORMAT", imageFormatName(format)}});
     if (settings.sh.device == ShDevice::Gpu)
         shaders_.program({kSh9Project});
-    if (settings.riemann.enabled)
-        shaders_.program({kIrradianceRiemann});
-    if (settings.importance.enabled)
-        shaders_.program({kIrradianceImportance});
-    if (settings.moments.enabled) {
+    switch (settings.irradiance) {
+    case IrradianceMethod::None: break;
+    case IrradianceMethod::Riemann: shaders_.program({kIrradianceRiemann}); break;
+    case IrradianceMethod::Importance: shaders_.program({kIrradianceImportance}); break;
+    case IrradianceMethod::Moments:
         shaders_.program({kIrradianceMomentsBuild}, {{"FORMAT", imageFormatName(format)}});
         momentsProgram(settings.moments.sourceFaceSize);
+        break;
     }
     shaders_.program({kPrefilter});
     if (lut)
@@ -159,12 +258,13 @@ void BakePasses::downsampleChain(GLuint texture, GLenum target, GLenum internalF
     const bool cube = target == GL_TEXTURE_CUBE_MAP;
     const gl::ShaderProgram& program =
         shaders_.program({kDownsample}, {{"CUBE", cube ? "1" : "0"}, {"FORMAT", imageFormatName(internalFormat)}});
+    const DownsampleUniforms& uniforms = program.uniforms<DownsampleUniforms>();
     glUseProgram(program.id());
     for (int level = 1; level < levels; ++level) {
         const glm::ivec2 source(std::max(width >> (level - 1), 1), std::max(height >> (level - 1), 1));
         const glm::ivec2 size(std::max(width >> level, 1), std::max(height >> level, 1));
-        glProgramUniform2i(program.id(), program.uniformLocation("uSourceSize"), source.x, source.y);
-        glProgramUniform2i(program.id(), program.uniformLocation("uTargetSize"), size.x, size.y);
+        uniforms.sourceSize.set(source);
+        uniforms.targetSize.set(size);
         glBindImageTexture(1, texture, level - 1, GL_TRUE, 0, GL_READ_ONLY, internalFormat);
         glBindImageTexture(0, texture, level, GL_TRUE, 0, GL_WRITE_ONLY, internalFormat);
         glDispatchCompute(groupsFor(size.x), groupsFor(size.y), cube ? 6 : 1);
@@ -177,12 +277,13 @@ void BakePasses::downsampleChain(GLuint texture, GLenum target, GLenum internalF
 
 void BakePasses::dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const
 {
-    program.set("uFirstFace", slice.firstFace);
-    program.set("uFaceSize", out.levelSize(slice.level));
-    program.set("uRowOffset", slice.firstRow);
-    program.set("uRowCount", slice.rowCount);
-    program.set("uStoreMax", storeMax(out.internalFormat));
-    program.set("uOutput", 0);
+    const CubeSliceUniforms& uniforms = program.uniforms<CubeSliceUniforms>();
+    uniforms.firstFace.set(slice.firstFace);
+    uniforms.faceSize.set(out.levelSize(slice.level));
+    uniforms.rowOffset.set(slice.firstRow);
+    uniforms.rowCount.set(slice.rowCount);
+    uniforms.storeMax.set(storeMax(out.internalFormat));
+    uniforms.output.set(0);
     // Layered: the shader addresses the face as the image's layer.
     glBindImageTexture(0, out.id(), slice.level, GL_TRUE, 0, GL_WRITE_ONLY, out.internalFormat);
     glUseProgram(program.id());
@@ -195,7 +296,7 @@ void BakePasses::dispatchCube(const gl::ShaderProgram& program, const BakedTextu
 void BakePasses::equirectToCube(GLuint equirect, const BakedTexture& cube, const CubeSlice& slice)
 {
     const gl::ShaderProgram& program = cubeProgram(kEquirectToCube);
-    program.set("uEquirect", 1);
+    program.uniforms<EquirectToCubeUniforms>().equirect.set(1);
     glBindTextureUnit(1, equirect);
     dispatchCube(program, cube, slice);
 }
@@ -223,8 +324,9 @@ SH9Color BakePasses::projectSh9(GLuint equirect, int width, int height)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, groupSums.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, rowSolidAngles.id());
     glBindTextureUnit(1, equirect);
-    program.set("uEquirect", 1);
-    program.set("uRowsPerGroup", kRowsPerGroup);
+    const Sh9ProjectUniforms& uniforms = program.uniforms<Sh9ProjectUniforms>();
+    uniforms.equirect.set(1);
+    uniforms.rowsPerGroup.set(kRowsPerGroup);
     glUseProgram(program.id());
     glDispatchCompute(GLuint(groups), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -246,11 +348,12 @@ namespace {
 // the cube on unit 1 and the uniforms of bake/source_read.glsl.
 void bindSource(const gl::ShaderProgram& program, const BakedTexture& environment, bool mipFiltering, bool exactTexelSolidAngle)
 {
-    program.set("uEnvironment", 1);
-    program.set("uMipFiltering", mipFiltering ? 1 : 0);
-    program.set("uSourceFaceSize", float(environment.size));
-    program.set("uExactTexelSolidAngle", exactTexelSolidAngle ? 1 : 0);
-    program.set("uMaxSourceLod", float(environment.levels - 1));
+    const SourceReadUniforms& uniforms = program.uniforms<SourceReadUniforms>();
+    uniforms.environment.set(1);
+    uniforms.mipFiltering.set(mipFiltering ? 1 : 0);
+    uniforms.sourceFaceSize.set(float(environment.size));
+    uniforms.exactTexelSolidAngle.set(exactTexelSolidAngle ? 1 : 0);
+    uniforms.maxSourceLod.set(float(environment.levels - 1));
     glBindTextureUnit(1, environment.id());
 }
 
@@ -270,9 +373,10 @@ void BakePasses::irradianceRiemann(const BakedTexture& environment, const BakedT
 {
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kIrradianceRiemann);
-    program.set("uPhiSteps", riemannPhiSteps(settings.sampleDelta));
-    program.set("uThetaSteps", riemannThetaSteps(settings.sampleDelta));
-    program.set("uMipBias", settings.mipBias);
+    const RiemannUniforms& uniforms = program.uniforms<RiemannUniforms>();
+    uniforms.phiSteps.set(riemannPhiSteps(settings.sampleDelta));
+    uniforms.thetaSteps.set(riemannThetaSteps(settings.sampleDelta));
+    uniforms.mipBias.set(settings.mipBias);
     bindSource(program, environment, settings.mipFiltering, exactTexelSolidAngle);
     dispatchCube(program, out, slice);
 }
@@ -309,8 +413,9 @@ MomentTexels BakePasses::buildIrradianceMoments(const BakedTexture& environment,
     glNamedBufferStorage(buffer.id(), bytes, nullptr, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
     glBindImageTexture(1, environment.id(), fineLevel, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
-    program.set("uGroupFaceSize", groups);
-    program.set("uFineFaceSize", environment.levelSize(fineLevel));
+    const MomentsBuildUniforms& uniforms = program.uniforms<MomentsBuildUniforms>();
+    uniforms.groupFaceSize.set(groups);
+    uniforms.fineFaceSize.set(environment.levelSize(fineLevel));
     glUseProgram(program.id());
     glDispatchCompute(groupsFor(groups), groupsFor(groups), 6);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -322,7 +427,7 @@ MomentTexels BakePasses::buildIrradianceMoments(const BakedTexture& environment,
 void BakePasses::irradianceMoments(const MomentTexels& groups, const BakedTexture& out, const CubeSlice& slice)
 {
     const gl::ShaderProgram& program = momentsProgram(groups.groupsPerEdge);
-    program.set("uGroupCount", 6 * groups.groupsPerEdge * groups.groupsPerEdge);
+    program.uniforms<MomentsUniforms>().groupCount.set(6 * groups.groupsPerEdge * groups.groupsPerEdge);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, groups.buffer.id());
     dispatchCube(program, out, slice);
 }
@@ -340,15 +445,16 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     for (const glm::vec4& sample : samples)
         weightSum += sample.z;
     const gl::Buffer table = bindSampleTable(samples);
-    program.set("uRoughness", roughness);
-    program.set("uWeightSum", weightSum);
-    program.set("uMirrorCopy", settings.mirrorCopy ? 1 : 0);
+    const PrefilterUniforms& uniforms = program.uniforms<PrefilterUniforms>();
+    uniforms.roughness.set(roughness);
+    uniforms.weightSum.set(weightSum);
+    uniforms.mirrorCopy.set(settings.mirrorCopy ? 1 : 0);
     // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop
     // of a bake without the mirror copy does).
     bindSource(program, environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
     const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
-    program.set("uCopyLod", std::clamp(copyLod, 0.0f, float(environment.levels - 1)));
+    uniforms.copyLod.set(std::clamp(copyLod, 0.0f, float(environment.levels - 1)));
     dispatchCube(program, out, slice);
 }
 
@@ -383,10 +489,11 @@ std::vector<glm::vec3> BakePasses::samplePrefiltered(const BakedTexture& prefilt
     glNamedBufferStorage(out.id(), bytes, nullptr, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
-    program.set("uCount", int(queries.size()));
-    program.set("uPrefiltered", 1);
-    program.set("uLevels", float(prefiltered.levels));
-    program.set("uLayout", int(layout));
+    const SamplePrefilteredUniforms& uniforms = program.uniforms<SamplePrefilteredUniforms>();
+    uniforms.count.set(int(queries.size()));
+    uniforms.prefiltered.set(1);
+    uniforms.levels.set(float(prefiltered.levels));
+    uniforms.layout.set(int(layout));
     glBindTextureUnit(1, prefiltered.id());
     glUseProgram(program.id());
     glDispatchCompute(GLuint((queries.size() + 63) / 64), 1, 1);
@@ -401,12 +508,13 @@ std::vector<glm::vec3> BakePasses::samplePrefiltered(const BakedTexture& prefilt
 void BakePasses::brdfLut(const BakedTexture& out, int firstRow, int rowCount, int samples, GeometryTerm term)
 {
     const gl::ShaderProgram& program = shaders_.program({kBrdfLut});
-    program.set("uSize", out.size);
-    program.set("uSampleCount", samples);
-    program.set("uGeometry", term == GeometryTerm::SchlickGGX ? 0 : 1);
-    program.set("uRowOffset", firstRow);
-    program.set("uRowCount", rowCount);
-    program.set("uLut", 0);
+    const BrdfLutUniforms& uniforms = program.uniforms<BrdfLutUniforms>();
+    uniforms.size.set(out.size);
+    uniforms.sampleCount.set(samples);
+    uniforms.geometry.set(term == GeometryTerm::SchlickGGX ? 0 : 1);
+    uniforms.rowOffset.set(firstRow);
+    uniforms.rowCount.set(rowCount);
+    uniforms.lut.set(0);
     glBindImageTexture(0, out.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, out.internalFormat);
     glUseProgram(program.id());
     glDispatchCompute(groupsFor(out.size), groupsFor(rowCount), 1);

@@ -32,9 +32,7 @@ struct BakeResult {
     int sourceHeight = 0;
 
     BakedTexture environmentCube;      // radiance, full mip chain (box-filtered per face)
-    BakedTexture irradianceRiemann;    // E, 1 level; empty unless settings.riemann.enabled
-    BakedTexture irradianceImportance; // E, 1 level; empty unless settings.importance.enabled
-    BakedTexture irradianceMoments;    // E, 1 level; empty unless settings.moments.enabled
+    BakedTexture irradianceCube; // E, 1 level, baked by settings.irradiance; empty for IrradianceMethod::None
     BakedTexture prefiltered;          // mip m = roughness prefilterRoughnessFromMip(m, levels)
     std::array<BakedTexture, 2> brdfLut; // [int(GeometryTerm)], RGBA16F: A, B, A + B, 1
     ShResult sh;
@@ -46,9 +44,6 @@ struct BakeResult {
     std::vector<std::string> notes;         // one line each: cache problems found and fixed
 
     const BakedTexture& lut(GeometryTerm term) const { return brdfLut[std::size_t(term)]; }
-    // The cube shading reads for diffuse: the moment cube, else the importance-sampled one,
-    // else the Riemann one (empty if none was baked).
-    const BakedTexture& irradianceCube() const;
     // GPU memory of the result's textures (all levels and faces), from formats and sizes.
     std::size_t gpuBytes() const;
     double phaseMilliseconds(std::string_view phase) const; // 0 if the phase did not run

@@ -31,8 +31,8 @@ BakeSettings tutorialPreset()
     BakeSettings s;
     s.preset = "tutorial";
     s.cube.faceSize = 512;
-    s.riemann = {.enabled = true, .faceSize = 32, .sampleDelta = 0.025f, .mipFiltering = false, .mipBias = 0.0f};
-    s.moments.enabled = false;
+    s.irradiance = IrradianceMethod::Riemann;
+    s.riemann = {.faceSize = 32, .sampleDelta = 0.025f, .mipFiltering = false, .mipBias = 0.0f};
     // LearnOpenGL's prefilter samples every mip, the mirror level included (below).
     s.prefilter = {.faceSize = 128,
                    .levels = 5,
@@ -59,7 +59,7 @@ BakeSettings filamentPreset()
     s.preset = "filament";
     s.exactTexelSolidAngle = false;
     s.cube.faceSize = 256;
-    s.moments.enabled = false;
+    s.irradiance = IrradianceMethod::None;
     s.prefilter = {.faceSize = 256,
                    .levels = 5,
                    .layout = RoughnessLayout::Quadratic,
@@ -84,8 +84,8 @@ BakeSettings gltfViewerPreset()
     s.preset = "gltf-viewer";
     s.exactTexelSolidAngle = false;
     s.cube.faceSize = 256;
-    s.importance = {.enabled = true, .faceSize = 32, .samples = 2048, .mipFiltering = true, .mipBias = 1.8257f};
-    s.moments.enabled = false;
+    s.irradiance = IrradianceMethod::Importance;
+    s.importance = {.faceSize = 32, .samples = 2048, .mipFiltering = true, .mipBias = 1.8257f};
     s.prefilter = {.faceSize = 256,
                    .levels = 5,
                    .layout = RoughnessLayout::Linear,
@@ -128,6 +128,17 @@ int prefilterSamples(const PrefilterSettings& settings, int level)
     return int(std::clamp(std::lround(n), 1l, 65536l));
 }
 
+int irradianceFaceSize(const BakeSettings& s)
+{
+    switch (s.irradiance) {
+    case IrradianceMethod::None: return 0;
+    case IrradianceMethod::Riemann: return s.riemann.faceSize;
+    case IrradianceMethod::Importance: return s.importance.faceSize;
+    case IrradianceMethod::Moments: return s.moments.faceSize;
+    }
+    return 0;
+}
+
 int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int height)
 {
     if (settings.faceSize > 0)
@@ -140,75 +151,97 @@ int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int 
     return f;
 }
 
+const FieldTable<BakeSettings>& bakeSettingsFields()
+{
+    using S = BakeSettings;
+    constexpr CliForm value = CliForm::Value;
+    static const FieldTable<S> fields{
+        {"preset", "Preset", "Where the values started (informational)", fieldRef<S>([](S& s) -> auto& { return s.preset; })},
+        {"precision", "Precision", "Cube storage: half (RGBA16F) or float (RGBA32F)", fieldRef<S>([](S& s) -> auto& { return s.precision; }), {},
+         "--precision", value},
+        {"exact_texel_solid_angle", "Exact texel solid angle",
+         "PDF mip selection against the solid angle of the texel read (on) or the face average (off)",
+         fieldRef<S>([](S& s) -> auto& { return s.exactTexelSolidAngle; }), {}, "--exact-texel-solid-angle", value},
+        {"cube.face_size", "Cube face size", "Environment cube face size; 0 = from the source (6 f^2 <= W H)",
+         fieldRef<S>([](S& s) -> auto& { return s.cube.faceSize; }), {4, 8192, 0, "from the source"}, "--cube-size", value},
+        {"cube.max_face_size", "Largest cube face", "Cap on the face size chosen from the source",
+         fieldRef<S>([](S& s) -> auto& { return s.cube.maxFaceSize; }), {4, 8192}},
+        {"sh.device", "SH9 device", "SH9 projection on the cpu or the gpu", fieldRef<S>([](S& s) -> auto& { return s.sh.device; }), {},
+         "--sh-device", value},
+        {"sh.window", "SH9 window", "SH window against ringing: none, hanning or lanczos", fieldRef<S>([](S& s) -> auto& { return s.sh.window; }),
+         {}, "--sh-window", value},
+        {"sh.window_width", "SH9 window width", "SH window width in bands; 0 = the gentlest non-negative one",
+         fieldRef<S>([](S& s) -> auto& { return s.sh.windowWidth; }), {0, 1e6}, "--sh-window-width", value},
+        {"irradiance", "Irradiance method", "How the irradiance cube is baked: none (SH9 only), riemann (LearnOpenGL), importance (cosine samples) or moments",
+         fieldRef<S>([](S& s) -> auto& { return s.irradiance; }), {}, "--irradiance", value},
+        {"irradiance_riemann.face_size", "Riemann face size", "Riemann irradiance cube face size",
+         fieldRef<S>([](S& s) -> auto& { return s.riemann.faceSize; }), {1, 1024}, "--riemann-size", value},
+        {"irradiance_riemann.sample_delta", "Riemann sample delta", "Riemann sample delta, radians",
+         fieldRef<S>([](S& s) -> auto& { return s.riemann.sampleDelta; }), {0.001, 1}, "--riemann-delta", value},
+        {"irradiance_riemann.mip_filtering", "Riemann mip filtering", "Read each Riemann cell from the mip matching its size (on/off)",
+         fieldRef<S>([](S& s) -> auto& { return s.riemann.mipFiltering; }), {}, "--riemann-mip-filter", value},
+        {"irradiance_riemann.mip_bias", "Riemann mip bias", "Bias added to the Riemann cells' source lod",
+         fieldRef<S>([](S& s) -> auto& { return s.riemann.mipBias; }), {}, "--riemann-mip-bias", value},
+        {"irradiance_importance.face_size", "Importance face size", "Importance-sampled irradiance cube face size",
+         fieldRef<S>([](S& s) -> auto& { return s.importance.faceSize; }), {1, 1024}, "--importance-size", value},
+        {"irradiance_importance.samples", "Importance samples", "Cosine samples per irradiance texel",
+         fieldRef<S>([](S& s) -> auto& { return s.importance.samples; }), {1, 65536}, "--importance-samples", value},
+        {"irradiance_importance.mip_filtering", "Importance mip filtering", "PDF-based source-mip selection for irradiance (on/off)",
+         fieldRef<S>([](S& s) -> auto& { return s.importance.mipFiltering; }), {}, "--importance-mip-filter", value},
+        {"irradiance_importance.mip_bias", "Importance mip bias", "Bias added to the irradiance source lod",
+         fieldRef<S>([](S& s) -> auto& { return s.importance.mipBias; }), {}, "--importance-mip-bias", value},
+        {"irradiance_moments.face_size", "Moment face size", "Moment irradiance cube face size",
+         fieldRef<S>([](S& s) -> auto& { return s.moments.faceSize; }), {1, 1024}, "--moments-size", value},
+        {"irradiance_moments.source_face_size", "Moment groups per edge", "Texel groups per face edge the moment irradiance sums over",
+         fieldRef<S>([](S& s) -> auto& { return s.moments.sourceFaceSize; }), {1, 64}, "--moments-source-size", value},
+        {"prefilter.face_size", "Prefilter face size", "Prefiltered cube face size (power of two)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.faceSize; }), {.min = 1, .max = 4096, .powerOfTwo = true}, "--prefilter-size", value},
+        {"prefilter.levels", "Prefilter levels", "Prefiltered mips, roughness 0 at mip 0 to 1 at the last",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.levels; }), {1, 13}, "--prefilter-levels", value},
+        {"prefilter.samples", "Prefilter samples", "GGX samples per prefiltered texel at mip 1",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.samples; }), {1, 65536}, "--prefilter-samples", value},
+        {"prefilter.sample_growth", "Prefilter sample growth", "Mip m takes samples * growth^(m-1)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.sampleGrowth; }), {1, 8}, "--prefilter-sample-growth", value},
+        {"prefilter.mip_filtering", "Prefilter mip filtering", "PDF-based source-mip selection for the prefilter (on/off)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipFiltering; }), {}, "--prefilter-mip-filter", value},
+        {"prefilter.mip_bias", "Prefilter mip bias", "Bias added to the prefilter source lod (0 LearnOpenGL, 1 Filament)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipBias; }), {}, "--prefilter-mip-bias", value},
+        {"prefilter.mirror_copy", "Mirror mip as a copy",
+         "Mip 0 as a copy of the matching source mip (on), or sampled like the other mips as LearnOpenGL does (off)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.mirrorCopy; }), {}, "--prefilter-mirror-copy", value},
+        {"prefilter.layout", "Roughness layout",
+         "Roughness per mip: linear (m / (levels - 1), LearnOpenGL) or quadratic (Filament: 1 - sqrt(1 - m / (levels - 1)))",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.layout; }), {}, "--prefilter-layout", value},
+        {"lut.size", "LUT size", "BRDF LUT size", fieldRef<S>([](S& s) -> auto& { return s.lut.size; }), {1, 4096}, "--lut-size", value},
+        {"lut.samples", "LUT samples", "BRDF LUT samples per texel", fieldRef<S>([](S& s) -> auto& { return s.lut.samples; }), {1, 1 << 20},
+         "--lut-samples", value},
+        // One option, --lut-geometry schlick|correlated|both|none, sets these two (app/bake_commands.cpp).
+        {"lut.schlick_ggx", "LUT for Schlick-GGX", "Bake the Schlick-GGX LUT", fieldRef<S>([](S& s) -> auto& { return s.lut.schlickGgx; })},
+        {"lut.height_correlated_smith", "LUT for height-correlated Smith", "Bake the height-correlated Smith LUT",
+         fieldRef<S>([](S& s) -> auto& { return s.lut.heightCorrelatedSmith; })},
+        {"samples_per_step", "Samples per step",
+         "Work per bake step, in texture samples, as the GUI slices a bake (default: one step per pass and mip)",
+         fieldRef<S>([](S& s) -> auto& { return s.samplesPerStep; }), {1024, double(kUnslicedBake)}, "--step-samples", value},
+    };
+    return fields;
+}
+
 void validate(const BakeSettings& s)
 {
-    auto isPow2 = [](int v) { return v > 0 && std::has_single_bit(unsigned(v)); };
-    require(s.cube.faceSize == 0 || (s.cube.faceSize >= 4 && s.cube.faceSize <= 8192), "cube.faceSize",
-            "must be 0 (from the source) or 4..8192, " + got(s.cube.faceSize));
-    require(s.cube.maxFaceSize >= 4 && s.cube.maxFaceSize <= 8192, "cube.maxFaceSize", "must be 4..8192, " + got(s.cube.maxFaceSize));
-    require(s.sh.windowWidth >= 0.0, "sh.windowWidth", "must be >= 0 (0 = automatic), " + got(s.sh.windowWidth));
-    require(s.riemann.faceSize >= 1 && s.riemann.faceSize <= 1024, "riemann.faceSize", "must be 1..1024, " + got(s.riemann.faceSize));
-    require(s.riemann.sampleDelta >= 0.001f && s.riemann.sampleDelta <= 1.0f, "riemann.sampleDelta",
-            "must be 0.001..1 radians, " + got(s.riemann.sampleDelta));
-    require(s.importance.faceSize >= 1 && s.importance.faceSize <= 1024, "importance.faceSize",
-            "must be 1..1024, " + got(s.importance.faceSize));
-    require(s.importance.samples >= 1 && s.importance.samples <= 65536, "importance.samples",
-            "must be 1..65536, " + got(s.importance.samples));
-    require(std::isfinite(s.importance.mipBias), "importance.mipBias", "must be finite");
-    require(s.moments.faceSize >= 1 && s.moments.faceSize <= 1024, "moments.faceSize", "must be 1..1024, " + got(s.moments.faceSize));
-    require(s.moments.sourceFaceSize >= 1 && s.moments.sourceFaceSize <= 64, "moments.sourceFaceSize",
-            "must be 1..64, " + got(s.moments.sourceFaceSize));
-    require(isPow2(s.prefilter.faceSize) && s.prefilter.faceSize <= 4096, "prefilter.faceSize",
-            "must be a power of two up to 4096, " + got(s.prefilter.faceSize));
+    validateRanges(bakeSettingsFields(), s, "bake settings");
+    // The rule that relates two fields.
     const int maxLevels = std::bit_width(unsigned(std::max(s.prefilter.faceSize, 1)));
-    require(s.prefilter.levels >= 1 && s.prefilter.levels <= maxLevels, "prefilter.levels",
+    require(s.prefilter.levels <= maxLevels, "prefilter.levels",
             "must be 1.." + std::to_string(maxLevels) + " for a face of " + std::to_string(s.prefilter.faceSize) + ", " +
                 got(s.prefilter.levels));
-    require(s.prefilter.samples >= 1 && s.prefilter.samples <= 65536, "prefilter.samples",
-            "must be 1..65536, " + got(s.prefilter.samples));
-    require(std::isfinite(s.prefilter.mipBias), "prefilter.mipBias", "must be finite");
-    require(s.prefilter.sampleGrowth >= 1.0f && s.prefilter.sampleGrowth <= 8.0f, "prefilter.sampleGrowth",
-            "must be 1..8, " + got(s.prefilter.sampleGrowth));
-    require(std::isfinite(s.riemann.mipBias), "riemann.mipBias", "must be finite");
-    require(s.lut.size >= 1 && s.lut.size <= 4096, "lut.size", "must be 1..4096, " + got(s.lut.size));
-    require(s.lut.samples >= 1 && s.lut.samples <= 1 << 20, "lut.samples", "must be 1..1048576, " + got(s.lut.samples));
-    require(s.samplesPerStep >= 1024, "samplesPerStep", "must be >= 1024, " + got(double(s.samplesPerStep)));
 }
 
 std::string toJsonText(const BakeSettings& s, int indent)
 {
-    nlohmann::ordered_json j;
-    j["preset"] = s.preset;
-    j["precision"] = precisionName(s.precision);
-    j["exact_texel_solid_angle"] = s.exactTexelSolidAngle;
-    j["cube"] = {{"face_size", s.cube.faceSize}, {"max_face_size", s.cube.maxFaceSize}};
-    j["sh"] = {{"device", shDeviceName(s.sh.device)}, {"window", shWindowName(s.sh.window)}, {"window_width", s.sh.windowWidth}};
-    j["irradiance_riemann"] = {
-        {"enabled", s.riemann.enabled}, {"face_size", s.riemann.faceSize}, {"sample_delta", s.riemann.sampleDelta},
-        {"mip_filtering", s.riemann.mipFiltering}, {"mip_bias", s.riemann.mipBias}};
-    j["irradiance_importance"] = {{"enabled", s.importance.enabled},
-                                  {"face_size", s.importance.faceSize},
-                                  {"samples", s.importance.samples},
-                                  {"mip_filtering", s.importance.mipFiltering},
-                                  {"mip_bias", s.importance.mipBias}};
-    j["irradiance_moments"] = {
-        {"enabled", s.moments.enabled}, {"face_size", s.moments.faceSize}, {"source_face_size", s.moments.sourceFaceSize}};
-    j["prefilter"] = {{"face_size", s.prefilter.faceSize},
-                      {"levels", s.prefilter.levels},
-                      {"samples", s.prefilter.samples},
-                      {"sample_growth", s.prefilter.sampleGrowth},
-                      {"mip_filtering", s.prefilter.mipFiltering},
-                      {"mip_bias", s.prefilter.mipBias},
-                      {"mirror_copy", s.prefilter.mirrorCopy},
-                      {"layout", roughnessLayoutName(s.prefilter.layout)},
-                      {"roughness_per_mip", s.prefilter.layout == RoughnessLayout::Quadratic
-                                                ? "1 - sqrt(1 - mip / (levels - 1))"
-                                                : "mip / (levels - 1)"}};
-    j["lut"] = {{"size", s.lut.size},
-                {"samples", s.lut.samples},
-                {"schlick_ggx", s.lut.schlickGgx},
-                {"height_correlated_smith", s.lut.heightCorrelatedSmith}};
-    j["samples_per_step"] = s.samplesPerStep;
+    nlohmann::ordered_json j = toJson(bakeSettingsFields(), s);
+    // For a reader of bake.json, not read back.
+    j["prefilter"]["roughness_per_mip"] =
+        s.prefilter.layout == RoughnessLayout::Quadratic ? "1 - sqrt(1 - mip / (levels - 1))" : "mip / (levels - 1)";
     return j.dump(indent);
 }
 
@@ -218,32 +251,11 @@ std::string lutJsonText(int size, int samples, GeometryTerm term, bool multiscat
     j["kind"] = "brdf_lut";
     j["size"] = size;
     j["samples"] = samples;
-    j["geometry"] = geometryTermName(term);
+    j["geometry"] = enumName(term);
     j["x"] = "NdotV = (i + 0.5) / size";
     j["y"] = "perceptual roughness = (j + 0.5) / size; first scanline = roughness near 0";
     j["channels"] = multiscatterChannel ? "R = A (scale), G = B (bias), B = A + B" : "R = A (scale), G = B (bias), B = 0";
     return j.dump();
-}
-
-std::string_view precisionName(Precision p) { return p == Precision::Half ? "half" : "float"; }
-std::string_view shDeviceName(ShDevice d) { return d == ShDevice::Cpu ? "cpu" : "gpu"; }
-std::string_view shWindowName(ShWindow w)
-{
-    switch (w) {
-    case ShWindow::None: return "none";
-    case ShWindow::Hanning: return "hanning";
-    case ShWindow::Lanczos: return "lanczos";
-    }
-    return "none";
-}
-
-std::string_view roughnessLayoutName(RoughnessLayout layout) { return layout == RoughnessLayout::Quadratic ? "quadratic" : "linear"; }
-
-std::optional<RoughnessLayout> parseRoughnessLayout(std::string_view name)
-{
-    if (name == "linear") return RoughnessLayout::Linear;
-    if (name == "quadratic") return RoughnessLayout::Quadratic;
-    return std::nullopt;
 }
 
 static_assert(int(RoughnessLayout::Linear) == PREFILTER_LAYOUT_LINEAR && int(RoughnessLayout::Quadratic) == PREFILTER_LAYOUT_QUADRATIC);
@@ -251,35 +263,6 @@ static_assert(int(RoughnessLayout::Linear) == PREFILTER_LAYOUT_LINEAR && int(Rou
 float prefilterMipRoughness(const PrefilterSettings& settings, int level)
 {
     return prefilterRoughnessFromMip(float(level), float(settings.levels), int(settings.layout));
-}
-
-std::optional<Precision> parsePrecision(std::string_view name)
-{
-    if (name == "half") return Precision::Half;
-    if (name == "float") return Precision::Float;
-    return std::nullopt;
-}
-
-std::optional<ShDevice> parseShDevice(std::string_view name)
-{
-    if (name == "cpu") return ShDevice::Cpu;
-    if (name == "gpu") return ShDevice::Gpu;
-    return std::nullopt;
-}
-
-std::optional<ShWindow> parseShWindow(std::string_view name)
-{
-    if (name == "none") return ShWindow::None;
-    if (name == "hanning") return ShWindow::Hanning;
-    if (name == "lanczos") return ShWindow::Lanczos;
-    return std::nullopt;
-}
-
-std::optional<GeometryTerm> parseGeometryTerm(std::string_view name)
-{
-    if (name == "schlick" || name == "schlick-ggx") return GeometryTerm::SchlickGGX;
-    if (name == "correlated" || name == "height-correlated-smith") return GeometryTerm::HeightCorrelatedSmith;
-    return std::nullopt;
 }
 
 } // namespace iblab::bake

@@ -20,6 +20,7 @@
 
 #include "ibl/brdf.hpp"
 #include "ibl/sh.hpp"
+#include "io/settings_fields.hpp"
 
 namespace iblab::bake {
 
@@ -49,11 +50,15 @@ struct ShSettings {
     double windowWidth = 0.0;
 };
 
+// How the irradiance cube is baked: one method per bake, each with its settings struct
+// below. Adding one: docs/architecture.md, "Where does X go".
+// None bakes no cube: diffuse comes from SH9 alone (Filament's way).
+enum class IrradianceMethod { None, Riemann, Importance, Moments };
+
 // LearnOpenGL's irradiance convolution: a (theta, phi) grid of step sampleDelta radians.
 // mipFiltering (not in the tutorial) reads each cell's radiance from the source mip whose
 // texels are as large as the cell, so a coarse grid averages instead of point-sampling.
 struct RiemannIrradianceSettings {
-    bool enabled = false;
     int faceSize = 32;
     float sampleDelta = 0.025f;
     bool mipFiltering = false;
@@ -65,7 +70,6 @@ struct RiemannIrradianceSettings {
 // off on courtyard.exr, and a face large enough to interpolate well costs 10-50x the moment
 // cube below for the same sampling noise; docs/bake.md.)
 struct ImportanceIrradianceSettings {
-    bool enabled = false;
     int faceSize = 6;
     int samples = 8192;
     bool mipFiltering = true;
@@ -78,7 +82,6 @@ struct ImportanceIrradianceSettings {
 // output has the tutorial's 32^2 faces, which bilinear shading interpolates to within the
 // tutorial's own error (docs/bake.md).
 struct MomentIrradianceSettings {
-    bool enabled = true;
     int faceSize = 32;
     int sourceFaceSize = 8;
 };
@@ -131,6 +134,7 @@ struct BakeSettings {
     bool exactTexelSolidAngle = true;
     EnvironmentCubeSettings cube;
     ShSettings sh;
+    IrradianceMethod irradiance = IrradianceMethod::Moments;
     RiemannIrradianceSettings riemann;
     ImportanceIrradianceSettings importance;
     MomentIrradianceSettings moments;
@@ -170,23 +174,43 @@ void validate(const BakeSettings& settings);
 
 // The face size the environment cube gets for a width x height equirect.
 int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int height);
+// The face size of the irradiance cube settings.irradiance bakes (0 for None).
+int irradianceFaceSize(const BakeSettings& settings);
+
+// Every setting's description (io/settings_fields.hpp), in the order JSON writes them.
+const FieldTable<BakeSettings>& bakeSettingsFields();
 
 // Every field, as a JSON object (stable key order). The cache key hashes it.
 std::string toJsonText(const BakeSettings& settings, int indent = -1);
 // The LUT's own settings for one geometry term, as JSON (its cache key and file metadata).
 std::string lutJsonText(int size, int samples, GeometryTerm term, bool multiscatterChannel);
 
-std::string_view precisionName(Precision precision);
-std::string_view shDeviceName(ShDevice device);
-std::string_view shWindowName(ShWindow window);
-std::string_view roughnessLayoutName(RoughnessLayout layout); // "linear" | "quadratic"
-std::optional<RoughnessLayout> parseRoughnessLayout(std::string_view name);
 // The roughness prefiltered mip `level` holds, and its inverse, for these settings.
 float prefilterMipRoughness(const PrefilterSettings& settings, int level);
-std::optional<Precision> parsePrecision(std::string_view name);
-std::optional<ShDevice> parseShDevice(std::string_view name);
-std::optional<ShWindow> parseShWindow(std::string_view name);
-// "schlick" / "schlick-ggx" and "correlated" / "height-correlated-smith".
-std::optional<GeometryTerm> parseGeometryTerm(std::string_view name);
 
 } // namespace iblab::bake
+
+namespace iblab {
+template <>
+struct EnumNames<bake::Precision> {
+    static constexpr std::array<EnumName<bake::Precision>, 2> entries{{{bake::Precision::Half, "half"}, {bake::Precision::Float, "float"}}};
+};
+template <>
+struct EnumNames<bake::ShDevice> {
+    static constexpr std::array<EnumName<bake::ShDevice>, 2> entries{{{bake::ShDevice::Cpu, "cpu"}, {bake::ShDevice::Gpu, "gpu"}}};
+};
+// The names are also the irradiance cube's file (irradiance_<name>.exr) and its key in the
+// accuracy report (cube_<name>).
+template <>
+struct EnumNames<bake::IrradianceMethod> {
+    static constexpr std::array<EnumName<bake::IrradianceMethod>, 4> entries{{{bake::IrradianceMethod::None, "none"},
+                                                                             {bake::IrradianceMethod::Riemann, "riemann"},
+                                                                             {bake::IrradianceMethod::Importance, "importance"},
+                                                                             {bake::IrradianceMethod::Moments, "moments"}}};
+};
+template <>
+struct EnumNames<bake::RoughnessLayout> {
+    static constexpr std::array<EnumName<bake::RoughnessLayout>, 2> entries{
+        {{bake::RoughnessLayout::Linear, "linear"}, {bake::RoughnessLayout::Quadratic, "quadratic"}}};
+};
+} // namespace iblab

@@ -27,6 +27,11 @@ glm::mat4 cameraProjection(const CameraSettings& camera, float aspect)
     return glm::perspective(fov, aspect, 0.01f, 100.0f);
 }
 
+glm::vec2 clipToPixel(const glm::vec4& clip, int width, int height)
+{
+    return (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(width, height);
+}
+
 void frameBox(CameraSettings& camera, glm::vec3 centre, glm::vec3 halfExtents, float aspect)
 {
     // The box's half extent along the camera's right, up and forward axes (the support of

@@ -2,6 +2,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "frame/settings.hpp"
 
@@ -13,6 +14,8 @@ glm::vec3 cameraForward(const CameraSettings& camera);
 glm::mat4 cameraView(const CameraSettings& camera);
 glm::vec3 cameraPosition(const CameraSettings& camera);
 glm::mat4 cameraProjection(const CameraSettings& camera, float aspect);
+// Where a clip-space point lands in a width x height frame, in pixels (y up).
+glm::vec2 clipToPixel(const glm::vec4& clip, int width, int height);
 
 // Aims the camera at the centre of a bounding box and backs off until the box fills the
 // view with a margin, keeping yaw, pitch and field of view (double-click, a new scene,

@@ -68,7 +68,7 @@ std::vector<std::pair<std::string, std::string>> conventionChoices(const Convent
     const bake::BakeSettings bake = conventionBakeSettings(convention);
     const bake::PrefilterSettings& p = bake.prefilter;
     std::vector<std::pair<std::string, std::string>> rows;
-    rows.emplace_back("geometry term", std::string(geometryTermName(convention.geometry)));
+    rows.emplace_back("geometry term", std::string(enumName(convention.geometry)));
     rows.emplace_back("roughness per mip", p.layout == bake::RoughnessLayout::Quadratic ? "quadratic: lod = (L-1) r (2-r)" : "linear: lod = (L-1) r");
     std::string bias = p.mipFiltering ? formatted("%+.2f", p.mipBias) + (bake.exactTexelSolidAngle ? " (texel read)" : " (face average)") : "off (source mip 0)";
     rows.emplace_back("source-mip bias", bias);
@@ -77,10 +77,10 @@ std::vector<std::pair<std::string, std::string>> conventionChoices(const Convent
     rows.emplace_back("LUT", std::to_string(bake.lut.size) + "^2 x " + std::to_string(bake.lut.samples) + " samples");
     rows.emplace_back("Fresnel on LUT", convention.roughFresnelOnLut ? "F_roughness(n.v) A + B" : "F0 A + B");
     rows.emplace_back("energy compensation", convention.multiscatter ? "on" : "off");
-    rows.emplace_back("diffuse", convention.diffuse == DiffuseSource::Sh9 ? "SH9"
-                                : bake.moments.enabled            ? "moment cube"
-                                : bake.riemann.enabled            ? "Riemann cube"
-                                                                  : "cosine-sampled cube");
+    rows.emplace_back("diffuse", convention.diffuse == DiffuseSource::Sh9              ? "SH9"
+                                : bake.irradiance == bake::IrradianceMethod::Moments ? "moment cube"
+                                : bake.irradiance == bake::IrradianceMethod::Riemann ? "Riemann cube"
+                                                                                      : "cosine-sampled cube");
     return rows;
 }
 

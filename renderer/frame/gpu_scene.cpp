@@ -139,4 +139,23 @@ GpuScene buildModelScene(const ModelData& model, const std::string& path)
     return scene;
 }
 
+const GpuScene& SceneSlot::ensure(const SceneSettings& settings)
+{
+    const bool wantsProcedural = settings.kind != SceneKind::Model;
+    const bool stale = !built_ || scene_.kind != settings.kind || builtFor_.countingSpheres != settings.countingSpheres;
+    if ((wantsProcedural && stale) || !built_) {
+        scene_ = buildProceduralScene(settings);
+        built_ = true;
+        builtFor_ = settings;
+    }
+    return scene_;
+}
+
+void SceneSlot::setModel(const ModelData& model, const std::string& path)
+{
+    scene_ = buildModelScene(model, path);
+    built_ = true;
+    builtFor_.kind = SceneKind::Model;
+}
+
 } // namespace iblab

@@ -40,4 +40,21 @@ struct GpuScene {
 GpuScene buildProceduralScene(const SceneSettings& settings);
 GpuScene buildModelScene(const ModelData& model, const std::string& path);
 
+// The scene the frame draws: the procedural layout the settings ask for, rebuilt only when
+// they ask for another kind or strip length, or the loaded model, which stays until the
+// settings ask for a procedural kind.
+class SceneSlot {
+public:
+    // The scene for these settings (the sphere while a model is asked for but none is loaded).
+    const GpuScene& ensure(const SceneSettings& settings);
+    void setModel(const ModelData& model, const std::string& path);
+    // The scene last built or loaded, without building one (empty before the first).
+    const GpuScene& current() const { return scene_; }
+
+private:
+    GpuScene scene_;
+    bool built_ = false;
+    SceneSettings builtFor_;
+};
+
 } // namespace iblab

@@ -4,8 +4,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "ibl/equirect.hpp"
 #include "frame/texture_units.hpp"
+#include "gl/uniform.hpp"
+#include "ibl/equirect.hpp"
 
 namespace iblab {
 namespace {
@@ -24,6 +25,18 @@ gl::Texture createFloatTexture(GLenum internalFormat, int width, int height)
 // of the default sphere at 128 x 128 pixels, at most 16 tiles x 16 bands, took 2.2 s): small
 // enough for a frame's budget, large enough that dispatch overhead is noise.
 constexpr long kEvaluationsPerSlice = 1L << 21;
+
+struct IntegralUniforms {
+    explicit IntegralUniforms(const gl::ShaderProgram& p)
+        : tileOrigin(p, "uTileOrigin"), tileEnd(p, "uTileEnd"), firstRow(p, "uFirstRow"), endRow(p, "uEndRow"), geometry(p, "uGeometry")
+    {
+    }
+    gl::Uniform<glm::ivec2> tileOrigin;
+    gl::Uniform<glm::ivec2> tileEnd;
+    gl::Uniform<int> firstRow;
+    gl::Uniform<int> endRow;
+    gl::Uniform<int> geometry;
+};
 
 } // namespace
 
@@ -111,12 +124,13 @@ void ReferenceIntegral::runSlice(gl::ShaderLibrary& shaders, const GBuffer& gbuf
     const glm::ivec2 tile = tiles_[std::size_t(nextSlice_ / bands_)];
     const int band = nextSlice_ % bands_;
     const gl::ShaderProgram& p = shaders.program({"reference_integral.comp"});
+    const IntegralUniforms& u = p.uniforms<IntegralUniforms>();
     glUseProgram(p.id());
-    p.set("uTileOrigin", tile);
-    p.set("uTileEnd", glm::min(tile + tileSize_, glm::ivec2(width_, height_)));
-    p.set("uFirstRow", band * rowsPerSlice_);
-    p.set("uEndRow", std::min((band + 1) * rowsPerSlice_, environmentHeight_));
-    p.set("uGeometry", int(geometry));
+    u.tileOrigin.set(tile);
+    u.tileEnd.set(glm::min(tile + tileSize_, glm::ivec2(width_, height_)));
+    u.firstRow.set(band * rowsPerSlice_);
+    u.endRow.set(std::min((band + 1) * rowsPerSlice_, environmentHeight_));
+    u.geometry.set(int(geometry));
     glBindTextureUnit(kUnitGNormal, gbuffer.texture(ReferenceLayer::Normal));
     glBindTextureUnit(kUnitGView, gbuffer.texture(ReferenceLayer::View));
     glBindTextureUnit(kUnitGSpecular, gbuffer.texture(ReferenceLayer::Specular));

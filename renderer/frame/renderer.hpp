@@ -1,7 +1,8 @@
 #pragma once
 // The frame renderer: environment, bake and scene in, tone-mapped frame out. Its public
 // interface hides GL so that the UI and the app never issue GL calls; it needs a current
-// 4.5 context.
+// 4.5 context. Inside it is a set of passes run by one coordinator (renderer.cpp says which
+// pass reads and writes what) and a reference renderer (reference_renderer.hpp).
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -10,9 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "ibl/error_metrics.hpp"
-#include "ibl/image.hpp"
+#include "frame/frame_analysis.hpp"
+#include "frame/readback.hpp"
 #include "frame/settings.hpp"
+#include "frame/split_view.hpp"
+#include "ibl/image.hpp"
 
 namespace iblab {
 
@@ -24,40 +27,11 @@ struct BakeResult;
 }
 struct ModelData;
 
-struct FrameReadback {
-    int width = 0;
-    int height = 0;
-    // Linear HDR before exposure and tone mapping, bottom row first. In the HDR frame, alpha
-    // is the fraction of the pixel's MSAA samples covered by surfaces (the sky's are not):
-    // 1 inside a surface, 0 on the background, in between on silhouettes.
-    std::vector<float> rgba;
-};
-
-struct DisplayReadback {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint8_t> rgba; // sRGB-encoded 8-bit, bottom row first
-};
-
 struct SceneInfo {
     std::size_t draws = 0;
     std::size_t gpuBytes = 0;
     glm::vec3 centre{0.0f};      // of the bounding box, for framing the camera
     glm::vec3 halfExtents{1.0f};
-};
-
-// What the texel under the cursor of a debug view holds.
-struct TexelProbe {
-    bool valid = false;
-    std::string text; // "mip 2 (roughness 0.50), face +Z, texel (12, 30): 0.412 0.380 0.301"
-};
-
-// The mean radiance over the central disc of one sphere of a procedural scene.
-struct SphereReading {
-    glm::vec2 pixel{0.0f}; // projected centre, y up
-    glm::vec3 radiance{0.0f};
-    float metallic = 0.0f;  // the draw's own factors (the grid's), else the sliders'
-    float roughness = 0.0f;
 };
 
 struct ScreenLabel {
@@ -95,18 +69,6 @@ struct ReferenceStatus {
     double texelDegrees = 0.0;         // angular width of one of its texels at the equator
     double minResolvedRoughness = 0.0; // referenceMinResolvedRoughness: below it, it is not converged
 };
-
-// The error of the last frame against the reference, over surface pixels. With the split
-// view, `left` covers the pixels left of the divider (settings A) and `right` the others
-// (settings B); without it, `left` covers the whole frame.
-struct ErrorReport {
-    bool valid = false; // false until a complete reference of the frame's settings and size exists
-    ErrorMetrics left;
-    std::optional<ErrorMetrics> right;
-};
-
-// The first pixel column that shows settings B in the split view of a frame width wide.
-int splitColumn(const ViewSettings& view, int width);
 
 class Renderer {
 public:

@@ -1,121 +1,10 @@
 #include "frame/settings.hpp"
 
-#include <array>
 #include <stdexcept>
-#include <utility>
 
 #include <nlohmann/json.hpp>
 
 namespace iblab {
-namespace {
-
-// One table per enum: the single place a name is spelled.
-template <typename Enum, std::size_t N>
-using NameTable = std::array<std::pair<Enum, std::string_view>, N>;
-
-constexpr NameTable<ShadingMethod, 2> kShadingMethods{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}}};
-constexpr NameTable<SceneKind, 6> kSceneKinds{{{SceneKind::Sphere, "sphere"},
-                                               {SceneKind::None, "none"},
-                                               {SceneKind::Grid, "grid"},
-                                               {SceneKind::Counting, "counting"},
-                                               {SceneKind::Sweep, "sweep"},
-                                               {SceneKind::Model, "model"}}};
-constexpr NameTable<ViewMode, 6> kViewModes{{{ViewMode::Final, "final"},
-                                             {ViewMode::PrefilterMips, "prefilter-mips"},
-                                             {ViewMode::Lut, "lut"},
-                                             {ViewMode::Furnace, "furnace"},
-                                             {ViewMode::Irradiance, "irradiance"},
-                                             {ViewMode::Error, "error"}}};
-constexpr NameTable<BackgroundMode, 4> kBackgroundModes{{{BackgroundMode::Environment, "environment"},
-                                                         {BackgroundMode::Irradiance, "irradiance"},
-                                                         {BackgroundMode::PrefilterMip, "prefilter-mip"},
-                                                         {BackgroundMode::SolidColour, "solid"}}};
-constexpr NameTable<DiffuseSource, 3> kDiffuseSources{
-    {{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::Sh9Plain, "sh9-plain"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
-constexpr NameTable<GeometryTerm, 2> kGeometryTerms{
-    {{GeometryTerm::SchlickGGX, "schlick"}, {GeometryTerm::HeightCorrelatedSmith, "correlated"}}};
-constexpr NameTable<ErrorSpace, 2> kErrorSpaces{{{ErrorSpace::Linear, "linear"}, {ErrorSpace::Display, "display"}}};
-
-template <typename Enum, std::size_t N>
-std::string_view nameOf(const NameTable<Enum, N>& table, Enum value)
-{
-    for (const auto& [e, name] : table)
-        if (e == value) return name;
-    return "?";
-}
-
-template <typename Enum, std::size_t N>
-bool parseName(const NameTable<Enum, N>& table, std::string_view name, Enum& value)
-{
-    for (const auto& [e, n] : table)
-        if (n == name) {
-            value = e;
-            return true;
-        }
-    return false;
-}
-
-using Json = nlohmann::ordered_json;
-
-Json vec3Json(glm::vec3 v) { return Json::array({v.x, v.y, v.z}); }
-
-// Reads object[key] into target when present; names the full key path on a type error.
-class Reader {
-public:
-    Reader(const nlohmann::json& object, std::string path) : object_(object), path_(std::move(path)) {}
-
-    template <typename T>
-    void read(const char* key, T& target) const
-    {
-        if (!object_.contains(key)) return;
-        try {
-            if constexpr (std::is_same_v<T, glm::vec3>) {
-                const auto& a = object_.at(key);
-                if (!a.is_array() || a.size() != 3) throw std::runtime_error("expected [r, g, b]");
-                target = glm::vec3(a[0].get<float>(), a[1].get<float>(), a[2].get<float>());
-            } else {
-                target = object_.at(key).get<T>();
-            }
-        } catch (const std::exception& e) {
-            throw std::runtime_error(path_ + "." + key + ": " + e.what());
-        }
-    }
-
-    template <typename Enum, std::size_t N>
-    void readName(const char* key, const NameTable<Enum, N>& table, Enum& target) const
-    {
-        std::string name;
-        read(key, name);
-        if (!name.empty() && !parseName(table, name, target)) throw std::runtime_error(path_ + "." + key + ": unknown value \"" + name + "\"");
-    }
-
-    Reader child(const char* key) const
-    {
-        static const nlohmann::json empty = nlohmann::json::object();
-        return {object_.contains(key) ? object_.at(key) : empty, path_ + "." + key};
-    }
-
-private:
-    const nlohmann::json& object_;
-    std::string path_;
-};
-
-} // namespace
-
-std::string_view shadingMethodName(ShadingMethod m) { return nameOf(kShadingMethods, m); }
-bool parseShadingMethod(std::string_view n, ShadingMethod& m) { return parseName(kShadingMethods, n, m); }
-std::string_view sceneKindName(SceneKind k) { return nameOf(kSceneKinds, k); }
-bool parseSceneKind(std::string_view n, SceneKind& k) { return parseName(kSceneKinds, n, k); }
-std::string_view viewModeName(ViewMode m) { return nameOf(kViewModes, m); }
-bool parseViewMode(std::string_view n, ViewMode& m) { return parseName(kViewModes, n, m); }
-std::string_view backgroundModeName(BackgroundMode m) { return nameOf(kBackgroundModes, m); }
-bool parseBackgroundMode(std::string_view n, BackgroundMode& m) { return parseName(kBackgroundModes, n, m); }
-std::string_view diffuseSourceName(DiffuseSource s) { return nameOf(kDiffuseSources, s); }
-bool parseDiffuseSource(std::string_view n, DiffuseSource& s) { return parseName(kDiffuseSources, n, s); }
-std::string_view geometryTermShortName(GeometryTerm t) { return nameOf(kGeometryTerms, t); }
-bool parseGeometryTerm(std::string_view n, GeometryTerm& t) { return parseName(kGeometryTerms, n, t); }
-std::string_view errorSpaceName(ErrorSpace s) { return nameOf(kErrorSpaces, s); }
-bool parseErrorSpace(std::string_view n, ErrorSpace& s) { return parseName(kErrorSpaces, n, s); }
 
 bool sceneDemandsExactSampleCount(const SceneSettings& scene) { return scene.kind == SceneKind::Counting; }
 
@@ -124,74 +13,137 @@ bool keepsExactSampleCount(const FrameSettings& settings)
     return settings.sampling.freezeSampleSet || sceneDemandsExactSampleCount(settings.scene);
 }
 
-namespace {
-
-// The sampling block is written twice: the frame's own and the split view's comparison.
-Json samplingJson(const SamplingSettings& s)
+const FieldTable<SamplingSettings>& samplingSettingsFields()
 {
-    return {{"method", std::string(shadingMethodName(s.method))},
-            {"samples", s.samples},
-            {"forced_mip", s.forcedMip},
-            {"pdf_mip_filtering", s.pdfMipFiltering},
-            {"mip_bias", s.mipBias},
-            {"geometry", std::string(geometryTermShortName(s.geometry))},
-            {"diffuse", std::string(diffuseSourceName(s.diffuse))},
-            {"cosine_sampled_diffuse", s.cosineSampledDiffuse},
-            {"multiscatter", s.multiscatter},
-            {"rough_fresnel_on_lut", s.roughFresnelOnLut},
-            {"normalize_by_accepted", s.normalizeByAccepted},
-            {"freeze_sample_set", s.freezeSampleSet}};
+    using S = SamplingSettings;
+    constexpr CliForm value = CliForm::Value, flag = CliForm::Flag;
+    static const FieldTable<S> fields{
+        {"method", "Method", "Shading: splitsum|sampled", fieldRef<S>([](S& s) -> auto& { return s.method; }), {}, "--method", value},
+        {"samples", "N (samples)", "N, samples per pixel for the sampled method", fieldRef<S>([](S& s) -> auto& { return s.samples; }),
+         {1, kMaxSampleCount}, "--samples", value},
+        // --mip takes "auto" for -1 (app/cli.cpp).
+        {"forced_mip", "Forced mip", "Mip level to read (prefiltered mip for split-sum, source mip for sampled), or auto",
+         fieldRef<S>([](S& s) -> auto& { return s.forcedMip; }), {0, 16, -1, "the lod follows roughness or the pdf"}, "--mip"},
+        {"pdf_mip_filtering", "PDF mip filtering", "Sampled method: read every sample from mip 0 instead of the PDF-chosen mip",
+         fieldRef<S>([](S& s) -> auto& { return s.pdfMipFiltering; }), {}, "--no-pdf-filtering", CliForm::NegatedFlag},
+        {"mip_bias", "Mip bias", "Bias added to the PDF-chosen mip (0 LearnOpenGL, 1 Filament)",
+         fieldRef<S>([](S& s) -> auto& { return s.mipBias; }), {-16, 16}, "--mip-bias", value},
+        {"geometry", "Geometry term", "Geometry term: schlick-ggx|height-correlated-smith",
+         fieldRef<S>([](S& s) -> auto& { return s.geometry; }), {}, "--geometry", value},
+        {"diffuse", "Diffuse", "Diffuse source: sh9|sh9-plain|irradiance-cube", fieldRef<S>([](S& s) -> auto& { return s.diffuse; }), {}, "--diffuse",
+         value},
+        {"cosine_sampled_diffuse", "Cosine-sampled diffuse", "Sampled method: diffuse from N cosine samples instead of SH9",
+         fieldRef<S>([](S& s) -> auto& { return s.cosineSampledDiffuse; }), {}, "--cosine-diffuse", flag},
+        {"multiscatter", "Multiple-scattering compensation", "Multiple-scattering energy compensation from the LUT",
+         fieldRef<S>([](S& s) -> auto& { return s.multiscatter; }), {}, "--multiscatter", flag},
+        {"rough_fresnel_on_lut", "F_roughness on the LUT", "Split sum as LearnOpenGL: F_roughness(n.v) * A + B instead of F0 * A + B",
+         fieldRef<S>([](S& s) -> auto& { return s.roughFresnelOnLut; }), {}, "--rough-fresnel-lut", flag},
+        {"normalize_by_accepted", "Normalise by accepted samples",
+         "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N",
+         fieldRef<S>([](S& s) -> auto& { return s.normalizeByAccepted; }), {}, "--normalize-accepted", flag},
+        {"freeze_sample_set", "Freeze the sample set",
+         "Sampled method: keep exactly N samples per pixel (no rotated sample sets added over frames)",
+         fieldRef<S>([](S& s) -> auto& { return s.freezeSampleSet; }), {}, "--freeze-samples", flag},
+    };
+    return fields;
 }
 
-void readSampling(const Reader& sampling, SamplingSettings& s)
+const FieldTable<MaterialSettings>& materialSettingsFields()
 {
-    sampling.readName("method", kShadingMethods, s.method);
-    sampling.read("samples", s.samples);
-    sampling.read("forced_mip", s.forcedMip);
-    sampling.read("pdf_mip_filtering", s.pdfMipFiltering);
-    sampling.read("mip_bias", s.mipBias);
-    sampling.readName("geometry", kGeometryTerms, s.geometry);
-    sampling.readName("diffuse", kDiffuseSources, s.diffuse);
-    sampling.read("cosine_sampled_diffuse", s.cosineSampledDiffuse);
-    sampling.read("multiscatter", s.multiscatter);
-    sampling.read("rough_fresnel_on_lut", s.roughFresnelOnLut);
-    sampling.read("normalize_by_accepted", s.normalizeByAccepted);
-    sampling.read("freeze_sample_set", s.freezeSampleSet);
+    using S = MaterialSettings;
+    constexpr CliForm value = CliForm::Value;
+    static const FieldTable<S> fields{
+        {"override_model", "Override the model's factors", "On: the sliders replace a glTF model's base colour, metallic and roughness factors; off (--model-material): the model's own materials",
+         fieldRef<S>([](S& s) -> auto& { return s.overrideModel; }), {}, "--model-material", CliForm::NegatedFlag},
+        // --base-color also takes #rrggbb (app/cli.cpp).
+        {"base_color", "Base colour", "Base colour: r,g,b (linear, 0..1) or #rrggbb (sRGB)",
+         fieldRef<S>([](S& s) -> auto& { return s.baseColor; }), {}, "--base-color"},
+        {"metallic", "Metallic", "Metallic, 0..1", fieldRef<S>([](S& s) -> auto& { return s.metallic; }), {0, 1},
+         "--metallic", value},
+        {"roughness", "Roughness", "Perceptual roughness, 0..1", fieldRef<S>([](S& s) -> auto& { return s.roughness; }),
+         {0, 1}, "--roughness", value},
+        {"ambient_occlusion", "AO", "Ambient occlusion, 0..1",
+         fieldRef<S>([](S& s) -> auto& { return s.ambientOcclusion; }), {0, 1}, "--ao", value},
+        {"specular", "Specular", "Dielectric reflectance (F0 = 0.16 specular^2)",
+         fieldRef<S>([](S& s) -> auto& { return s.specular; }), {0, 1}, "--specular", value},
+    };
+    return fields;
+}
+
+namespace {
+
+FieldTable<FrameSettings> makeFrameFields()
+{
+    using S = FrameSettings;
+    constexpr CliForm value = CliForm::Value;
+    FieldTable<S> fields{
+        // --env (app/cli.cpp) also lists the builtins.
+        {"environment.source", "Source", "Environment: an .exr/.hdr file or builtin:NAME",
+         fieldRef<S>([](S& s) -> auto& { return s.environment.source; }), {}, "--env"},
+        {"environment.yaw_degrees", "Yaw", "Environment rotation about +Y, degrees (+90 brings +X to the front)",
+         fieldRef<S>([](S& s) -> auto& { return s.environment.yawDegrees; }), {-1e6, 1e6}, "--env-yaw", value},
+        {"environment.intensity_ev", "Intensity (EV)", "Environment intensity, EV stops",
+         fieldRef<S>([](S& s) -> auto& { return s.environment.intensityEv; }), {-20, 20}, "--env-intensity", value},
+        {"tone_map.operator", "Operator", "Tone map operator", fieldRef<S>([](S& s) -> auto& { return s.toneMap.op; }), {}, "--tonemap",
+         value},
+        {"tone_map.exposure_ev", "Exposure (EV)", "Exposure before tone mapping, EV stops",
+         fieldRef<S>([](S& s) -> auto& { return s.toneMap.exposureEv; }), {-20, 20}, "--exposure", value},
+        {"camera.yaw_degrees", "Yaw", "Camera yaw, degrees (0 looks down -Z, +90 down +X)",
+         fieldRef<S>([](S& s) -> auto& { return s.camera.yawDegrees; }), {-1e6, 1e6}, "--yaw", value},
+        {"camera.pitch_degrees", "Pitch", "Camera pitch, degrees", fieldRef<S>([](S& s) -> auto& { return s.camera.pitchDegrees; }),
+         {-89, 89}, "--pitch", value},
+        {"camera.fov_degrees", "Field of view", "Vertical field of view, degrees", fieldRef<S>([](S& s) -> auto& { return s.camera.fovDegrees; }),
+         {1, 170}, "--fov", value},
+        // --distance 0 frames the scene (app/cli.cpp).
+        {"camera.distance", "Distance", "Camera distance from its target", fieldRef<S>([](S& s) -> auto& { return s.camera.distance; }),
+         {0.01, 1e6, 0, "frame the scene"}, "--distance"},
+        {"camera.target", "Target", "The point the camera orbits", fieldRef<S>([](S& s) -> auto& { return s.camera.target; })},
+    };
+    appendNested(fields, materialSettingsFields(), [](S& s) -> MaterialSettings& { return s.material; }, "material.", "");
+    appendNested(fields, samplingSettingsFields(), [](S& s) -> SamplingSettings& { return s.sampling; }, "sampling.", "");
+    const FieldTable<S> sceneAndView{
+        // --scene also takes a .gltf/.glb path (app/cli.cpp).
+        {"scene.kind", "Scene", "Scene: sphere|grid|counting|sweep|none|FILE.gltf|FILE.glb",
+         fieldRef<S>([](S& s) -> auto& { return s.scene.kind; }), {}, "--scene"},
+        {"scene.model", "Model", "The .gltf / .glb shown by the model scene", fieldRef<S>([](S& s) -> auto& { return s.scene.modelPath; })},
+        {"scene.counting_spheres", "Spheres", "Spheres in the N = 1..k counting strip",
+         fieldRef<S>([](S& s) -> auto& { return s.scene.countingSpheres; }), {1, 64}, "--counting-spheres", value},
+        {"view.mode", "View", "View: final|prefilter-mips|lut|furnace|irradiance|error", fieldRef<S>([](S& s) -> auto& { return s.view.mode; }),
+         {}, "--view", value},
+        {"view.background", "Background", "Background: environment|irradiance|prefilter-mip|solid",
+         fieldRef<S>([](S& s) -> auto& { return s.view.background; }), {}, "--background", value},
+        {"view.background_mip", "Background mip", "Prefiltered mip shown by --background prefilter-mip",
+         fieldRef<S>([](S& s) -> auto& { return s.view.backgroundMip; }), {0, 16}, "--background-mip", value},
+        {"view.solid_colour", "Solid colour", "Background colour of the solid background",
+         fieldRef<S>([](S& s) -> auto& { return s.view.solidColour; })},
+        {"view.error_space", "Error space", "--view error compares: linear (HDR, before tone mapping)|display (after)",
+         fieldRef<S>([](S& s) -> auto& { return s.view.errorSpace; }), {}, "--error-space", value},
+        {"view.error_scale", "Error scale", "--view error: the relative error at the top of the colour bar",
+         fieldRef<S>([](S& s) -> auto& { return s.view.errorScale; }), {1e-6, 1e6}, "--error-scale", value},
+        {"view.reference_width", "Reference width",
+         "Width of the environment the reference sums over (halved from the loaded map until it fits; height = width / 2)",
+         fieldRef<S>([](S& s) -> auto& { return s.view.referenceWidth; }), {2, 4096}, "--reference-width", value},
+        {"view.split", "A/B split", "Show settings B right of a divider", fieldRef<S>([](S& s) -> auto& { return s.view.split; })},
+        // --split POSITION turns the split on and places the divider (app/cli.cpp).
+        {"view.split_position", "Divider", "A/B split view: the divider's position, 0..1 from the left; A (the options above) left, B (--b-*) right",
+         fieldRef<S>([](S& s) -> auto& { return s.view.splitPosition; }), {0, 1}, "--split"},
+    };
+    fields.insert(fields.end(), sceneAndView.begin(), sceneAndView.end());
+    appendNested(fields, samplingSettingsFields(), [](S& s) -> SamplingSettings& { return s.view.compare; }, "view.compare.", "b-");
+    fields.push_back({"view.msaa_samples", "MSAA", "Multisample anti-aliasing of the lit frame: samples per pixel, 1 (off), 2, 4 or 8",
+                      fieldRef<S>([](S& s) -> auto& { return s.view.msaaSamples; }), {.min = 1, .max = 8, .powerOfTwo = true}, "--msaa", value});
+    return fields;
 }
 
 } // namespace
 
-std::string toJsonText(const FrameSettings& s, int indent)
+const FieldTable<FrameSettings>& frameSettingsFields()
 {
-    Json j;
-    j["environment"] = {{"source", s.environment.source}, {"yaw_degrees", s.environment.yawDegrees}, {"intensity_ev", s.environment.intensityEv}};
-    j["tone_map"] = {{"operator", std::string(toneMapOperatorName(s.toneMap.op))}, {"exposure_ev", s.toneMap.exposureEv}};
-    j["camera"] = {{"yaw_degrees", s.camera.yawDegrees},
-                   {"pitch_degrees", s.camera.pitchDegrees},
-                   {"fov_degrees", s.camera.fovDegrees},
-                   {"distance", s.camera.distance},
-                   {"target", vec3Json(s.camera.target)}};
-    j["material"] = {{"override_model", s.material.overrideModel},
-                     {"base_color", vec3Json(s.material.baseColor)},
-                     {"metallic", s.material.metallic},
-                     {"roughness", s.material.roughness},
-                     {"ambient_occlusion", s.material.ambientOcclusion},
-                     {"specular", s.material.specular}};
-    j["sampling"] = samplingJson(s.sampling);
-    j["scene"] = {{"kind", std::string(sceneKindName(s.scene.kind))}, {"model", s.scene.modelPath}, {"counting_spheres", s.scene.countingSpheres}};
-    j["view"] = {{"mode", std::string(viewModeName(s.view.mode))},
-                 {"background", std::string(backgroundModeName(s.view.background))},
-                 {"background_mip", s.view.backgroundMip},
-                 {"solid_colour", vec3Json(s.view.solidColour)},
-                 {"error_space", std::string(errorSpaceName(s.view.errorSpace))},
-                 {"error_scale", s.view.errorScale},
-                 {"reference_width", s.view.referenceWidth},
-                 {"split", s.view.split},
-                 {"split_position", s.view.splitPosition},
-                 {"compare", samplingJson(s.view.compare)},
-                 {"msaa_samples", s.view.msaaSamples}};
-    return j.dump(indent);
+    static const FieldTable<FrameSettings> fields = makeFrameFields();
+    return fields;
 }
+
+std::string toJsonText(const FrameSettings& s, int indent) { return toJson(frameSettingsFields(), s).dump(indent); }
 
 FrameSettings frameSettingsFromJsonText(const std::string& text)
 {
@@ -202,57 +154,8 @@ FrameSettings frameSettingsFromJsonText(const std::string& text)
         throw std::runtime_error(std::string("not JSON: ") + e.what());
     }
     if (!j.is_object()) throw std::runtime_error("settings: expected a JSON object");
-    const Reader root(j, "settings");
     FrameSettings s;
-    const Reader environment = root.child("environment");
-    environment.read("source", s.environment.source);
-    environment.read("yaw_degrees", s.environment.yawDegrees);
-    environment.read("intensity_ev", s.environment.intensityEv);
-
-    const Reader toneMap = root.child("tone_map");
-    std::string op;
-    toneMap.read("operator", op);
-    if (!op.empty()) {
-        const auto parsed = parseToneMapOperator(op);
-        if (!parsed) throw std::runtime_error("settings.tone_map.operator: unknown value \"" + op + "\"");
-        s.toneMap.op = *parsed;
-    }
-    toneMap.read("exposure_ev", s.toneMap.exposureEv);
-
-    const Reader camera = root.child("camera");
-    camera.read("yaw_degrees", s.camera.yawDegrees);
-    camera.read("pitch_degrees", s.camera.pitchDegrees);
-    camera.read("fov_degrees", s.camera.fovDegrees);
-    camera.read("distance", s.camera.distance);
-    camera.read("target", s.camera.target);
-
-    const Reader material = root.child("material");
-    material.read("override_model", s.material.overrideModel);
-    material.read("base_color", s.material.baseColor);
-    material.read("metallic", s.material.metallic);
-    material.read("roughness", s.material.roughness);
-    material.read("ambient_occlusion", s.material.ambientOcclusion);
-    material.read("specular", s.material.specular);
-
-    readSampling(root.child("sampling"), s.sampling);
-
-    const Reader scene = root.child("scene");
-    scene.readName("kind", kSceneKinds, s.scene.kind);
-    scene.read("model", s.scene.modelPath);
-    scene.read("counting_spheres", s.scene.countingSpheres);
-
-    const Reader view = root.child("view");
-    view.readName("mode", kViewModes, s.view.mode);
-    view.readName("background", kBackgroundModes, s.view.background);
-    view.read("background_mip", s.view.backgroundMip);
-    view.read("solid_colour", s.view.solidColour);
-    view.readName("error_space", kErrorSpaces, s.view.errorSpace);
-    view.read("error_scale", s.view.errorScale);
-    view.read("reference_width", s.view.referenceWidth);
-    view.read("split", s.view.split);
-    view.read("split_position", s.view.splitPosition);
-    readSampling(view.child("compare"), s.view.compare);
-    view.read("msaa_samples", s.view.msaaSamples);
+    fromJson(frameSettingsFields(), j, s, "settings");
     return s;
 }
 

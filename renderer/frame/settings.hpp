@@ -9,6 +9,7 @@
 
 #include "ibl/brdf.hpp"
 #include "ibl/tonemap.hpp"
+#include "io/settings_fields.hpp"
 
 namespace iblab {
 
@@ -49,9 +50,18 @@ struct MaterialSettings {
 };
 
 enum class ShadingMethod { SplitSum, Sampled };
+template <>
+struct EnumNames<ShadingMethod> {
+    static constexpr std::array<EnumName<ShadingMethod>, 2> entries{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}}};
+};
 // Sh9: the bake's SH9 irradiance as it windowed it (BakeSettings::sh.window); Sh9Plain: the
 // same projection without the window, so that its ringing can be seen.
 enum class DiffuseSource { Sh9, Sh9Plain, IrradianceCube };
+template <>
+struct EnumNames<DiffuseSource> {
+    static constexpr std::array<EnumName<DiffuseSource>, 3> entries{
+        {{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::Sh9Plain, "sh9-plain"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
+};
 
 // The sampled method's largest N: the Hammersley table the renderer uploads holds this many.
 inline constexpr int kMaxSampleCount = 1024;
@@ -87,6 +97,15 @@ struct SamplingSettings {
 // roughness runs from 0 (left) to 1 (right), so reflections merge at 0 and spread apart.
 // None shows the environment alone.
 enum class SceneKind { Sphere, Grid, Counting, Sweep, Model, None };
+template <>
+struct EnumNames<SceneKind> {
+    static constexpr std::array<EnumName<SceneKind>, 6> entries{{{SceneKind::Sphere, "sphere"},
+                                                                {SceneKind::None, "none"},
+                                                                {SceneKind::Grid, "grid"},
+                                                                {SceneKind::Counting, "counting"},
+                                                                {SceneKind::Sweep, "sweep"},
+                                                                {SceneKind::Model, "model"}}};
+};
 
 struct SceneSettings {
     SceneKind kind = SceneKind::Sphere;
@@ -98,10 +117,30 @@ struct SceneSettings {
 // Error: the frame's per-pixel relative error against the reference renderer (the full
 // integral over the environment's texels), in false colour.
 enum class ViewMode { Final, PrefilterMips, Lut, Furnace, Irradiance, Error };
+template <>
+struct EnumNames<ViewMode> {
+    static constexpr std::array<EnumName<ViewMode>, 6> entries{{{ViewMode::Final, "final"},
+                                                               {ViewMode::PrefilterMips, "prefilter-mips"},
+                                                               {ViewMode::Lut, "lut"},
+                                                               {ViewMode::Furnace, "furnace"},
+                                                               {ViewMode::Irradiance, "irradiance"},
+                                                               {ViewMode::Error, "error"}}};
+};
 enum class BackgroundMode { Environment, Irradiance, PrefilterMip, SolidColour };
+template <>
+struct EnumNames<BackgroundMode> {
+    static constexpr std::array<EnumName<BackgroundMode>, 4> entries{{{BackgroundMode::Environment, "environment"},
+                                                                     {BackgroundMode::Irradiance, "irradiance"},
+                                                                     {BackgroundMode::PrefilterMip, "prefilter-mip"},
+                                                                     {BackgroundMode::SolidColour, "solid"}}};
+};
 // Where ViewMode::Error compares: the linear HDR radiance before exposure and tone mapping,
 // or the display values after them (what the eye is shown).
 enum class ErrorSpace { Linear, Display };
+template <>
+struct EnumNames<ErrorSpace> {
+    static constexpr std::array<EnumName<ErrorSpace>, 2> entries{{{ErrorSpace::Linear, "linear"}, {ErrorSpace::Display, "display"}}};
+};
 
 struct ViewSettings {
     ViewMode mode = ViewMode::Final;
@@ -142,22 +181,12 @@ bool keepsExactSampleCount(const FrameSettings& settings);
 // The scene's part of that rule: its kind demands exact counts whatever the switch says.
 bool sceneDemandsExactSampleCount(const SceneSettings& scene);
 
-// Names used by the CLI, the JSON presets and the UI. parse* return false for an unknown
-// name and leave the target untouched.
-std::string_view shadingMethodName(ShadingMethod method);
-bool parseShadingMethod(std::string_view name, ShadingMethod& method);
-std::string_view sceneKindName(SceneKind kind);
-bool parseSceneKind(std::string_view name, SceneKind& kind);
-std::string_view viewModeName(ViewMode mode);
-bool parseViewMode(std::string_view name, ViewMode& mode);
-std::string_view backgroundModeName(BackgroundMode mode);
-bool parseBackgroundMode(std::string_view name, BackgroundMode& mode);
-std::string_view diffuseSourceName(DiffuseSource source);
-bool parseDiffuseSource(std::string_view name, DiffuseSource& source);
-std::string_view geometryTermShortName(GeometryTerm term); // "schlick" | "correlated"
-std::string_view errorSpaceName(ErrorSpace space); // "linear" | "display"
-bool parseErrorSpace(std::string_view name, ErrorSpace& space);
-bool parseGeometryTerm(std::string_view name, GeometryTerm& term);
+// Every setting's description (io/settings_fields.hpp): JSON key, label, help, range and
+// command-line option, in the order JSON writes them. Sampling's fields appear twice, under
+// "sampling." and under "view.compare." (option prefix "b-").
+const FieldTable<FrameSettings>& frameSettingsFields();
+const FieldTable<SamplingSettings>& samplingSettingsFields();
+const FieldTable<MaterialSettings>& materialSettingsFields();
 
 // JSON text of the settings (screenshot metadata and sidecars, lab presets).
 std::string toJsonText(const FrameSettings& settings, int indent = 2);

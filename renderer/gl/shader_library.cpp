@@ -6,8 +6,6 @@
 #include <sstream>
 
 #include <epoxy/gl.h>
-#include <glm/glm.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 namespace iblab::gl {
 namespace {
@@ -155,30 +153,15 @@ ShaderProgram::ShaderProgram(Program program, std::vector<std::string> files) : 
         glGetActiveUniform(program_.id(), GLuint(i), sizeof name, &length, &size, &type, name);
         std::string uniformName(name, std::size_t(length));
         // Arrays are reported as "name[0]"; both spellings look up the first element.
-        if (uniformName.ends_with("[0]")) uniforms_[uniformName.substr(0, uniformName.size() - 3)] = glGetUniformLocation(program_.id(), name);
-        uniforms_[uniformName] = glGetUniformLocation(program_.id(), name);
+        if (uniformName.ends_with("[0]")) locations_[uniformName.substr(0, uniformName.size() - 3)] = glGetUniformLocation(program_.id(), name);
+        locations_[uniformName] = glGetUniformLocation(program_.id(), name);
     }
 }
 
-GLint ShaderProgram::uniformLocation(const std::string& name) const
+GLint ShaderProgram::uniformLocation(std::string_view name) const
 {
-    auto it = uniforms_.find(name);
-    return it == uniforms_.end() ? -1 : it->second;
-}
-
-void ShaderProgram::set(const std::string& name, int value) const { glProgramUniform1i(id(), uniformLocation(name), value); }
-void ShaderProgram::set(const std::string& name, float value) const { glProgramUniform1f(id(), uniformLocation(name), value); }
-void ShaderProgram::set(const std::string& name, const glm::ivec2& v) const { glProgramUniform2iv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }
-void ShaderProgram::set(const std::string& name, const glm::vec2& v) const { glProgramUniform2fv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }
-void ShaderProgram::set(const std::string& name, const glm::vec3& v) const { glProgramUniform3fv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }
-void ShaderProgram::set(const std::string& name, const glm::vec4& v) const { glProgramUniform4fv(id(), uniformLocation(name), 1, glm::value_ptr(v)); }
-void ShaderProgram::set(const std::string& name, const glm::mat3& m) const
-{
-    glProgramUniformMatrix3fv(id(), uniformLocation(name), 1, GL_FALSE, glm::value_ptr(m));
-}
-void ShaderProgram::set(const std::string& name, const glm::mat4& m) const
-{
-    glProgramUniformMatrix4fv(id(), uniformLocation(name), 1, GL_FALSE, glm::value_ptr(m));
+    auto it = locations_.find(name);
+    return it == locations_.end() ? -1 : it->second;
 }
 
 ShaderLibrary::ShaderLibrary(ShaderSearchPath roots) : roots_(std::move(roots)) {}
@@ -228,7 +211,9 @@ std::unique_ptr<ShaderProgram> ShaderLibrary::build(const std::vector<std::strin
 
 std::filesystem::file_time_type ShaderLibrary::newestInput(const ShaderProgram& program) const
 {
-    std::filesystem::file_time_type newest{};
+    // From the clock's minimum, not its epoch: libstdc++'s file clock counts from 2174, so
+    // every real modification time is negative and a zero start would hide them all.
+    auto newest = std::filesystem::file_time_type::min();
     for (const auto& f : program.files()) {
         std::error_code ec;
         const auto t = std::filesystem::last_write_time(locate(roots_, f), ec);

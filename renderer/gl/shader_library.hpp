@@ -10,10 +10,11 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <typeindex>
+#include <typeinfo>
 #include <utility>
 #include <vector>
-
-#include <glm/fwd.hpp>
 
 #include "gl/handles.hpp"
 
@@ -43,23 +44,35 @@ class ShaderProgram {
 public:
     ShaderProgram(Program program, std::vector<std::string> files);
     GLuint id() const { return program_.id(); }
-    // -1 (silently ignored by GL) when the uniform was optimised away.
-    GLint uniformLocation(const std::string& name) const;
-    void set(const std::string& name, int value) const;
-    void set(const std::string& name, float value) const;
-    void set(const std::string& name, const glm::ivec2& value) const;
-    void set(const std::string& name, const glm::vec2& value) const;
-    void set(const std::string& name, const glm::vec3& value) const;
-    void set(const std::string& name, const glm::vec4& value) const;
-    void set(const std::string& name, const glm::mat3& value) const;
-    void set(const std::string& name, const glm::mat4& value) const;
+    // -1 (silently ignored by GL) when the uniform was optimised away. What the uniform
+    // handles of gl/uniform.hpp are built from; nothing sets a uniform by name.
+    GLint uniformLocation(std::string_view name) const;
+    // This program's uniform handles of type Locations (a struct constructible from a
+    // ShaderProgram, whose members are gl::Uniform handles): built on the first call, then
+    // kept as long as this link lives. A hot reload links a new ShaderProgram, so handles
+    // are located again exactly when the program changes.
+    template <class Locations>
+    const Locations& uniforms() const;
     const std::vector<std::string>& files() const { return files_; }
 
 private:
     Program program_;
     std::vector<std::string> files_;
-    std::map<std::string, GLint, std::less<>> uniforms_;
+    std::map<std::string, GLint, std::less<>> locations_;
+    // The handle structs built so far, one per type (a pass's own, and those of the shared
+    // files it includes).
+    mutable std::vector<std::pair<std::type_index, std::shared_ptr<const void>>> handles_;
 };
+
+template <class Locations>
+const Locations& ShaderProgram::uniforms() const
+{
+    for (const auto& [type, handles] : handles_)
+        if (type == std::type_index(typeid(Locations))) return *static_cast<const Locations*>(handles.get());
+    auto built = std::make_shared<const Locations>(*this);
+    handles_.emplace_back(std::type_index(typeid(Locations)), built);
+    return *built;
+}
 
 class ShaderLibrary {
 public:

@@ -22,16 +22,20 @@
 #include <glm/vec3.hpp>
 
 #include "ibl/conventions.hpp"
+#include "ibl/enum_names.hpp"
 
 namespace iblab {
 
 enum class GeometryTerm { SchlickGGX, HeightCorrelatedSmith };
 
-// Names for the UI / CLI ("schlick-ggx", "height-correlated-smith").
-constexpr std::string_view geometryTermName(GeometryTerm term)
-{
-    return term == GeometryTerm::SchlickGGX ? "schlick-ggx" : "height-correlated-smith";
-}
+// "schlick" and "correlated" were the frame settings' spellings until both settings used one.
+template <>
+struct EnumNames<GeometryTerm> {
+    static constexpr std::array<EnumName<GeometryTerm>, 4> entries{{{GeometryTerm::SchlickGGX, "schlick-ggx"},
+                                                                   {GeometryTerm::HeightCorrelatedSmith, "height-correlated-smith"},
+                                                                   {GeometryTerm::SchlickGGX, "schlick"},
+                                                                   {GeometryTerm::HeightCorrelatedSmith, "correlated"}}};
+};
 
 // GGX / Trowbridge-Reitz normal distribution, D(h) = a2 / (pi ((n.h)^2 (a2 - 1) + 1)^2).
 // Normalised so that the projected microfacet area is the macro area:

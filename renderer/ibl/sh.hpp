@@ -28,6 +28,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "ibl/enum_names.hpp"
 #include "ibl/image.hpp"
 
 namespace iblab {
@@ -77,6 +78,10 @@ SH9Color convolveWithCosineLobe(const SH9Color& radianceLm);
 // filtering; w -> infinity is no window. A typical strong setting for SH9 is w = 3 (Hanning
 // scales bands 1 and 2 by 0.75 and 0.25).
 enum class ShWindow { None, Hanning, Lanczos };
+template <>
+struct EnumNames<ShWindow> {
+    static constexpr std::array<EnumName<ShWindow>, 3> entries{{{ShWindow::None, "none"}, {ShWindow::Hanning, "hanning"}, {ShWindow::Lanczos, "lanczos"}}};
+};
 
 double shWindowFactor(ShWindow window, int band, double width);
 SH9Color applyWindow(const SH9Color& coeffs, ShWindow window, double width);

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/equirect.hpp"
+#include "ibl/table_sampling.hpp"
 
 namespace iblab {
 
@@ -41,19 +42,9 @@ glm::dvec3 reflectView(glm::dvec3 n, glm::dvec3 v)
 glm::dvec4 LobeFitTable::sample(double NdotV, double roughness) const
 {
     if (cells.empty()) throw std::logic_error("LobeFitTable::sample on an empty table");
-    auto axis = [](double x, int size, int& i0, int& i1, double& t) {
-        const double f = std::clamp(x, 0.0, 1.0) * size - 0.5;
-        const double fl = std::floor(f);
-        t = f - fl;
-        i0 = std::clamp(int(fl), 0, size - 1);
-        i1 = std::clamp(int(fl) + 1, 0, size - 1);
-    };
-    int x0, x1, y0, y1;
-    double tx, ty;
-    axis(NdotV, nvSize, x0, x1, tx);
-    axis(roughness, roughnessSize, y0, y1, ty);
-    auto cell = [&](int x, int y) { return glm::dvec4(cells[std::size_t(y) * std::size_t(nvSize) + std::size_t(x)]); };
-    return (cell(x0, y0) * (1.0 - tx) + cell(x1, y0) * tx) * (1.0 - ty) + (cell(x0, y1) * (1.0 - tx) + cell(x1, y1) * tx) * ty;
+    return sampleTableBilinear(NdotV, roughness, nvSize, roughnessSize, [&](int col, int row) {
+        return glm::dvec4(cells[std::size_t(row) * std::size_t(nvSize) + std::size_t(col)]);
+    });
 }
 
 const LobeFitTable& fittedLobeTable()

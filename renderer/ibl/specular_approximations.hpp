@@ -3,7 +3,7 @@
 // the inputs a shader has (n, v, perceptual roughness, F0, the split-sum LUT's (A, B, A + B)
 // and a prefiltered-radiance lookup), so that their error against the full integral
 // (reference.hpp) can be measured without GL. The research behind them, the tables and the
-// recommendation: docs/accuracy-study.md; the measuring tool: tools/accuracy_study.cpp.
+// recommendation: docs/accuracy-study.md; the measuring tool: renderer/lab/accuracy_study/.
 //
 // Every method here is prefiltered radiance times the split-sum LUT's terms: the LUT stays
 // as it is, and what changes is WHERE the prefiltered cube is read (the lookup direction),
@@ -64,6 +64,7 @@ struct LobeFitTable {
     bool empty() const { return cells.empty(); }
     glm::dvec4 sample(double NdotV, double roughness) const; // bilinear, clamp to edge
     glm::vec4& at(int col, int row) { return cells[std::size_t(row) * std::size_t(nvSize) + std::size_t(col)]; }
+    const glm::vec4& at(int col, int row) const { return cells[std::size_t(row) * std::size_t(nvSize) + std::size_t(col)]; }
 };
 
 // The table refitted by `accuracy_study fit` on the 8 bundled maps (specular_lobe_fit.inc).

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string_view>
 
+#include "ibl/enum_names.hpp"
 #include "ibl/glsl_shared.hpp"
 
 namespace iblab::shared {
@@ -32,25 +33,18 @@ enum class ToneMapOperator : int {
 
 inline constexpr int kToneMapOperatorCount = shared::IBL_TONEMAP_COUNT;
 
-// Indexed by the operator id.
-inline constexpr std::array<std::string_view, kToneMapOperatorCount> kToneMapOperatorNames = {
-    "none", "reinhard", "aces-narkowicz", "aces-hill", "hable", "pbr-neutral", "agx",
+template <>
+struct EnumNames<ToneMapOperator> {
+    static constexpr std::array<EnumName<ToneMapOperator>, kToneMapOperatorCount> entries{{
+        {ToneMapOperator::None, "none"},
+        {ToneMapOperator::Reinhard, "reinhard"},
+        {ToneMapOperator::AcesNarkowicz, "aces-narkowicz"},
+        {ToneMapOperator::AcesHill, "aces-hill"},
+        {ToneMapOperator::Hable, "hable"},
+        {ToneMapOperator::PbrNeutral, "pbr-neutral"},
+        {ToneMapOperator::Agx, "agx"},
+    }};
 };
-
-constexpr std::string_view toneMapOperatorName(ToneMapOperator op)
-{
-    const int id = int(op);
-    return id >= 0 && id < kToneMapOperatorCount ? kToneMapOperatorNames[std::size_t(id)] : std::string_view("?");
-}
-
-// Exact, case-sensitive match of one of kToneMapOperatorNames; nullopt otherwise.
-constexpr std::optional<ToneMapOperator> parseToneMapOperator(std::string_view name)
-{
-    for (int id = 0; id < kToneMapOperatorCount; ++id)
-        if (kToneMapOperatorNames[std::size_t(id)] == name)
-            return ToneMapOperator(id);
-    return std::nullopt;
-}
 
 inline glm::vec3 toneMap(glm::vec3 hdr, ToneMapOperator op)
 {

@@ -135,10 +135,10 @@ std::string describeSettings(const SweepPoint& p)
                std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth, "%.3g") + " per mip)";
     text += pdfFiltered(p) ? ", PDF mips" : ", no PDF mips";
     if (readsCube(p)) {
-        if (p.bake.moments.enabled)
+        if (p.bake.irradiance == bake::IrradianceMethod::Moments)
             text += ", moment irradiance cube " + std::to_string(p.bake.moments.faceSize) + "^2 over " +
                     std::to_string(p.bake.moments.sourceFaceSize) + "^2 groups per face";
-        else if (p.bake.importance.enabled)
+        else if (p.bake.irradiance == bake::IrradianceMethod::Importance)
             text += ", irradiance cube " + std::to_string(p.bake.importance.faceSize) + "^2 x " + std::to_string(p.bake.importance.samples) + " samples";
         else text += ", Riemann irradiance cube " + std::to_string(p.bake.riemann.faceSize) + "^2, delta " + formatNumber(p.bake.riemann.sampleDelta, "%.3g");
     } else text += p.sampling.diffuse == DiffuseSource::Sh9Plain ? ", plain SH9" : ", SH9";
@@ -173,7 +173,7 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
                         p.bake.prefilter.samples = samples;
                         p.bake.prefilter.mipFiltering = pdf;
                         if (cube) {
-                            p.bake.importance.enabled = true;
+                            p.bake.irradiance = bake::IrradianceMethod::Importance;
                             p.bake.importance.samples = space.cubeSamples;
                             p.sampling.diffuse = DiffuseSource::IrradianceCube;
                         }
@@ -338,12 +338,10 @@ bake::BakeSettings appliedBakeSettings(const AutoChoice& choice, bake::BakeSetti
     current.preset = "auto";
     if (p.sampling.method == ShadingMethod::SplitSum) current.prefilter = p.bake.prefilter;
     // A cube the frame does not read is bake time for nothing.
-    current.riemann.enabled = false;
+    // Its candidates measure the importance-sampled cube; none when the frame reads SH9 (a
+    // cube the frame does not read is bake time for nothing).
+    current.irradiance = readsCube(p) ? bake::IrradianceMethod::Importance : bake::IrradianceMethod::None;
     current.importance = readsCube(p) ? p.bake.importance : current.importance;
-    current.importance.enabled = readsCube(p);
-    // Its candidates measure the importance-sampled cube, which shading reads only without
-    // the moment cube (BakeResult::irradianceCube).
-    current.moments.enabled = false;
     return current;
 }
 
@@ -361,7 +359,7 @@ std::string autoMarkdown(const BenchReport& report, const std::vector<AutoChoice
 {
     std::ostringstream out;
     out << "## Auto quality\n\nThe cheapest candidate whose 99th-percentile display error (after exposure and "
-        << toneMapOperatorName(report.options.frame.toneMap.op) << " tone mapping, in 8-bit steps) is within the target, beside the fixed presets "
+        << enumName(report.options.frame.toneMap.op) << " tone mapping, in 8-bit steps) is within the target, beside the fixed presets "
         << "measured the same way (cost as a multiple of the auto choice's).\n\n";
     for (const AutoChoice& c : choices) {
         const std::string environment = c.chosen.environment;

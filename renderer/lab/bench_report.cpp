@@ -19,7 +19,9 @@ std::string diffuseName(const SweepPoint& p)
 {
     if (p.sampling.diffuse != DiffuseSource::IrradianceCube || p.sampling.method == ShadingMethod::Sampled)
         return p.sampling.diffuse == DiffuseSource::Sh9Plain ? "sh9" : "sh9-windowed";
-    return p.bake.moments.enabled ? "moment-cube" : p.bake.importance.enabled ? "importance-cube" : "riemann-cube";
+    return p.bake.irradiance == bake::IrradianceMethod::Moments      ? "moment-cube"
+           : p.bake.irradiance == bake::IrradianceMethod::Importance ? "importance-cube"
+                                                                     : "riemann-cube";
 }
 
 bool pdfFiltering(const SweepPoint& p)
@@ -62,14 +64,14 @@ std::string benchCsvText(const BenchReport& report)
                                            std::string(sweepFamilyName(s.family)),
                                            csvField(s.series),
                                            csvField(s.label),
-                                           std::string(shadingMethodName(s.sampling.method)),
+                                           std::string(enumName(s.sampling.method)),
                                            diffuseName(s),
                                            splitSum ? std::to_string(s.bake.prefilter.faceSize) : "",
                                            splitSum ? std::to_string(s.bake.prefilter.samples) : "",
                                            pdfFiltering(s) ? "1" : "0",
                                            splitSum ? "" : std::to_string(s.sampling.samples),
-                                           s.bake.riemann.enabled ? formatNumber(s.bake.riemann.sampleDelta, "%g") : "",
-                                           s.bake.importance.enabled ? std::to_string(s.bake.importance.samples) : "",
+                                           s.bake.irradiance == bake::IrradianceMethod::Riemann ? formatNumber(s.bake.riemann.sampleDelta, "%g") : "",
+                                           s.bake.irradiance == bake::IrradianceMethod::Importance ? std::to_string(s.bake.importance.samples) : "",
                                            formatNumber(p.bakeMilliseconds, "%.3f"),
                                            formatNumber(p.frameMilliseconds, "%.3f"),
                                            formatNumber(p.costMilliseconds, "%.3f"),
@@ -97,7 +99,7 @@ std::string benchJsonText(const BenchReport& report)
     j["renderer"] = report.renderer;
     j["timing_method"] = "steady clock around glFinish, median of the repeats";
     j["options"] = {{"quick", o.quick},
-                    {"scene", sceneKindName(o.frame.scene.kind)},
+                    {"scene", enumName(o.frame.scene.kind)},
                     {"width", o.width},
                     {"height", o.height},
                     {"repeats", o.repeats},
@@ -106,7 +108,7 @@ std::string benchJsonText(const BenchReport& report)
                     {"cost", "bake_ms + " + std::to_string(o.costFrames) + " x frame_ms"},
                     {"error", "relative RMSE, linear HDR, surface pixels with roughness >= min_resolved_roughness; null where there is none (references' not_measured)"},
                     {"display_error", "largest channel difference after exposure, tone mapping and sRGB encoding, in 8-bit steps, same pixels"},
-                    {"tone_map", std::string(toneMapOperatorName(o.frame.toneMap.op)) + ", exposure " + formatNumber(o.frame.toneMap.exposureEv, "%g") + " EV"}};
+                    {"tone_map", std::string(enumName(o.frame.toneMap.op)) + ", exposure " + formatNumber(o.frame.toneMap.exposureEv, "%g") + " EV"}};
     for (const BenchEnvironment& e : o.environments) j["environments"].push_back({{"name", e.name}, {"spec", e.spec}});
     for (const ReferenceSummary& r : report.references) {
         nlohmann::ordered_json reference{{"environment", r.environment},
@@ -122,14 +124,14 @@ std::string benchJsonText(const BenchReport& report)
                                      {"family", sweepFamilyName(s.family)},
                                      {"series", s.series},
                                      {"label", s.label},
-                                     {"method", shadingMethodName(s.sampling.method)},
+                                     {"method", enumName(s.sampling.method)},
                                      {"diffuse", diffuseName(s)},
                                      {"pdf_mips", pdfFiltering(s)}};
         if (s.sampling.method == ShadingMethod::SplitSum)
             point["prefilter"] = {{"face", s.bake.prefilter.faceSize}, {"samples", s.bake.prefilter.samples}, {"levels", s.bake.prefilter.levels}};
         else point["sampled_n"] = s.sampling.samples;
-        if (s.bake.riemann.enabled) point["riemann_delta"] = s.bake.riemann.sampleDelta;
-        if (s.bake.importance.enabled) point["importance_samples"] = s.bake.importance.samples;
+        if (s.bake.irradiance == bake::IrradianceMethod::Riemann) point["riemann_delta"] = s.bake.riemann.sampleDelta;
+        if (s.bake.irradiance == bake::IrradianceMethod::Importance) point["importance_samples"] = s.bake.importance.samples;
         point["bake_phases"] = bakePhasesRead(s);
         point["bake_ms"] = p.bakeMilliseconds;
         point["frame_ms"] = p.frameMilliseconds;

@@ -50,9 +50,7 @@ bake::BakeSettings benchBaseBake(bool quick)
 {
     bake::BakeSettings b = bake::defaultPreset();
     b.preset = quick ? "bench-quick" : "bench";
-    b.riemann.enabled = false;
-    b.importance.enabled = false;
-    b.moments.enabled = false;
+    b.irradiance = bake::IrradianceMethod::None; // the diffuse points choose theirs
     b.lut.schlickGgx = SamplingSettings{}.geometry == GeometryTerm::SchlickGGX;
     b.lut.heightCorrelatedSmith = !b.lut.schlickGgx;
     if (quick) {
@@ -123,7 +121,7 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.label = "diffuse irradiance cube, Riemann, sampleDelta " + formatNumber(delta, "%g");
         p.parameter = 1.0 / delta;
         p.bake = base;
-        p.bake.riemann.enabled = true;
+        p.bake.irradiance = bake::IrradianceMethod::Riemann;
         p.bake.riemann.sampleDelta = float(delta);
         if (quick) p.bake.riemann.faceSize = 16;
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
@@ -136,7 +134,7 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.label = "diffuse irradiance cube, cosine importance, " + std::to_string(samples) + " samples";
         p.parameter = samples;
         p.bake = base;
-        p.bake.importance.enabled = true;
+        p.bake.irradiance = bake::IrradianceMethod::Importance;
         p.bake.importance.samples = samples;
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
         points.push_back(p);
@@ -148,7 +146,7 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.label = "diffuse irradiance cube, moments of " + std::to_string(groups) + "^2 texel groups per face";
         p.parameter = groups;
         p.bake = base;
-        p.bake.moments.enabled = true;
+        p.bake.irradiance = bake::IrradianceMethod::Moments;
         p.bake.moments.sourceFaceSize = groups;
         if (quick) p.bake.moments.faceSize = 16;
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
@@ -189,9 +187,7 @@ std::vector<std::string> bakePhasesRead(const SweepPoint& point)
     std::vector<std::string> phases{"upload", "environment_cube"};
     if (point.sampling.method == ShadingMethod::SplitSum) phases.push_back("prefilter");
     if (point.sampling.diffuse != DiffuseSource::IrradianceCube || point.sampling.method == ShadingMethod::Sampled) phases.push_back("sh9");
-    else if (point.bake.moments.enabled) phases.push_back("irradiance_moments");
-    else if (point.bake.importance.enabled) phases.push_back("irradiance_importance");
-    else phases.push_back("irradiance_riemann");
+    else phases.push_back("irradiance_" + std::string(enumName(point.bake.irradiance)));
     return phases;
 }
 

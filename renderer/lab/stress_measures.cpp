@@ -206,8 +206,7 @@ BakeHealth measureBakeHealth(const std::string& name, const bake::BakeResult& re
 {
     BakeHealth health;
     health.environment = name;
-    for (const bake::BakedTexture* t : {&result.environmentCube, &result.prefiltered, &result.irradianceImportance, &result.irradianceRiemann,
-                                        &result.irradianceMoments}) {
+    for (const bake::BakedTexture* t : {&result.environmentCube, &result.prefiltered, &result.irradianceCube}) {
         if (!*t) continue;
         for (int level = 0; level < t->levels; ++level) countInvalid(bake::readCubeLevel(*t, level).texels, health);
     }
@@ -273,7 +272,7 @@ double shRelativeMinimum(const SH9Color& sh)
 LutBanding measureLut(const bake::BakedTexture& lut, int samples, GeometryTerm term)
 {
     LutBanding b;
-    b.geometry = std::string(geometryTermName(term));
+    b.geometry = std::string(enumName(term));
     b.size = lut.size;
     const bake::Image2D baked = bake::read2D(lut);
     const std::vector<glm::vec3> cpu = computeBrdfLut(lut.size, std::uint32_t(samples), term);

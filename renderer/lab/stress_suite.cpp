@@ -125,8 +125,8 @@ void measureBake(const std::string& environment, const bake::BakeResult& result,
                    kSeamWarn, kSeamFail, "jump across cube edges / step inside faces");
         report.seams.push_back(seam);
     }
-    if (result.irradianceCube()) {
-        SeamReading seam = measureSeams(bake::readCubeLevel(result.irradianceCube(), 0));
+    if (result.irradianceCube) {
+        SeamReading seam = measureSeams(bake::readCubeLevel(result.irradianceCube, 0));
         seam.environment = environment;
         seam.texture = SeamTexture::Irradiance;
         addFinding(report.findings, {StressCheck::Seams, environment, "splitsum-irradiance-cube", "irradiance cube", seam.ratio, "", Verdict::Pass}, kSeamWarn,
@@ -207,18 +207,18 @@ StressOptions defaultStressOptions(bool quick)
     o.quick = quick;
     o.bake = bake::defaultPreset();
     o.bake.preset = quick ? "stress-quick" : "stress";
-    o.bake.riemann.enabled = false;
+    // The default's moment cube is what shading reads (until this change an importance cube
+    // was baked beside it and never read).
+    o.bake.irradiance = bake::IrradianceMethod::Moments;
     if (quick) {
         o.environmentWidth = 64;
         o.frameSize = 32;
         o.gridCell = 32;
-        o.bake.importance = {.enabled = true, .faceSize = 8, .samples = 128, .mipFiltering = true, .mipBias = 0.0f};
         o.bake.prefilter = {.faceSize = 16, .levels = 5, .samples = 32, .sampleGrowth = 2.0f, .mipFiltering = true, .mipBias = 0.0f};
         // The LUT clamps roughness 1 to its last texel centre, 1 - 0.5 / size: at 32 that alone
         // moves the rough furnace by 5%, at 128 by about 1%. 128^2 x 256 costs ~0.1 s.
         o.bake.lut = {.size = 128, .samples = 256, .schlickGgx = false, .heightCorrelatedSmith = true};
     } else {
-        o.bake.importance = {.enabled = true, .faceSize = 16, .samples = 512, .mipFiltering = true, .mipBias = 0.0f};
         o.bake.prefilter = {.faceSize = 64, .levels = 5, .samples = 64, .sampleGrowth = 2.0f, .mipFiltering = true, .mipBias = 0.0f};
         o.bake.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     }

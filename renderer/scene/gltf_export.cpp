@@ -8,6 +8,7 @@
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
 #include "scene/gltf_model.hpp"
+#include "scene/internal/glb_container.hpp"
 #include "scene/internal/gltf_document.hpp"
 
 namespace iblab {

@@ -1,23 +1,24 @@
 // glTF -> ModelData. readGltfDocument() has already checked the container, the JSON and
 // every byte range down to bufferViews; the glTF library then maps the JSON to structs
-// (from memory, with no file system access), and this file reads accessors with its own
-// bounds checks, flattens the node tree and converts materials and textures.
+// (from memory, with no file system access). This file reads each primitive through
+// AccessorReader (gltf_accessors.hpp), completes its normals and tangents, flattens the
+// node tree into world-space instances, and leaves materials and textures to
+// convertMaterials (gltf_materials.hpp).
 #include "scene/gltf_model.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <map>
 #include <optional>
-#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
 #include "io/error.hpp"
+#include "scene/internal/glb_container.hpp"
+#include "scene/internal/gltf_accessors.hpp"
 #include "scene/internal/gltf_document.hpp"
-#include "scene/internal/image_codec.hpp"
+#include "scene/internal/gltf_materials.hpp"
 
 namespace iblab {
 namespace {
@@ -26,71 +27,7 @@ namespace sd = scene_detail;
 
 using sd::indexed;
 
-const char* typeName(int type)
-{
-    switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    }
-    return "an unknown type";
-}
-
-int componentSize(int componentType)
-{
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    }
-    return 0;
-}
-
-// One component as a number; normalized integers map to [0, 1] (unsigned) or [-1, 1]
-// (signed, with the most negative value clamped as the glTF spec says).
-double componentValue(const std::uint8_t* p, int componentType, bool normalized)
-{
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        std::int8_t v;
-        std::memcpy(&v, p, 1);
-        return normalized ? std::max(v / 127.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        std::int16_t v;
-        std::memcpy(&v, p, 2);
-        return normalized ? std::max(v / 32767.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        std::uint16_t v;
-        std::memcpy(&v, p, 2);
-        return normalized ? v / 65535.0 : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        std::uint32_t v;
-        std::memcpy(&v, p, 4);
-        return v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-        float v;
-        std::memcpy(&v, p, 4);
-        return v;
-    }
-    }
-    return 0.0;
-}
-
 bool finiteVec(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-float clamp01(double v, float fallback) { return std::isfinite(v) ? float(std::clamp(v, 0.0, 1.0)) : fallback; }
 
 // A primitive read once in its mesh's local space; instances copy and transform it.
 struct LocalPrimitive {
@@ -102,13 +39,14 @@ class ModelBuilder {
 public:
     ModelBuilder(const std::string& path, const ModelLoadOptions& options, const tinygltf::Model& gltf,
                  const std::vector<sd::ImageSource>& images, ModelData& out)
-        : path_(path), options_(options), gltf_(gltf), images_(images), out_(out), meshCache_(gltf.meshes.size())
+        : path_(path), options_(options), gltf_(gltf), images_(images), out_(out), reader_(path, gltf), budget_(path, options),
+          meshCache_(gltf.meshes.size())
     {
     }
 
     void build()
     {
-        for (std::size_t i = 0; i < gltf_.materials.size(); ++i) out_.materials.push_back(convertMaterial(i));
+        sd::convertMaterials(options_, gltf_, images_, out_);
         for (const auto& [node, world] : sceneRoots()) flatten(node, world);
         for (const MeshInstance& instance : out_.instances) out_.bounds.extend(computeBounds(instance.mesh));
     }
@@ -117,137 +55,6 @@ private:
     [[noreturn]] void fail(const std::string& problem) const { throw Error(path_, problem); }
     void warn(const std::string& text) { out_.warnings.push_back(text); }
 
-    // ---- accessors -------------------------------------------------------------------
-
-    // Start and stride of `count` elements of `elementSize` bytes at `byteOffset` in a
-    // bufferView, after checking that all of them lie inside it:
-    //   byteOffset + stride * (count - 1) + elementSize <= byteLength.
-    std::pair<const std::uint8_t*, std::size_t> locate(int viewIndex, std::size_t byteOffset, std::size_t count,
-                                                       std::size_t elementSize, bool allowStride,
-                                                       const std::string& what) const
-    {
-        if (viewIndex < 0 || std::size_t(viewIndex) >= gltf_.bufferViews.size())
-            fail(what + " refers to bufferViews[" + std::to_string(viewIndex) + "], which does not exist");
-        const tinygltf::BufferView& view = gltf_.bufferViews[std::size_t(viewIndex)];
-        // Re-checked although readGltfDocument() validated views: this is what guards
-        // the raw pointer arithmetic below.
-        if (view.buffer < 0 || std::size_t(view.buffer) >= gltf_.buffers.size() ||
-            view.byteOffset > gltf_.buffers[std::size_t(view.buffer)].data.size() ||
-            view.byteLength > gltf_.buffers[std::size_t(view.buffer)].data.size() - view.byteOffset)
-            fail(indexed("bufferViews", std::size_t(viewIndex)) + " lies outside its buffer");
-        const std::size_t stride = allowStride && view.byteStride ? view.byteStride : elementSize;
-        if (stride < elementSize)
-            fail(what + ": the byteStride " + std::to_string(stride) + " of " + indexed("bufferViews", std::size_t(viewIndex)) +
-                 " is smaller than the " + std::to_string(elementSize) + "-byte element");
-        if (count > 0) {
-            // Division first, so that a huge count cannot overflow the multiplication.
-            const bool fits = byteOffset <= view.byteLength && elementSize <= view.byteLength - byteOffset &&
-                              (count - 1) <= (view.byteLength - byteOffset - elementSize) / stride;
-            if (!fits)
-                fail(what + " needs " + std::to_string(count) + " elements of " + std::to_string(elementSize) +
-                     " bytes, stride " + std::to_string(stride) + ", from byte " + std::to_string(byteOffset) + " of " +
-                     indexed("bufferViews", std::size_t(viewIndex)) + ", which has only " +
-                     std::to_string(view.byteLength) + " bytes: the accessor is out of range");
-        }
-        return {gltf_.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + byteOffset, stride};
-    }
-
-    const tinygltf::Accessor& accessor(int index, const std::string& what) const
-    {
-        if (index < 0 || std::size_t(index) >= gltf_.accessors.size())
-            fail(what + " refers to accessors[" + std::to_string(index) + "], which does not exist");
-        return gltf_.accessors[std::size_t(index)];
-    }
-
-    // Calls sink(element, component, value) for every component of an accessor of
-    // `components` components, dense part first, then sparse substitutions.
-    template <class Sink>
-    void visitAccessor(int index, int components, const std::string& what, Sink&& sink) const
-    {
-        const tinygltf::Accessor& a = accessor(index, what);
-        const std::size_t size = std::size_t(componentSize(a.componentType));
-        const std::size_t elementSize = size * std::size_t(components);
-        if (a.bufferView >= 0) {
-            const auto [data, stride] = locate(a.bufferView, a.byteOffset, a.count, elementSize, true, what);
-            for (std::size_t e = 0; e < a.count; ++e)
-                for (int c = 0; c < components; ++c)
-                    sink(e, c, componentValue(data + e * stride + std::size_t(c) * size, a.componentType, a.normalized));
-        } // else: all zeros, the caller's initial values
-        if (!a.sparse.isSparse)
-            return;
-        const std::string sparseWhat = what + " (sparse)";
-        const int indexType = a.sparse.indices.componentType;
-        if (a.sparse.count < 0 || std::size_t(a.sparse.count) > a.count)
-            fail(sparseWhat + ": sparse.count " + std::to_string(a.sparse.count) + " is not in 0.." + std::to_string(a.count));
-        if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            fail(sparseWhat + ": sparse indices have component type " + std::to_string(indexType));
-        const std::size_t n = std::size_t(a.sparse.count);
-        const auto [indices, indexStride] = locate(a.sparse.indices.bufferView, std::size_t(std::max(0, a.sparse.indices.byteOffset)),
-                                                   n, std::size_t(componentSize(indexType)), false, sparseWhat);
-        const auto [values, valueStride] = locate(a.sparse.values.bufferView, std::size_t(std::max(0, a.sparse.values.byteOffset)),
-                                                  n, elementSize, false, sparseWhat);
-        for (std::size_t s = 0; s < n; ++s) {
-            const double target = componentValue(indices + s * indexStride, indexType, false);
-            if (target >= double(a.count))
-                fail(sparseWhat + ": sparse index " + std::to_string(std::uint64_t(target)) + " is past the " +
-                     std::to_string(a.count) + " elements");
-            for (int c = 0; c < components; ++c)
-                sink(std::size_t(target), c,
-                     componentValue(values + s * valueStride + std::size_t(c) * size, a.componentType, a.normalized));
-        }
-    }
-
-    // A float vector attribute (POSITION, NORMAL, TANGENT, TEXCOORD_n): the accessor must
-    // have the given type, `expectedCount` elements, and float or 8/16-bit integer
-    // components (integers as KHR_mesh_quantization and normalized texcoords allow).
-    template <int N>
-    std::vector<glm::vec<N, float>> readVectors(int index, std::size_t expectedCount, const std::string& what) const
-    {
-        static constexpr int kTypes[] = {0, TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC2, TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4};
-        const tinygltf::Accessor& a = accessor(index, what);
-        const std::string where = what + " (" + indexed("accessors", std::size_t(index)) + ")";
-        if (a.type != kTypes[N])
-            fail(where + " is " + typeName(a.type) + ", expected " + typeName(kTypes[N]));
-        if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT || componentSize(a.componentType) == 0)
-            fail(where + " has component type " + std::to_string(a.componentType) +
-                 ", expected FLOAT or a (normalized) byte or short");
-        if (a.count != expectedCount)
-            fail(where + " has " + std::to_string(a.count) + " elements, POSITION has " + std::to_string(expectedCount));
-        std::vector<glm::vec<N, float>> out(a.count, glm::vec<N, float>(0.0f));
-        visitAccessor(index, N, where, [&](std::size_t e, int c, double v) { out[e][c] = float(v); });
-        return out;
-    }
-
-    std::vector<std::uint32_t> readIndices(int index, const std::string& what) const
-    {
-        const tinygltf::Accessor& a = accessor(index, what);
-        const std::string where = what + " (" + indexed("accessors", std::size_t(index)) + ")";
-        if (a.type != TINYGLTF_TYPE_SCALAR)
-            fail(where + " is " + typeName(a.type) + ", indices must be SCALAR");
-        if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            fail(where + " has component type " + std::to_string(a.componentType) +
-                 ", indices must be unsigned byte, short or int");
-        requireIndexBudget(a.count, where);
-        std::vector<std::uint32_t> out(a.count, 0);
-        visitAccessor(index, 1, where, [&](std::size_t e, int, double v) { out[e] = std::uint32_t(v); });
-        return out;
-    }
-
-    void requireVertexBudget(std::uint64_t count, const std::string& what) const
-    {
-        if (count > options_.maxVertices - std::min(verticesUsed_, options_.maxVertices))
-            fail(what + " brings the model past the " + std::to_string(options_.maxVertices) +
-                 "-vertex budget (ModelLoadOptions::maxVertices)");
-    }
-    void requireIndexBudget(std::uint64_t count, const std::string& what) const
-    {
-        if (count > options_.maxIndices - std::min(indicesUsed_, options_.maxIndices))
-            fail(what + " brings the model past the " + std::to_string(options_.maxIndices) +
-                 "-index budget (ModelLoadOptions::maxIndices)");
-    }
 
     // ---- primitives ------------------------------------------------------------------
 
@@ -271,7 +78,7 @@ private:
             std::vector<std::uint32_t> list;
             if (n < 3)
                 return list;
-            requireIndexBudget(3 * (n - 2), what);
+            budget_.requireIndices(3 * (n - 2), what);
             list.reserve(3 * (n - 2));
             for (std::size_t i = 0; i + 2 < n; ++i) {
                 std::uint32_t t[3];
@@ -352,24 +159,24 @@ private:
             warn(what + " has no POSITION; skipped");
             return result;
         }
-        const std::size_t count = accessor(positionIndex, what + " POSITION").count;
-        requireVertexBudget(count, what);
+        const std::size_t count = reader_.accessor(positionIndex, what + " POSITION").count;
+        budget_.requireVertices(count, what);
 
         MeshData mesh;
-        mesh.positions = readVectors<3>(positionIndex, count, what + " POSITION");
+        mesh.positions = reader_.readVectors<3>(positionIndex, count, what + " POSITION");
         if (!std::all_of(mesh.positions.begin(), mesh.positions.end(), finiteVec)) {
             warn(what + " has non-finite positions; skipped");
             return result;
         }
         std::vector<std::uint32_t> source;
         if (p.indices >= 0) {
-            source = readIndices(p.indices, what + " indices");
+            source = reader_.readIndices(p.indices, what + " indices", budget_);
             for (std::size_t i = 0; i < source.size(); ++i)
                 if (source[i] >= count)
                     fail(what + " indices: index " + std::to_string(source[i]) + " (at position " + std::to_string(i) +
                          ") is past the " + std::to_string(count) + " vertices");
         } else {
-            requireIndexBudget(count, what);
+            budget_.requireIndices(count, what);
             source.resize(count);
             for (std::size_t i = 0; i < count; ++i) source[i] = std::uint32_t(i);
         }
@@ -383,14 +190,14 @@ private:
         const int uv0 = attribute("TEXCOORD_0");
         const int uv1 = attribute("TEXCOORD_1");
         if (normalIndex >= 0)
-            mesh.normals = readVectors<3>(normalIndex, count, what + " NORMAL");
+            mesh.normals = reader_.readVectors<3>(normalIndex, count, what + " NORMAL");
         if (uv0 >= 0)
-            mesh.uvs = readVectors<2>(uv0, count, what + " TEXCOORD_0");
+            mesh.uvs = reader_.readVectors<2>(uv0, count, what + " TEXCOORD_0");
         if (uv1 >= 0)
-            mesh.uvs1 = readVectors<2>(uv1, count, what + " TEXCOORD_1");
+            mesh.uvs1 = reader_.readVectors<2>(uv1, count, what + " TEXCOORD_1");
         // The spec: without normals, the file's tangents must be ignored.
         if (tangentIndex >= 0 && normalIndex >= 0)
-            mesh.tangents = readVectors<4>(tangentIndex, count, what + " TANGENT");
+            mesh.tangents = reader_.readVectors<4>(tangentIndex, count, what + " TANGENT");
         completeNormals(mesh, normalIndex >= 0);
         completeTangents(mesh);
         result.mesh = std::move(mesh);
@@ -501,8 +308,8 @@ private:
             if (!local.mesh)
                 continue;
             const std::string name = nodeName + "/" + meshName + "#" + std::to_string(p);
-            requireVertexBudget(local.mesh->vertexCount(), name);
-            requireIndexBudget(local.mesh->indices.size(), name);
+            budget_.requireVertices(local.mesh->vertexCount(), name);
+            budget_.requireIndices(local.mesh->indices.size(), name);
             MeshInstance instance;
             instance.name = name;
             instance.mesh = *local.mesh;
@@ -512,120 +319,9 @@ private:
                 warn(nodeWhat + " has a singular or non-finite world transform; " + name + " skipped");
                 continue;
             }
-            verticesUsed_ += instance.mesh.vertexCount();
-            indicesUsed_ += instance.mesh.indices.size();
+            budget_.take(instance.mesh.vertexCount(), instance.mesh.indices.size());
             out_.instances.push_back(std::move(instance));
         }
-    }
-
-    // ---- materials and textures ------------------------------------------------------
-
-    // The ModelData texture for image `source` read as sRGB or linear, decoded on first
-    // use; -1 (with one warning per image) when it cannot be had.
-    int decodedTexture(std::size_t source, bool srgb)
-    {
-        const auto key = std::make_pair(source, srgb);
-        if (const auto it = textureSlots_.find(key); it != textureSlots_.end())
-            return it->second;
-        int& slot = textureSlots_[key];
-        slot = -1;
-        const sd::ImageSource& image = images_[source];
-        if (failedImages_.count(source))
-            return slot;
-        const auto fallBack = [&](const std::string& problem) {
-            warn("texture image " + image.label + " " + problem + "; textures using it fall back to their factors");
-            failedImages_.insert(source);
-            return slot;
-        };
-        if (image.encoded.empty())
-            return fallBack(image.problem);
-
-        std::optional<TextureImage> decoded;
-        if (const auto other = textureSlots_.find(std::make_pair(source, !srgb));
-            other != textureSlots_.end() && other->second >= 0) {
-            decoded = out_.textures[std::size_t(other->second)]; // same pixels, other interpretation
-        } else {
-            std::string problem, note;
-            decoded = sd::decodeImage(image.encoded, options_.maxTextureDimension, problem, note);
-            if (!decoded)
-                return fallBack(problem);
-            if (!note.empty())
-                warn("texture image " + image.label + " " + note);
-        }
-        const std::uint64_t bytes = decoded->rgba8.size();
-        if (bytes > options_.maxTextureBytes - std::min(textureBytesUsed_, options_.maxTextureBytes))
-            return fallBack("would exceed the " + std::to_string(options_.maxTextureBytes) +
-                            "-byte texture budget (ModelLoadOptions::maxTextureBytes); dropped");
-        textureBytesUsed_ += bytes;
-        decoded->name = image.name;
-        decoded->srgb = srgb;
-        out_.textures.push_back(std::move(*decoded));
-        slot = int(out_.textures.size() - 1);
-        return slot;
-    }
-
-    TextureRef textureRef(int textureIndex, int texCoord, bool srgb, const std::string& what)
-    {
-        if (textureIndex < 0)
-            return {};
-        if (std::size_t(textureIndex) >= gltf_.textures.size()) {
-            warn(what + " refers to textures[" + std::to_string(textureIndex) + "], which does not exist; ignored");
-            return {};
-        }
-        const int source = gltf_.textures[std::size_t(textureIndex)].source;
-        if (source < 0 || std::size_t(source) >= images_.size()) {
-            warn(what + ": textures[" + std::to_string(textureIndex) + "] has no image iblab can read; ignored");
-            return {};
-        }
-        if (texCoord != 0 && texCoord != 1) {
-            warn(what + " uses TEXCOORD_" + std::to_string(texCoord) + "; iblab reads sets 0 and 1, using 0");
-            texCoord = 0;
-        }
-        TextureRef ref;
-        ref.index = decodedTexture(std::size_t(source), srgb);
-        ref.texCoord = texCoord;
-        return ref;
-    }
-
-    PbrMaterial convertMaterial(std::size_t index)
-    {
-        const tinygltf::Material& m = gltf_.materials[index];
-        const std::string what = indexed("materials", index);
-        const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
-        PbrMaterial p;
-        p.name = m.name.empty() ? what : m.name;
-        if (pbr.baseColorFactor.size() == 4)
-            for (int c = 0; c < 4; ++c) p.baseColorFactor[c] = clamp01(pbr.baseColorFactor[std::size_t(c)], 1.0f);
-        p.metallicFactor = clamp01(pbr.metallicFactor, 1.0f);
-        p.roughnessFactor = clamp01(pbr.roughnessFactor, 1.0f);
-        if (m.emissiveFactor.size() == 3)
-            for (int c = 0; c < 3; ++c) p.emissiveFactor[c] = clamp01(m.emissiveFactor[std::size_t(c)], 0.0f);
-        if (const auto ext = m.extensions.find("KHR_materials_emissive_strength"); ext != m.extensions.end()) {
-            const tinygltf::Value& strength = ext->second.Get("emissiveStrength");
-            const double s = strength.IsNumber() ? strength.GetNumberAsDouble() : 1.0;
-            if (std::isfinite(s) && s >= 0.0)
-                p.emissiveFactor *= float(s);
-        }
-        p.occlusionStrength = clamp01(m.occlusionTexture.strength, 1.0f);
-        p.normalScale = std::isfinite(m.normalTexture.scale) ? float(m.normalTexture.scale) : 1.0f;
-        if (m.alphaMode == "MASK")
-            p.alphaMode = AlphaMode::Mask;
-        else if (m.alphaMode == "BLEND")
-            p.alphaMode = AlphaMode::Blend;
-        else if (m.alphaMode != "OPAQUE")
-            warn(what + ".alphaMode '" + m.alphaMode + "' is not OPAQUE, MASK or BLEND; OPAQUE used");
-        p.alphaCutoff = std::isfinite(m.alphaCutoff) && m.alphaCutoff >= 0.0 ? float(m.alphaCutoff) : 0.5f;
-        p.doubleSided = m.doubleSided;
-
-        p.baseColorTexture = textureRef(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
-                                        what + ".baseColorTexture");
-        p.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                                false, what + ".metallicRoughnessTexture");
-        p.normalTexture = textureRef(m.normalTexture.index, m.normalTexture.texCoord, false, what + ".normalTexture");
-        p.occlusionTexture = textureRef(m.occlusionTexture.index, m.occlusionTexture.texCoord, false,
-                                        what + ".occlusionTexture");
-        p.emissiveTexture = textureRef(m.emissiveTexture.index, m.emissiveTexture.texCoord, true, what + ".emissiveTexture");
-        return p;
     }
 
     const std::string& path_;
@@ -633,13 +329,10 @@ private:
     const tinygltf::Model& gltf_;
     const std::vector<sd::ImageSource>& images_;
     ModelData& out_;
+    sd::AccessorReader reader_;
+    sd::GeometryBudget budget_;
     std::vector<std::optional<std::vector<LocalPrimitive>>> meshCache_;
     std::vector<char> visited_;
-    std::map<std::pair<std::size_t, bool>, int> textureSlots_;
-    std::set<std::size_t> failedImages_;
-    std::uint64_t verticesUsed_ = 0;
-    std::uint64_t indicesUsed_ = 0;
-    std::uint64_t textureBytesUsed_ = 0;
 };
 
 // The glTF library must never touch the file system or decode images on its own: the

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "io/atomic_file.hpp"
+#include "scene/internal/glb_container.hpp"
 #include "scene/internal/gltf_document.hpp"
 #include "scene/internal/image_codec.hpp"
 #include "scene/sphere.hpp"

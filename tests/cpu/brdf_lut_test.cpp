@@ -138,8 +138,8 @@ TEST(BrdfLut, ImportanceSamplingAgreesWithQuadrature)
                 const glm::dvec3 is = iblab::integrateSplitSumBrdf(nv, r, 16384, term);
                 const glm::dvec2 q = bruteForceAB(nv, r, term);
                 const double tol = nv < 0.3 ? 2e-3 : 1e-3;
-                EXPECT_NEAR(is.x, q.x, tol) << iblab::geometryTermName(term) << " nv " << nv << " r " << r;
-                EXPECT_NEAR(is.y, q.y, tol) << iblab::geometryTermName(term) << " nv " << nv << " r " << r;
+                EXPECT_NEAR(is.x, q.x, tol) << enumName(term) << " nv " << nv << " r " << r;
+                EXPECT_NEAR(is.y, q.y, tol) << enumName(term) << " nv " << nv << " r " << r;
             }
 }
 

@@ -164,8 +164,8 @@ TEST(Brdf, CombineLobesWeightsTheDiffuseLayerByWhatFresnelLeaves)
 
 TEST(Brdf, GeometryTermNames)
 {
-    EXPECT_EQ(iblab::geometryTermName(GeometryTerm::SchlickGGX), "schlick-ggx");
-    EXPECT_EQ(iblab::geometryTermName(GeometryTerm::HeightCorrelatedSmith), "height-correlated-smith");
+    EXPECT_EQ(enumName(GeometryTerm::SchlickGGX), "schlick-ggx");
+    EXPECT_EQ(enumName(GeometryTerm::HeightCorrelatedSmith), "height-correlated-smith");
 }
 
 } // namespace

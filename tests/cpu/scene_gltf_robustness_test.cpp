@@ -1,175 +1,24 @@
-// The glTF loader against hostile and unusual input: a corpus of broken files built on
-// the fly from a one-triangle model (written here with nlohmann_json and a hand-rolled
-// GLB writer, independent of the code under test), plus the format features artists'
-// files use (strips, fans, sparse and quantized accessors, node transforms).
+// The glTF loader against hostile input: a corpus of broken files built on the fly from a
+// one-triangle model (gltf_test_files.hpp): files that are not glTF at all, broken GLB
+// containers, buffers that are missing, too large or outside the model's folder, and
+// accessors, bufferViews and indices out of range or over budget.
 // Every failure must be an iblab::Error whose single line starts with the file's path.
+// What a usable file's problems must NOT fail: scene_gltf_features_test.cpp.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <sys/stat.h>
 
-#include <OpenImageIO/imageio.h>
-#include <nlohmann/json.hpp>
-
-#include "io/error.hpp"
-#include "scene/gltf_model.hpp"
-#include "temp_dir.hpp"
+#include "gltf_test_files.hpp"
 
 using namespace iblab;
-using iblab::testing::TempDir;
-using nlohmann::json;
-
-namespace {
-
-constexpr int kUByte = 5121, kUShort = 5123, kUInt = 5125, kFloat = 5126;
-
-struct GltfBuilder {
-    json doc = {{"asset", {{"version", "2.0"}}}, {"scene", 0}};
-    std::vector<std::uint8_t> bin;
-
-    template <class T>
-    int view(const std::vector<T>& data)
-    {
-        bin.resize((bin.size() + 3) / 4 * 4, 0);
-        doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", data.size() * sizeof(T)}});
-        const auto* bytes = reinterpret_cast<const std::uint8_t*>(data.data());
-        bin.insert(bin.end(), bytes, bytes + data.size() * sizeof(T));
-        return int(doc["bufferViews"].size() - 1);
-    }
-    int accessor(int view, int componentType, std::size_t count, const char* type, bool normalized = false)
-    {
-        json a = {{"componentType", componentType}, {"count", count}, {"type", type}};
-        if (view >= 0)
-            a["bufferView"] = view;
-        if (normalized)
-            a["normalized"] = true;
-        doc["accessors"].push_back(a);
-        return int(doc["accessors"].size() - 1);
-    }
-    json& primitive() { return doc["meshes"][0]["primitives"][0]; }
-};
-
-// One triangle in the z = 0 plane facing +Z: accessors 0 POSITION, 1 TEXCOORD_0,
-// 2 indices (unsigned short), one node, one scene, no material.
-GltfBuilder triangle()
-{
-    GltfBuilder b;
-    const int position = b.accessor(b.view(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}), kFloat, 3, "VEC3");
-    const int uv = b.accessor(b.view(std::vector<float>{0, 1, 1, 1, 0, 0}), kFloat, 3, "VEC2");
-    const int indices = b.accessor(b.view(std::vector<std::uint16_t>{0, 1, 2}), kUShort, 3, "SCALAR");
-    const json primitive = {{"attributes", {{"POSITION", position}, {"TEXCOORD_0", uv}}}, {"indices", indices}};
-    b.doc["meshes"] = json::array({json::object({{"primitives", json::array({primitive})}})});
-    b.doc["nodes"] = {{{"mesh", 0}}};
-    b.doc["scenes"] = {{{"nodes", {0}}}};
-    return b;
-}
-
-void writeBytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
-
-// A .gltf with its buffer in "<name>.bin" beside it, unless the document already says
-// where its buffers are.
-std::string writeGltf(const TempDir& dir, GltfBuilder b, const std::string& name = "model.gltf")
-{
-    if (!b.doc.contains("buffers")) {
-        const std::string binName = name.substr(0, name.find('.')) + ".bin";
-        writeBytes(dir.file(binName), std::string(b.bin.begin(), b.bin.end()));
-        b.doc["buffers"] = {{{"uri", binName}, {"byteLength", b.bin.size()}}};
-    }
-    writeBytes(dir.file(name), b.doc.dump());
-    return dir.file(name);
-}
-
-void appendU32(std::string& s, std::uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
-
-std::string glbBytes(GltfBuilder b)
-{
-    b.doc["buffers"] = {{{"byteLength", b.bin.size()}}};
-    std::string text = b.doc.dump();
-    text.resize((text.size() + 3) / 4 * 4, ' ');
-    b.bin.resize((b.bin.size() + 3) / 4 * 4, 0);
-    std::string out = "glTF";
-    appendU32(out, 2);
-    appendU32(out, std::uint32_t(12 + 8 + text.size() + 8 + b.bin.size()));
-    appendU32(out, std::uint32_t(text.size()));
-    appendU32(out, 0x4E4F534A);
-    out += text;
-    appendU32(out, std::uint32_t(b.bin.size()));
-    appendU32(out, 0x004E4942);
-    out.append(b.bin.begin(), b.bin.end());
-    return out;
-}
-
-std::string writeGlb(const TempDir& dir, const GltfBuilder& b, const std::string& name = "model.glb")
-{
-    writeBytes(dir.file(name), glbBytes(b));
-    return dir.file(name);
-}
-
-// Loads `path` expecting an Error: one line, starting with the path, containing every
-// fragment. Returns the message.
-std::string expectLoadError(const std::string& path, std::initializer_list<std::string> fragments,
-                            const ModelLoadOptions& options = {})
-{
-    try {
-        const ModelData m = loadGltfModel(path, options);
-        ADD_FAILURE() << path << " loaded (" << m.instances.size() << " instances) but should not";
-    } catch (const Error& e) {
-        const std::string what = e.what();
-        EXPECT_EQ(what.rfind(path + ": ", 0), 0u) << "does not start with the path: " << what;
-        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-        for (const std::string& f : fragments) EXPECT_NE(what.find(f), std::string::npos) << "'" << f << "' not in: " << what;
-        return what;
-    } catch (const std::exception& e) {
-        ADD_FAILURE() << "not an iblab::Error: " << e.what();
-    }
-    return "";
-}
-
-std::string joined(const std::vector<std::string>& lines)
-{
-    std::string out;
-    for (const std::string& line : lines) out += line + "\n";
-    return out;
-}
-
-bool anyWarningContains(const ModelData& m, std::initializer_list<std::string> fragments)
-{
-    return std::any_of(m.warnings.begin(), m.warnings.end(), [&](const std::string& w) {
-        return std::all_of(fragments.begin(), fragments.end(), [&](const std::string& f) { return w.find(f) != std::string::npos; });
-    });
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start)
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Adds a material whose base colour texture is the image at `uri`.
-void addTexturedMaterial(GltfBuilder& b, const std::string& uri)
-{
-    b.doc["images"] = {{{"uri", uri}}};
-    b.doc["textures"] = {{{"source", 0}}};
-    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"baseColorFactor", {0.5, 0.5, 0.5, 1.0}}}}}};
-    b.primitive()["material"] = 0;
-}
-
-void writePng(const std::string& path, int w, int h, const std::vector<std::uint8_t>& rgba)
-{
-    auto out = OIIO::ImageOutput::create(path);
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(path, OIIO::ImageSpec(w, h, 4, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, rgba.data()));
-    ASSERT_TRUE(out->close());
-}
-
-} // namespace
+using namespace iblab::testing;
 
 // ---- the baseline the corpus mutates -------------------------------------------------
 
@@ -359,24 +208,17 @@ TEST(GltfCorpus, AccessorOutOfRangeOfItsBufferView)
     b.doc["accessors"][1]["count"] = 1000;
     expectLoadError(writeGltf(dir, b), {"meshes[0].primitives[0] POSITION (accessors[0])", "1000 elements of 12 bytes",
                                         "bufferViews[0], which has only 36 bytes", "out of range"});
-    b = triangle();
-    b.doc["accessors"][0]["byteOffset"] = 4;
-    expectLoadError(writeGltf(dir, b), {"accessors[0]", "out of range"});
+    expectTriangleWithFails(dir, "/accessors/0/byteOffset", 4, {"accessors[0]", "out of range"});
     // Even a count near 2^64 must not overflow the range arithmetic.
-    b = triangle();
-    b.doc["accessors"][2]["count"] = 18446744073709551615ull;
-    expectLoadError(writeGltf(dir, b), {"indices (accessors[2])"});
+    expectTriangleWithFails(dir, "/accessors/2/count", 18446744073709551615ull, {"indices (accessors[2])"});
 }
 
 TEST(GltfCorpus, BufferViewOutOfRangeOfItsBuffer)
 {
     TempDir dir;
-    GltfBuilder b = triangle();
-    b.doc["bufferViews"][2]["byteLength"] = 10000;
-    expectLoadError(writeGltf(dir, b), {"bufferViews[2] (bytes 60..10060) runs past the end of buffers[0] (66 bytes)"});
-    b = triangle();
-    b.doc["bufferViews"][0]["buffer"] = 3;
-    expectLoadError(writeGltf(dir, b), {"bufferViews[0].buffer 3 does not exist"});
+    expectTriangleWithFails(dir, "/bufferViews/2/byteLength", 10000,
+                            {"bufferViews[2] (bytes 60..10060) runs past the end of buffers[0] (66 bytes)"});
+    expectTriangleWithFails(dir, "/bufferViews/0/buffer", 3, {"bufferViews[0].buffer 3 does not exist"});
 }
 
 TEST(GltfCorpus, IndexPastTheVertexCount)
@@ -392,18 +234,10 @@ TEST(GltfCorpus, IndexPastTheVertexCount)
 TEST(GltfCorpus, AccessorTypesAndComponentTypesAreChecked)
 {
     TempDir dir;
-    GltfBuilder b = triangle();
-    b.doc["accessors"][0]["type"] = "VEC2";
-    expectLoadError(writeGltf(dir, b), {"POSITION (accessors[0]) is VEC2, expected VEC3"});
-    b = triangle();
-    b.doc["accessors"][0]["componentType"] = kUInt;
-    expectLoadError(writeGltf(dir, b), {"POSITION (accessors[0]) has component type 5125"});
-    b = triangle();
-    b.doc["accessors"][2]["componentType"] = kFloat;
-    expectLoadError(writeGltf(dir, b), {"indices (accessors[2]) has component type 5126"});
-    b = triangle();
-    b.doc["accessors"][1]["count"] = 2;
-    expectLoadError(writeGltf(dir, b), {"TEXCOORD_0 (accessors[1]) has 2 elements, POSITION has 3"});
+    expectTriangleWithFails(dir, "/accessors/0/type", "VEC2", {"POSITION (accessors[0]) is VEC2, expected VEC3"});
+    expectTriangleWithFails(dir, "/accessors/0/componentType", kUInt, {"POSITION (accessors[0]) has component type 5125"});
+    expectTriangleWithFails(dir, "/accessors/2/componentType", kFloat, {"indices (accessors[2]) has component type 5126"});
+    expectTriangleWithFails(dir, "/accessors/1/count", 2, {"TEXCOORD_0 (accessors[1]) has 2 elements, POSITION has 3"});
 }
 
 TEST(GltfCorpus, VertexAndIndexBudgets)
@@ -416,206 +250,4 @@ TEST(GltfCorpus, VertexAndIndexBudgets)
     options = {};
     options.maxIndices = 2;
     expectLoadError(path, {"past the 2-index budget"}, options);
-}
-
-// ---- textures: problems that must NOT fail the load -----------------------------------
-
-TEST(GltfTextures, MissingImageFallsBackToTheFactorWithAWarning)
-{
-    TempDir dir;
-    GltfBuilder b = triangle();
-    addTexturedMaterial(b, "missing.png");
-    const ModelData m = loadGltfModel(writeGltf(dir, b));
-    EXPECT_TRUE(anyWarningContains(m, {"'missing.png'", "not found", "fall back"}));
-    ASSERT_EQ(m.materials.size(), 1u);
-    EXPECT_FALSE(m.materials[0].baseColorTexture.valid());
-    EXPECT_EQ(m.materials[0].baseColorFactor, glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
-    EXPECT_TRUE(m.textures.empty());
-    EXPECT_EQ(m.instances.size(), 1u);
-}
-
-TEST(GltfTextures, UndecodableOrEscapingImagesWarn)
-{
-    TempDir dir;
-    GltfBuilder b = triangle();
-    writeBytes(dir.file("junk.png"), "this is not a png");
-    addTexturedMaterial(b, "junk.png");
-    ModelData m = loadGltfModel(writeGltf(dir, b));
-    EXPECT_TRUE(anyWarningContains(m, {"'junk.png'", "cannot be decoded"})) << joined(m.warnings);
-    EXPECT_FALSE(m.materials[0].baseColorTexture.valid());
-
-    writeBytes(dir.file("secret.png"), "outside");
-    std::filesystem::create_directories(dir.path / "sub");
-    addTexturedMaterial(b, "../secret.png");
-    b.doc["buffers"] = {{{"uri", "../model.bin"}, {"byteLength", b.bin.size()}}};
-    writeBytes(dir.file("model.bin"), std::string(b.bin.begin(), b.bin.end()));
-    expectLoadError(writeGltf(dir, b, "sub/model.gltf"), {"points outside the model's folder"});
-    b.doc["buffers"] = {{{"uri", "model.bin"}, {"byteLength", b.bin.size()}}};
-    writeBytes(dir.file("sub/model.bin"), std::string(b.bin.begin(), b.bin.end()));
-    m = loadGltfModel(writeGltf(dir, b, "sub/model.gltf"));
-    EXPECT_TRUE(anyWarningContains(m, {"'../secret.png'", "points outside the model's folder"}));
-}
-
-TEST(GltfTextures, BadTextureReferencesAreIgnored)
-{
-    TempDir dir;
-    GltfBuilder b = triangle();
-    b.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 9}}}}}, {"alphaMode", "WEIRD"}}};
-    b.primitive()["material"] = 0;
-    const ModelData m = loadGltfModel(writeGltf(dir, b));
-    EXPECT_TRUE(anyWarningContains(m, {"textures[9], which does not exist"}));
-    EXPECT_TRUE(anyWarningContains(m, {"alphaMode 'WEIRD'"}));
-    EXPECT_EQ(m.materials[0].alphaMode, AlphaMode::Opaque);
-}
-
-TEST(GltfTextures, OversizedImagesAreDownsampledOrRefused)
-{
-    TempDir dir;
-    // 128 x 64 one-texel checkerboard of 0 and 255: every 4 x 4 block averages to 128.
-    std::vector<std::uint8_t> rgba(128 * 64 * 4);
-    for (int y = 0; y < 64; ++y)
-        for (int x = 0; x < 128; ++x)
-            for (int c = 0; c < 4; ++c) rgba[std::size_t((y * 128 + x) * 4 + c)] = c == 3 ? 255 : ((x + y) % 2) * 255;
-    writePng(dir.file("big.png"), 128, 64, rgba);
-    GltfBuilder b = triangle();
-    addTexturedMaterial(b, "big.png");
-    const std::string path = writeGltf(dir, b);
-
-    ModelLoadOptions options;
-    options.maxTextureDimension = 32;
-    ModelData m = loadGltfModel(path, options);
-    ASSERT_EQ(m.textures.size(), 1u);
-    EXPECT_EQ(m.textures[0].width, 32);
-    EXPECT_EQ(m.textures[0].height, 16);
-    EXPECT_TRUE(m.textures[0].srgb);
-    for (std::size_t i = 0; i < m.textures[0].rgba8.size(); i += 4) ASSERT_EQ(m.textures[0].rgba8[i], 128) << i;
-    EXPECT_TRUE(anyWarningContains(m, {"'big.png'", "downsampled to 32x16"}));
-
-    options.maxTextureDimension = 8; // 128 > 8 x 8: not even decoded
-    m = loadGltfModel(path, options);
-    EXPECT_TRUE(m.textures.empty());
-    EXPECT_TRUE(anyWarningContains(m, {"'big.png'", "claims 128x64 texels"}));
-
-    options = {};
-    options.maxTextureBytes = 1000;
-    m = loadGltfModel(path, options);
-    EXPECT_TRUE(m.textures.empty());
-    EXPECT_TRUE(anyWarningContains(m, {"'big.png'", "texture budget"}));
-}
-
-// ---- format features ----------------------------------------------------------------
-
-TEST(GltfFeatures, NonIndexedAndNormalizedIntegerTexcoords)
-{
-    TempDir dir;
-    GltfBuilder b = triangle();
-    b.primitive().erase("indices");
-    b.primitive()["attributes"]["TEXCOORD_0"] = b.accessor(b.view(std::vector<std::uint8_t>{0, 0, 255, 0, 128, 255}), kUByte, 3, "VEC2", true);
-    b.primitive()["attributes"]["TEXCOORD_1"] =
-        b.accessor(b.view(std::vector<std::uint16_t>{0, 65535, 65535, 0, 0, 0}), kUShort, 3, "VEC2", true);
-    const ModelData m = loadGltfModel(writeGltf(dir, b));
-    ASSERT_EQ(m.instances.size(), 1u);
-    const MeshData& mesh = m.instances[0].mesh;
-    EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 1, 2}));
-    EXPECT_EQ(mesh.uvs[1], glm::vec2(1, 0));
-    EXPECT_FLOAT_EQ(mesh.uvs[2].x, 128.0f / 255.0f);
-    EXPECT_EQ(mesh.uvs1[0], glm::vec2(0, 1));
-}
-
-TEST(GltfFeatures, StripsAndFansBecomeListsAndPointsAreSkipped)
-{
-    TempDir dir;
-    GltfBuilder b;
-    const int strip = b.accessor(b.view(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}), kFloat, 4, "VEC3");
-    const int fan = b.accessor(b.view(std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}), kFloat, 4, "VEC3");
-    b.doc["meshes"] = {{{"primitives",
-                         {{{"attributes", {{"POSITION", strip}}}, {"mode", 5}},
-                          {{"attributes", {{"POSITION", fan}}}, {"mode", 6}},
-                          {{"attributes", {{"POSITION", fan}}}, {"mode", 0}}}}}};
-    b.doc["nodes"] = {{{"mesh", 0}}};
-    b.doc["scenes"] = {{{"nodes", {0}}}};
-    const ModelData m = loadGltfModel(writeGltf(dir, b));
-    ASSERT_EQ(m.instances.size(), 2u);
-    EXPECT_EQ(m.instances[0].mesh.indices, (std::vector<std::uint32_t>{0, 1, 2, 1, 3, 2}));
-    EXPECT_EQ(m.instances[1].mesh.indices, (std::vector<std::uint32_t>{1, 2, 0, 2, 3, 0}));
-    for (const MeshInstance& inst : m.instances)
-        for (const glm::vec3& n : inst.mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1)) << inst.name; // all counter-clockwise
-    EXPECT_TRUE(anyWarningContains(m, {"primitives[2]", "mode POINTS", "skipped"}));
-}
-
-TEST(GltfFeatures, SparseAccessorsOverrideTheirBase)
-{
-    TempDir dir;
-    GltfBuilder b = triangle();
-    // POSITION without a bufferView (all zeros) plus sparse values for all 3 vertices,
-    // then a second, dense-based one moving vertex 1.
-    const int sparseIndices = b.view(std::vector<std::uint8_t>{0, 1, 2, 0});
-    const int sparseValues = b.view(std::vector<float>{0, 0, 0, 2, 0, 0, 0, 2, 0});
-    json& position = b.doc["accessors"][0];
-    position.erase("bufferView");
-    position["sparse"] = {{"count", 3},
-                          {"indices", {{"bufferView", sparseIndices}, {"componentType", kUByte}}},
-                          {"values", {{"bufferView", sparseValues}}}};
-    ModelData m = loadGltfModel(writeGltf(dir, b));
-    ASSERT_EQ(m.instances.size(), 1u);
-    EXPECT_EQ(m.instances[0].mesh.positions, (std::vector<glm::vec3>{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}));
-
-    position["sparse"]["count"] = 4;
-    expectLoadError(writeGltf(dir, b), {"sparse.count 4 is not in 0..3"});
-    position["sparse"]["count"] = 3;
-    b.bin[std::size_t(b.doc["bufferViews"][std::size_t(sparseIndices)]["byteOffset"]) + 2] = 9;
-    expectLoadError(writeGltf(dir, b), {"sparse index 9 is past the 3 elements"});
-}
-
-TEST(GltfFeatures, NodeTransformsAreBakedAndMirroringKeepsFrontFaces)
-{
-    TempDir dir;
-    GltfBuilder b = triangle();
-    b.doc["nodes"] = {{{"translation", {0, 0, 5}}, {"children", {1}}}, {{"mesh", 0}, {"scale", {-2, 1, 1}}}};
-    const ModelData m = loadGltfModel(writeGltf(dir, b));
-    ASSERT_EQ(m.instances.size(), 1u);
-    const MeshData& mesh = m.instances[0].mesh;
-    EXPECT_EQ(mesh.positions[1], glm::vec3(-2, 0, 5));
-    const glm::vec3 face = glm::cross(mesh.positions[mesh.indices[1]] - mesh.positions[mesh.indices[0]],
-                                      mesh.positions[mesh.indices[2]] - mesh.positions[mesh.indices[0]]);
-    EXPECT_GT(glm::dot(face, mesh.normals[0]), 0.0f);
-    EXPECT_EQ(m.instances[0].worldMatrix[3][2], 5.0f);
-    EXPECT_EQ(m.bounds.max, glm::vec3(0, 1, 5));
-}
-
-TEST(GltfFeatures, NodeCyclesAndDeepChainsNeitherHangNorOverflow)
-{
-    TempDir dir;
-    GltfBuilder b = triangle();
-    b.doc["nodes"] = {{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}};
-    ModelData m = loadGltfModel(writeGltf(dir, b, "cycle.gltf"));
-    EXPECT_EQ(m.instances.size(), 1u);
-    EXPECT_TRUE(anyWarningContains(m, {"nodes[0] is reached a second time"}));
-
-    // 50000 nodes, each the only child of the previous one, the mesh at the bottom: a
-    // recursive walk would need more than the default 8 MB of stack.
-    b = triangle();
-    json nodes = json::array();
-    constexpr int kChain = 50000;
-    for (int i = 0; i < kChain - 1; ++i) nodes.push_back({{"children", {i + 1}}, {"translation", {0, 0, 0.001}}});
-    nodes.push_back({{"mesh", 0}});
-    b.doc["nodes"] = std::move(nodes);
-    m = loadGltfModel(writeGltf(dir, b, "chain.gltf"));
-    ASSERT_EQ(m.instances.size(), 1u);
-    EXPECT_NEAR(m.instances[0].mesh.positions[0].z, 0.001f * (kChain - 1), 1e-2f);
-}
-
-TEST(GltfFeatures, ExportAddsAMaterialForPrimitivesWithoutOne)
-{
-    TempDir dir;
-    const std::string source = writeGlb(dir, triangle());
-    PbrMaterial tuned;
-    tuned.baseColorFactor = glm::vec4(0.1f, 0.2f, 0.3f, 1.0f);
-    tuned.roughnessFactor = 0.4f;
-    exportGltfWithMaterial(source, dir.file("out.glb"), -1, tuned);
-    const ModelData m = loadGltfModel(dir.file("out.glb"));
-    ASSERT_EQ(m.materials.size(), 1u);
-    EXPECT_EQ(m.instances[0].materialIndex, 0);
-    EXPECT_EQ(m.materials[0].baseColorFactor, tuned.baseColorFactor);
-    EXPECT_EQ(m.materials[0].roughnessFactor, 0.4f);
 }

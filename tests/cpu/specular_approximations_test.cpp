@@ -83,44 +83,50 @@ TEST(SpecularApproximations, EmulatedChainHoldsTheExactPrefilterAtTexelCentres)
     EXPECT_NEAR(chain.lookupLod(d, 3.0).x, double(sampleEquirectBilinear(chain.mip(3), d).x), 1e-6);
 }
 
-} // namespace
-} // namespace iblab
+// Copper (F0 = its base colour) seen from +Z on this test's map at 128 wide (resolved
+// roughness 0.27), as the bench measures a pixel: the relative errors of the split sum and
+// of the fitted lobe against the full integral, read through the emulated prefiltered chain.
+class CopperOnTheTestMap {
+public:
+    struct Errors {
+        double split, fitted;
+    };
 
-namespace iblab {
-namespace {
+    CopperOnTheTestMap() : env_(testEnvironment(128)), chain_(env_), sums_(env_) {}
 
-// The error a pixel's specular makes against the full integral (the bench's per-pixel
-// measure, common/error_metrics.glsl).
-struct Case {
-    double tilt, azimuth, roughness;
+    Errors errors(glm::dvec3 n, double roughness) const
+    {
+        const PrefilteredLookup lookup = [&](glm::dvec3 d, double r) { return chain_.lookup(d, r); };
+        SpecularShadingInputs in;
+        in.n = n;
+        in.v = kView;
+        in.roughness = roughness;
+        in.F0 = kF0;
+        in.lut = integrateSplitSumBrdf(glm::dot(n, kView), roughness, 2048, kTerm);
+        const glm::dvec3 full = sums_.evaluate(n, kView, roughness, kTerm, false).specular(kF0);
+        return {relativeError(glm::vec3(shadeSpecularApproximation(SpecularMethod::SplitSum, in, lookup)), glm::vec3(full)),
+                relativeError(glm::vec3(shadeSpecularApproximation(SpecularMethod::FittedLobe, in, lookup)), glm::vec3(full))};
+    }
+
+private:
+    static inline const glm::dvec3 kView{0.0, 0.0, 1.0};
+    static inline const glm::dvec3 kF0{0.95, 0.64, 0.54};
+    ImageRGB32F env_;
+    PrefilteredChain chain_;
+    ReferenceSums sums_;
 };
 
 TEST(SpecularApproximations, FittedLobeIsCloserToTheFullIntegralThanTheSplitSum)
 {
-    // A map the fit never saw, at 128 wide (resolved roughness 0.27), copper seen from +Z:
-    // normals tilted 20-80 degrees (n.v 0.94-0.17) towards the sun, the window and the ground.
-    const ImageRGB32F env = testEnvironment(128);
-    const PrefilteredChain chain(env);
-    const ReferenceSums sums(env);
-    const PrefilteredLookup lookup = [&](glm::dvec3 d, double r) { return chain.lookup(d, r); };
-    const glm::dvec3 v(0.0, 0.0, 1.0);
-    const glm::dvec3 F0(0.95, 0.64, 0.54);
+    // A map the fit never saw; normals tilted 20-80 degrees (n.v 0.94-0.17) towards the sun,
+    // the window and the ground.
+    const CopperOnTheTestMap copper;
     double splitSquares = 0.0, fittedSquares = 0.0;
     int fittedWins = 0, cases = 0;
     for (double roughness : {0.3, 0.5, 0.8})
         for (double tilt : {20.0, 50.0, 65.0, 80.0})
             for (double azimuth : {0.0, 90.0, 180.0, 270.0}) {
-                const glm::dvec3 n = direction(tilt, azimuth);
-                const double NdotV = glm::dot(n, v);
-                SpecularShadingInputs in;
-                in.n = n;
-                in.v = v;
-                in.roughness = roughness;
-                in.F0 = F0;
-                in.lut = integrateSplitSumBrdf(NdotV, roughness, 2048, kTerm);
-                const glm::dvec3 full = sums.evaluate(n, v, roughness, kTerm, false).specular(F0);
-                const double split = relativeError(glm::vec3(shadeSpecularApproximation(SpecularMethod::SplitSum, in, lookup)), glm::vec3(full));
-                const double fitted = relativeError(glm::vec3(shadeSpecularApproximation(SpecularMethod::FittedLobe, in, lookup)), glm::vec3(full));
+                const auto [split, fitted] = copper.errors(direction(tilt, azimuth), roughness);
                 splitSquares += split * split;
                 fittedSquares += fitted * fitted;
                 fittedWins += fitted < split ? 1 : 0;
@@ -138,23 +144,12 @@ TEST(SpecularApproximations, GrazingCopperOnTheTestMapIsCloser)
 {
     // The configuration of split_sum_bias_test (copper, roughness 0.5, n.v 0.34 and 0.64),
     // on this test's map: the split sum overshoots, the fitted lobe much less.
-    const ImageRGB32F env = testEnvironment(128);
-    const PrefilteredChain chain(env);
-    const ReferenceSums sums(env);
-    const PrefilteredLookup lookup = [&](glm::dvec3 d, double r) { return chain.lookup(d, r); };
-    const glm::dvec3 v(0.0, 0.0, 1.0);
-    const glm::dvec3 F0(0.95, 0.64, 0.54);
+    struct Case {
+        double tilt, azimuth, roughness;
+    };
+    const CopperOnTheTestMap copper;
     for (Case c : {Case{50.0, 90.0, 0.5}, Case{70.0, 0.0, 0.5}, Case{70.0, 270.0, 0.5}}) {
-        const glm::dvec3 n = direction(c.tilt, c.azimuth);
-        SpecularShadingInputs in;
-        in.n = n;
-        in.v = v;
-        in.roughness = c.roughness;
-        in.F0 = F0;
-        in.lut = integrateSplitSumBrdf(glm::dot(n, v), c.roughness, 2048, kTerm);
-        const glm::dvec3 full = sums.evaluate(n, v, c.roughness, kTerm, false).specular(F0);
-        const double split = relativeError(glm::vec3(shadeSpecularApproximation(SpecularMethod::SplitSum, in, lookup)), glm::vec3(full));
-        const double fitted = relativeError(glm::vec3(shadeSpecularApproximation(SpecularMethod::FittedLobe, in, lookup)), glm::vec3(full));
+        const auto [split, fitted] = copper.errors(direction(c.tilt, c.azimuth), c.roughness);
         EXPECT_LT(fitted, split) << "tilt " << c.tilt << " azimuth " << c.azimuth << ": fitted " << fitted << " split " << split;
     }
 }

@@ -27,12 +27,12 @@ TEST(ToneMap, IdsNamesAndParse)
     EXPECT_EQ(int(ToneMapOperator::Agx), 6);
     for (int id = 0; id < iblab::kToneMapOperatorCount; ++id) {
         const auto op = ToneMapOperator(id);
-        EXPECT_EQ(iblab::parseToneMapOperator(iblab::toneMapOperatorName(op)), op);
+        EXPECT_EQ(iblab::parseEnum<ToneMapOperator>(iblab::enumName(op)), op);
     }
-    EXPECT_EQ(iblab::toneMapOperatorName(ToneMapOperator::AcesHill), "aces-hill");
-    EXPECT_EQ(iblab::parseToneMapOperator("hable"), ToneMapOperator::Hable);
-    EXPECT_FALSE(iblab::parseToneMapOperator("ACES").has_value());
-    EXPECT_FALSE(iblab::parseToneMapOperator("").has_value());
+    EXPECT_EQ(iblab::enumName(ToneMapOperator::AcesHill), "aces-hill");
+    EXPECT_EQ(iblab::parseEnum<ToneMapOperator>("hable"), ToneMapOperator::Hable);
+    EXPECT_FALSE(iblab::parseEnum<ToneMapOperator>("ACES").has_value());
+    EXPECT_FALSE(iblab::parseEnum<ToneMapOperator>("").has_value());
 }
 
 TEST(ToneMap, NoneClamps)

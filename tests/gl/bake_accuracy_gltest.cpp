@@ -138,7 +138,7 @@ TEST_F(GlTest, PrefilteredMipsMatchTheExactReference)
         // the studio's small saturated softboxes; 5% leaves room for other drivers' rounding
         // while a wrong lobe (alpha for roughness), a lod off by two mips or a mirrored frame
         // gives 10% to 100%.
-        EXPECT_LT(std::sqrt(err2 / ref2), 0.05) << roughnessLayoutName(checked->settings.prefilter.layout) << " mip " << level
+        EXPECT_LT(std::sqrt(err2 / ref2), 0.05) << enumName(checked->settings.prefilter.layout) << " mip " << level
                                                  << " roughness " << roughness;
     }
     }
@@ -163,7 +163,7 @@ TEST_F(GlTest, ShadedLookupReadsTheMipItsRoughnessWasBakedInto)
             const bake::CubeImage next = bake::readCubeLevel(result.prefiltered, level + 1);
             const float roughness = bake::prefilterMipRoughness(settings.prefilter, level);
             const float lod = bake::prefilterMipFromRoughness(roughness, float(settings.prefilter.levels), int(layout));
-            ASSERT_NEAR(lod, float(level), 1e-5f) << roughnessLayoutName(layout);
+            ASSERT_NEAR(lod, float(level), 1e-5f) << enumName(layout);
             // Halfway in lod: the roughness whose lod is level + 0.5.
             const float between = bake::prefilterRoughnessFromMip(float(level) + 0.5f, float(settings.prefilter.levels), int(layout));
             // A texel of `next` covers 2x2 of `here`; at its centre both mips are read at a
@@ -183,7 +183,7 @@ TEST_F(GlTest, ShadedLookupReadsTheMipItsRoughnessWasBakedInto)
             const std::vector<glm::vec3> read = bake::BakePasses(shaders).samplePrefiltered(result.prefiltered, layout, queries);
             for (std::size_t i = 0; i < read.size(); ++i)
                 EXPECT_LT(glm::length(glm::dvec3(read[i]) - expected[i]), 4e-3 * glm::length(expected[i]) + 1e-4)
-                    << roughnessLayoutName(layout) << " level " << level << " query " << i;
+                    << enumName(layout) << " level " << level << " query " << i;
         }
     }
 }
@@ -233,10 +233,11 @@ TEST_F(GlTest, IrradianceMatchesTheExactReference)
     // linear in n, so SH9 holds it exactly (the step has only odd bands besides band 0, and
     // the cosine lobe's odd bands above 1 vanish): SH9 must match the exact sum.
     const Environment env = loadEnvironment("builtin:sky?width=128&top=1&ground=0.2");
-    const bake::BakeResult result = runBake(shaders, env, smallBakeSettings());
-    const bake::CubeImage riemann = bake::readCubeLevel(result.irradianceRiemann, 0);
-    const bake::CubeImage importance = bake::readCubeLevel(result.irradianceImportance, 0);
-    const bake::CubeImage moments = bake::readCubeLevel(result.irradianceMoments, 0);
+    const bake::BakeResult result = runBake(shaders, env, smallBakeSettings(bake::IrradianceMethod::Riemann));
+    const bake::CubeImage riemann = bake::readCubeLevel(result.irradianceCube, 0);
+    const bake::CubeImage importance =
+        bake::readCubeLevel(runBake(shaders, env, smallBakeSettings(bake::IrradianceMethod::Importance)).irradianceCube, 0);
+    const bake::CubeImage moments = bake::readCubeLevel(runBake(shaders, env, smallBakeSettings(bake::IrradianceMethod::Moments)).irradianceCube, 0);
     ASSERT_EQ(riemann.size, importance.size);
     ASSERT_EQ(riemann.size, moments.size);
     std::vector<glm::dvec3> reference, sh, riemannValues, importanceValues, momentValues;
@@ -286,7 +287,7 @@ TEST_F(GlTest, MomentIrradianceOfASunIsExactAwayFromItsTerminator)
     settings.precision = bake::Precision::Float;
     const bake::BakeResult result = runBake(shaders, env, settings);
     const bake::CubeImage source = bake::readCubeLevel(result.environmentCube, 0);
-    const bake::CubeImage moments = bake::readCubeLevel(result.irradianceMoments, 0);
+    const bake::CubeImage moments = bake::readCubeLevel(result.irradianceCube, 0);
     auto exactOverTheCube = [&](glm::dvec3 n) {
         glm::dvec3 sum(0.0);
         for (int face = 0; face < 6; ++face)
@@ -364,7 +365,7 @@ TEST_F(GlTest, LutMatchesTheCpuReferenceWithTheSameSamples)
             }
         // The same estimator on the same Hammersley points: float vs double arithmetic and
         // RGBA16F storage (values <= 1, half-float spacing <= 2^-11 = 4.9e-4).
-        EXPECT_LT(worst, 1e-3) << geometryTermName(term);
+        EXPECT_LT(worst, 1e-3) << enumName(term);
     }
 }
 
@@ -389,7 +390,7 @@ TEST_F(GlTest, LutConvergesToTheCpuReference)
         // 1024 vs 16384 Hammersley points: the quasi-Monte Carlo error of the 1024-point set,
         // largest at grazing n.v and low roughness where the integrand is spikiest (measured
         // 0.004-0.01); 0.02 catches a wrong term, whose error is 0.05 and up.
-        EXPECT_LT(worst, 0.02) << geometryTermName(term);
+        EXPECT_LT(worst, 0.02) << enumName(term);
     }
 }
 

@@ -142,21 +142,24 @@ TEST(BakeCli, BakeWritesItsOutputsAndReportsTimingsAndErrors)
     TempDirectory dir("cli-bake");
     const fs::path out = dir.path() / "out";
     const CommandRun run = iblab("bake --env 'builtin:sky?width=64' --json --no-cache --prefilter-size 16 --prefilter-levels 3 "
-                          "--importance on --importance-size 8 --importance-samples 64 --moments-size 8 --lut-size 16 --lut-samples 64 --out '" +
+                          "--irradiance importance --importance-size 8 --importance-samples 64 --moments-size 8 --lut-size 16 --lut-samples 64 --out '" +
                               out.string() + "'",
                           dir.path());
     ASSERT_EQ(run.status, 0) << run.err;
     const nlohmann::json j = nlohmann::json::parse(run.out);
-    for (const char* phase : {"shaders", "upload", "environment_cube", "sh9", "irradiance_importance", "irradiance_moments", "prefilter", "brdf_lut",
+    for (const char* phase : {"shaders", "upload", "environment_cube", "sh9", "irradiance_importance", "prefilter", "brdf_lut",
                               "total"})
         EXPECT_TRUE(j["timings_ms"].contains(phase)) << phase;
     EXPECT_EQ(j["errors"]["prefilter"].size(), 3u);
     EXPECT_TRUE(j["errors"]["irradiance"].contains("sh"));
     EXPECT_TRUE(j["errors"]["irradiance"].contains("cube_importance"));
-    EXPECT_TRUE(j["errors"]["irradiance"].contains("cube_moments"));
-    EXPECT_TRUE(j["errors"]["irradiance_shaded"].contains("cube_moments"));
+    EXPECT_TRUE(j["errors"]["irradiance_shaded"].contains("cube_importance"));
+    // One irradiance method per bake: the default's moment cube is not baked beside it.
+    EXPECT_FALSE(j["errors"]["irradiance"].contains("cube_moments"));
+    EXPECT_FALSE(j["timings_ms"].contains("irradiance_moments"));
+    EXPECT_FALSE(fs::exists(out / "irradiance_moments.exr"));
     EXPECT_TRUE(j["errors"]["lut_max_abs"].contains("schlick-ggx"));
-    for (const char* file : {"environment.exr", "irradiance_importance.exr", "irradiance_moments.exr", "prefiltered_mip0.exr", "prefiltered_mip2.exr",
+    for (const char* file : {"environment.exr", "irradiance_importance.exr", "prefiltered_mip0.exr", "prefiltered_mip2.exr",
                              "sh.json", "bake.json", "brdf_lut_schlick-ggx.exr", "brdf_lut_height-correlated-smith.exr"})
         EXPECT_TRUE(fs::exists(out / file)) << file;
     // A cube level is a strip of six faces: 16 wide, 96 high at mip 0, 4 x 24 at mip 2.

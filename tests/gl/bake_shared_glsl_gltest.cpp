@@ -127,7 +127,7 @@ TEST_F(GlTest, Sh9EvaluationAgreesWithCore)
     std::vector<glm::vec3> uniformValue;
     for (const glm::dvec3& c : coefficients.c)
         uniformValue.emplace_back(c);
-    glProgramUniform3fv(program.id(), program.uniformLocation("uCoefficients"), kSh9Count, &uniformValue[0].x);
+    gl::UniformArray<glm::vec3>(program, "uCoefficients").set(uniformValue);
     std::vector<glm::vec4> inputs;
     for (int i = 0; i < 100; ++i)
         inputs.emplace_back(glm::normalize(glm::vec3(std::sin(i * 0.37f), std::cos(i * 0.71f), std::sin(i * 1.13f + 0.2f))), 0.0f);

@@ -12,14 +12,19 @@
 
 namespace iblab::testing {
 
-// The default preset scaled down: every output present, every pass exercised (both
-// irradiance cubes, PDF filtering with growing sample counts, both LUTs), nothing large.
-inline bake::BakeSettings smallBakeSettings()
+// The default preset scaled down: every output present, every pass of the bake exercised
+// (the irradiance cube of `irradiance`, PDF filtering with growing sample counts, both LUTs),
+// nothing large. Each irradiance method's settings are small, whichever is chosen.
+inline constexpr std::array<bake::IrradianceMethod, 3> kIrradianceCubeMethods{
+    bake::IrradianceMethod::Riemann, bake::IrradianceMethod::Importance, bake::IrradianceMethod::Moments};
+
+inline bake::BakeSettings smallBakeSettings(bake::IrradianceMethod irradiance = bake::IrradianceMethod::Moments)
 {
     bake::BakeSettings s = bake::defaultPreset();
-    s.riemann = {.enabled = true, .faceSize = 8, .sampleDelta = 0.05f, .mipFiltering = false, .mipBias = 0.0f};
-    s.importance = {.enabled = true, .faceSize = 8, .samples = 256, .mipFiltering = true, .mipBias = 0.0f};
-    s.moments = {.enabled = true, .faceSize = 8, .sourceFaceSize = 4};
+    s.irradiance = irradiance;
+    s.riemann = {.faceSize = 8, .sampleDelta = 0.05f, .mipFiltering = false, .mipBias = 0.0f};
+    s.importance = {.faceSize = 8, .samples = 256, .mipFiltering = true, .mipBias = 0.0f};
+    s.moments = {.faceSize = 8, .sourceFaceSize = 4};
     s.prefilter = {.faceSize = 16,
                    .levels = 5,
                    .layout = bake::RoughnessLayout::Linear,

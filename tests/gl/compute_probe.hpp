@@ -9,6 +9,7 @@
 
 #include "gl/handles.hpp"
 #include "gl/shader_library.hpp"
+#include "gl/uniform.hpp"
 
 namespace iblab::testing {
 
@@ -24,7 +25,7 @@ inline std::vector<glm::vec4> runComputeProbe(gl::ShaderLibrary& library, const 
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
     glUseProgram(program.id());
-    program.set("uCount", int(inputs.size()));
+    gl::Uniform<int>(program, "uCount").set(int(inputs.size()));
     glDispatchCompute(GLuint((inputs.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<glm::vec4> outputs(inputs.size());

@@ -120,7 +120,7 @@ TEST_F(Frame, ExactSampleCountsAreNotAccumulated)
     frozen.sampling.samples = 1;
     frozen.sampling.freezeSampleSet = true;
     for (const FrameSettings& s : {counting, frozen}) {
-        SCOPED_TRACE(sceneKindName(s.scene.kind));
+        SCOPED_TRACE(enumName(s.scene.kind));
         const FrameReadback first = accumulate(s);
         for (int i = 0; i < 2; ++i) {
             const FrameReadback again = accumulate(s);
@@ -172,7 +172,7 @@ TEST_F(Frame, SplitViewFreezesEachSideByItsOwnSettings)
 TEST_F(Frame, StripsCaptionEachSphereBelowIt)
 {
     for (const SceneKind kind : {SceneKind::Counting, SceneKind::Sweep}) {
-        SCOPED_TRACE(sceneKindName(kind));
+        SCOPED_TRACE(enumName(kind));
         FrameSettings s;
         s.scene.kind = kind;
         s.scene.countingSpheres = 5;

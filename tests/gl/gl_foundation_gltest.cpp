@@ -1,11 +1,18 @@
 // The foundation every GL feature stands on: the headless context, KHR_debug, the RAII
-// handles and the shader library's error reporting.
+// handles, the shader library's error reporting and hot reload, and uniform handles.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
 #include <epoxy/gl.h>
 
 #include "gl/context_info.hpp"
 #include "gl/handles.hpp"
 #include "gl/shader_library.hpp"
+#include "gl/uniform.hpp"
 #include "gl_test_fixture.hpp"
+#include "temp_dir.hpp"
 
 namespace iblab {
 namespace {
@@ -94,6 +101,59 @@ TEST_F(GlTest, ProgramsAreCachedPerDefines)
     const gl::ShaderProgram& c = library.program({"conventions_probe.comp"}, {{"MODE", "1"}});
     EXPECT_EQ(&a, &b);
     EXPECT_NE(a.id(), c.id());
+}
+
+// A compute shader that writes scale * uValue to values[0]; the second version declares
+// another uniform first, so that uValue need not keep its location.
+void writeValueProbe(const std::filesystem::path& file, int scale, bool extraUniform)
+{
+    std::ofstream out(file);
+    out << "layout(local_size_x = 1) in;\n"
+        << (extraUniform ? "uniform int uExtra;\n" : "") << "uniform int uValue;\n"
+        << "layout(std430, binding = 0) buffer Values { int values[]; };\n"
+        << "void main() { values[0] = " << scale << " * uValue" << (extraUniform ? " + uExtra" : "") << "; }\n";
+}
+
+struct ValueProbeUniforms {
+    explicit ValueProbeUniforms(const gl::ShaderProgram& p) : value(p, "uValue") {}
+    gl::Uniform<int> value;
+};
+
+int runValueProbe(const gl::ShaderProgram& program, int value)
+{
+    gl::Buffer values = gl::createBuffer();
+    const int zero = 0;
+    glNamedBufferStorage(values.id(), sizeof zero, &zero, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, values.id());
+    program.uniforms<ValueProbeUniforms>().value.set(value);
+    glUseProgram(program.id());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    int result = 0;
+    glGetNamedBufferSubData(values.id(), 0, sizeof result, &result);
+    glUseProgram(0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    return result;
+}
+
+// Handles are located once per link: the same struct until a hot reload links the program
+// again, then handles of the new program (a stale one would set the deleted program's
+// uniform, a GL error, and leave the new one's at 0).
+TEST_F(GlTest, UniformHandlesFollowAHotReload)
+{
+    const testing::TempDir directory("iblab-uniform-reload");
+    const std::filesystem::path file = directory.file("value_probe.comp");
+    writeValueProbe(file, 1, false);
+    gl::ShaderLibrary library(gl::ShaderSearchPath{directory.path});
+    const gl::ShaderProgram& first = library.program({"value_probe.comp"});
+    EXPECT_EQ(&first.uniforms<ValueProbeUniforms>(), &first.uniforms<ValueProbeUniforms>()) << "located once per link";
+    EXPECT_EQ(runValueProbe(first, 7), 7);
+
+    writeValueProbe(file, 10, true);
+    std::filesystem::last_write_time(file, std::filesystem::last_write_time(file) + std::chrono::seconds(2));
+    EXPECT_TRUE(library.reloadChanged().empty());
+    const gl::ShaderProgram& reloaded = library.program({"value_probe.comp"});
+    EXPECT_EQ(runValueProbe(reloaded, 3), 30);
 }
 
 } // namespace

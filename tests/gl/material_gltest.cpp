@@ -162,7 +162,7 @@ TEST_F(Material, WhiteFurnaceSplitSumAndSampled)
             // 2%: the LUT is 128^2 half floats (its A + B is what compensation divides by),
             // and the sampled method's 256 Hammersley samples estimate that same A + B to
             // within about 1% (measured 0.99 at roughness 1, where the lobe is widest).
-            EXPECT_NEAR(centre, 1.0f, 0.02f) << shadingMethodName(method) << " roughness " << roughness;
+            EXPECT_NEAR(centre, 1.0f, 0.02f) << enumName(method) << " roughness " << roughness;
         }
     }
 }

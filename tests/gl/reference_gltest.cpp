@@ -199,7 +199,7 @@ TEST_F(Reference, ErrorViewShowsTheRelativeErrorInFalseColour)
             for (int c = 0; c < 3; ++c)
                 // 2/255: 8-bit rounding, and a half-float frame read back as float on both sides.
                 EXPECT_NEAR(float(shown.rgba[(std::size_t(p.y) * kSize + std::size_t(p.x)) * 4 + std::size_t(c)]) / 255.0f, colour[c], 2.0f / 255.0f)
-                    << errorSpaceName(space) << " pixel " << p.x << "," << p.y;
+                    << enumName(space) << " pixel " << p.x << "," << p.y;
         }
         const std::uint8_t* corner = &shown.rgba[0];
         EXPECT_EQ(corner[0], corner[1]);

@@ -91,7 +91,7 @@ TEST_F(GlTest, ToneMapCurvesAgreeWithCpu)
         for (std::size_t i = 0; i < inputs.size(); ++i) {
             const glm::vec3 cpu = displayEncode(glm::vec3(inputs[i]), inputs[i].w, op);
             // 2e-4 is a fortieth of an 8-bit step: the two sides only differ in float rounding.
-            EXPECT_LT(glm::length(cpu - glm::vec3(gpu[i])), 2e-4f) << toneMapOperatorName(op) << " input " << i;
+            EXPECT_LT(glm::length(cpu - glm::vec3(gpu[i])), 2e-4f) << enumName(op) << " input " << i;
         }
     }
 }

@@ -1,271 +1,24 @@
+// The canonical document: the JSON checked (nesting depth before any parser recurses, the
+// asset version, required extensions) and every buffer merged into one, bufferView ranges
+// checked and rebased onto it, each image's encoded bytes gathered; plus the small writers
+// the exporter and the test-model generator build documents with.
 #include "scene/internal/gltf_document.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cctype>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <limits>
 #include <optional>
 #include <string_view>
 
 #include "io/error.hpp"
+#include "scene/internal/glb_container.hpp"
+#include "scene/internal/gltf_resources.hpp"
 
 namespace iblab::scene_detail {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-constexpr std::uint32_t kGlbMagic = 0x46546C67;     // "glTF"
-constexpr std::uint32_t kChunkJson = 0x4E4F534A;    // "JSON"
-constexpr std::uint32_t kChunkBin = 0x004E4942;     // "BIN\0"
-// The GLB header stores lengths in 32 bits, and the glTF library takes a 32-bit size.
-constexpr std::uint64_t kMaxGlbBytes = 0xFFFFFFFFull;
-
-std::uint32_t readU32(const std::uint8_t* p)
-{
-    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
-}
-
-void appendU32(std::string& out, std::uint32_t v)
-{
-    for (int i = 0; i < 4; ++i) out += char((v >> (8 * i)) & 0xFF);
-}
-
-std::string bytesText(std::uint64_t n) { return std::to_string(n) + (n == 1 ? " byte" : " bytes"); }
-
-// Counts what has been read or decoded so far against ModelLoadOptions::maxInputBytes.
-class InputBudget {
-public:
-    explicit InputBudget(std::uint64_t limit) : limit_(std::min(limit, kMaxGlbBytes)) {}
-    std::uint64_t left() const { return limit_ - used_; }
-    std::uint64_t limit() const { return limit_; }
-    // Throws naming `what` when `bytes` more would not fit.
-    void take(const std::string& path, const std::string& what, std::uint64_t bytes)
-    {
-        if (bytes > left())
-            throw Error(path, what + " needs " + bytesText(bytes) + ", more than the " + bytesText(left()) +
-                                  " left of the " + bytesText(limit_) + " input budget (ModelLoadOptions::maxInputBytes)");
-        used_ += bytes;
-    }
-
-private:
-    std::uint64_t limit_;
-    std::uint64_t used_ = 0;
-};
-
-// Reads up to `maxBytes` from the start of a regular file. FIFOs, devices and folders are
-// refused (a FIFO named like a texture would block forever). On failure returns nullopt
-// and says why in `problem` ("not found", ...).
-std::optional<std::vector<std::uint8_t>> readFilePrefix(const fs::path& file, std::uint64_t wantBytes,
-                                                        std::string& problem)
-{
-    std::error_code ec;
-    const fs::file_status status = fs::status(file, ec);
-    if (ec || !fs::exists(status)) {
-        problem = "not found";
-        return std::nullopt;
-    }
-    if (!fs::is_regular_file(status)) {
-        problem = fs::is_directory(status) ? "is a folder, not a file" : "is not a regular file";
-        return std::nullopt;
-    }
-    std::ifstream in(file, std::ios::binary);
-    if (!in) {
-        problem = std::string("cannot be opened: ") + std::strerror(errno);
-        return std::nullopt;
-    }
-    std::vector<std::uint8_t> bytes(wantBytes);
-    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(wantBytes));
-    bytes.resize(std::size_t(in.gcount()));
-    if (in.bad()) {
-        problem = "cannot be read";
-        return std::nullopt;
-    }
-    return bytes;
-}
-
-std::uint64_t fileSize(const fs::path& file)
-{
-    std::error_code ec;
-    const std::uintmax_t size = fs::file_size(file, ec);
-    return ec ? 0 : std::uint64_t(size);
-}
-
-// Percent-decoding as URIs need it ("my%20file.png"); malformed escapes stay literal.
-std::string percentDecode(std::string_view text)
-{
-    const auto hex = [](char c) -> int {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-        return -1;
-    };
-    std::string out;
-    out.reserve(text.size());
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] == '%' && i + 2 < text.size() && hex(text[i + 1]) >= 0 && hex(text[i + 2]) >= 0) {
-            out += char(hex(text[i + 1]) * 16 + hex(text[i + 2]));
-            i += 2;
-        } else {
-            out += text[i];
-        }
-    }
-    return out;
-}
-
-// A URI as written, quoted for a message; long data URIs and binary junk are cut short
-// so that the message stays one readable line.
-std::string quoteUri(std::string_view uri)
-{
-    std::string out = "'";
-    for (char c : uri.substr(0, 80)) out += (std::isprint(static_cast<unsigned char>(c)) ? c : '?');
-    if (uri.size() > 80)
-        out += "...";
-    return out + "'";
-}
-
-// Where a relative URI points inside `folder`, or why it may not be read. Only plain
-// relative paths qualify: a scheme ("http:", "file:", also "C:"), an absolute path, or
-// ".." components that climb above the folder are refused, so that a dropped model can
-// only read files that came with it. Backslashes count as separators too (Windows
-// exporters write them). Symlinks inside the folder are trusted: the artist made them.
-std::optional<fs::path> resolveInsideFolder(const fs::path& folder, std::string_view uri, std::string& problem)
-{
-    const std::string decoded = percentDecode(uri);
-    if (decoded.empty()) {
-        problem = "is empty";
-        return std::nullopt;
-    }
-    if (decoded.find('\0') != std::string::npos) {
-        problem = "contains a NUL character";
-        return std::nullopt;
-    }
-    const std::size_t colon = decoded.find(':');
-    const std::size_t firstSeparator = decoded.find_first_of("/\\");
-    if (colon != std::string::npos && colon < firstSeparator) {
-        problem = "uses the scheme '" + decoded.substr(0, colon) + ":'; only relative file paths and data: URIs are read";
-        return std::nullopt;
-    }
-    if (decoded.front() == '/' || decoded.front() == '\\') {
-        problem = "is an absolute path; only paths relative to the model's folder are read";
-        return std::nullopt;
-    }
-    fs::path relative;
-    int depth = 0;
-    std::size_t start = 0;
-    while (start <= decoded.size()) {
-        const std::size_t end = std::min(decoded.find_first_of("/\\", start), decoded.size());
-        const std::string part = decoded.substr(start, end - start);
-        start = end + 1;
-        if (part.empty() || part == ".")
-            continue;
-        if (part == "..") {
-            if (--depth < 0) {
-                problem = "points outside the model's folder";
-                return std::nullopt;
-            }
-        } else {
-            ++depth;
-        }
-        relative /= part;
-    }
-    return folder / relative;
-}
-
-struct DataUri {
-    std::string mimeType;
-    std::string_view payload;
-    bool base64 = false;
-};
-
-std::optional<DataUri> parseDataUri(std::string_view uri)
-{
-    if (uri.size() < 5 || !std::equal(uri.begin(), uri.begin() + 5, "data:", [](char a, char b) {
-            return std::tolower(static_cast<unsigned char>(a)) == b;
-        }))
-        return std::nullopt;
-    const std::size_t comma = uri.find(',');
-    if (comma == std::string_view::npos)
-        return DataUri{};
-    std::string_view header = uri.substr(5, comma - 5);
-    DataUri d;
-    d.payload = uri.substr(comma + 1);
-    if (header.size() >= 7 && header.substr(header.size() - 7) == ";base64") {
-        d.base64 = true;
-        header.remove_suffix(7);
-    }
-    d.mimeType = std::string(header.substr(0, header.find(';')));
-    return d;
-}
-
-// An upper bound of the decoded size, known before decoding: what the budget checks.
-std::uint64_t decodedSizeBound(const DataUri& d) { return d.base64 ? (d.payload.size() / 4 + 1) * 3 : d.payload.size(); }
-
-bool decodeBase64(std::string_view text, std::vector<std::uint8_t>& out)
-{
-    static const std::array<std::int8_t, 256> table = [] {
-        std::array<std::int8_t, 256> t{};
-        t.fill(-1);
-        const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-        for (int i = 0; i < 64; ++i) t[static_cast<unsigned char>(alphabet[i])] = std::int8_t(i);
-        t['-'] = 62; // base64url, which some writers use
-        t['_'] = 63;
-        return t;
-    }();
-    while (!text.empty() && text.back() == '=') text.remove_suffix(1);
-    out.clear();
-    out.reserve(text.size() / 4 * 3 + 3);
-    std::uint32_t acc = 0;
-    int bits = 0;
-    for (char c : text) {
-        const int v = table[static_cast<unsigned char>(c)];
-        if (v < 0)
-            return false;
-        acc = (acc << 6) | std::uint32_t(v);
-        bits += 6;
-        if (bits >= 8) {
-            bits -= 8;
-            out.push_back(std::uint8_t((acc >> bits) & 0xFF));
-        }
-    }
-    return true;
-}
-
-std::string encodeBase64(const std::vector<std::uint8_t>& bytes)
-{
-    static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4);
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        const std::uint32_t n = std::uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? std::uint32_t(bytes[i + 1]) << 8 : 0u) |
-                                (i + 2 < bytes.size() ? std::uint32_t(bytes[i + 2]) : 0u);
-        out += alphabet[(n >> 18) & 63];
-        out += alphabet[(n >> 12) & 63];
-        out += i + 1 < bytes.size() ? alphabet[(n >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? alphabet[n & 63] : '=';
-    }
-    return out;
-}
-
-// Decodes a data URI after checking its size bound against the budget, so a URI that
-// claims or holds a huge payload fails before anything is allocated for it.
-std::vector<std::uint8_t> decodeDataUri(const DataUri& d, const std::string& path, const std::string& what,
-                                        InputBudget& budget)
-{
-    budget.take(path, what + " (data URI)", decodedSizeBound(d));
-    std::vector<std::uint8_t> bytes;
-    if (d.base64) {
-        if (!decodeBase64(d.payload, bytes))
-            throw Error(path, what + " is a data URI that is not valid base64");
-    } else {
-        const std::string text = percentDecode(d.payload);
-        bytes.assign(text.begin(), text.end());
-    }
-    return bytes;
-}
 
 // True when arrays/objects nest deeper than maxDepth. A plain scan with no recursion and
 // no allocation, run before any JSON parser: parsers (and the glTF library's conversion
@@ -312,62 +65,6 @@ std::string describeStart(const std::vector<std::uint8_t>& bytes)
         }
     }
     return out;
-}
-
-struct GlbChunks {
-    std::string_view jsonText;
-    const std::uint8_t* bin = nullptr;
-    std::size_t binSize = 0;
-    bool hasBin = false;
-};
-
-// Walks the GLB container (https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html#binary-gltf-layout)
-// with every length checked against what the file really holds.
-GlbChunks parseGlb(const std::string& path, const std::vector<std::uint8_t>& file, std::vector<std::string>& warnings)
-{
-    if (file.size() < 12)
-        throw Error(path, "truncated GLB: " + bytesText(file.size()) + ", the GLB header alone needs 12");
-    const std::uint32_t version = readU32(&file[4]);
-    if (version != 2)
-        throw Error(path, "GLB version " + std::to_string(version) + " is not supported (only glTF 2.0)");
-    const std::uint64_t declared = readU32(&file[8]);
-    if (declared > file.size())
-        throw Error(path, "truncated GLB: the header declares " + bytesText(declared) + " but the file has " +
-                              bytesText(file.size()));
-    if (declared < file.size())
-        warnings.push_back(bytesText(file.size() - declared) + " after the end of the GLB data, ignored");
-
-    GlbChunks chunks;
-    bool haveJson = false;
-    std::uint64_t offset = 12;
-    for (int index = 0; offset < declared; ++index) {
-        if (offset + 8 > declared)
-            throw Error(path, "truncated GLB: chunk " + std::to_string(index) + "'s header at byte " + std::to_string(offset) +
-                                  " runs past the end of the " + bytesText(declared) + " GLB");
-        const std::uint64_t length = readU32(&file[offset]);
-        const std::uint32_t type = readU32(&file[offset + 4]);
-        const std::uint64_t dataStart = offset + 8;
-        if (length > declared - dataStart)
-            throw Error(path, "GLB chunk " + std::to_string(index) + " declares a length of " + bytesText(length) +
-                                  " but only " + bytesText(declared - dataStart) + " follow its header");
-        if (length % 4 != 0)
-            warnings.push_back("GLB chunk " + std::to_string(index) + "'s length " + std::to_string(length) +
-                               " is not a multiple of 4 (the GLB spec requires padding)");
-        if (index == 0) {
-            if (type != kChunkJson)
-                throw Error(path, "the first GLB chunk is not JSON");
-            chunks.jsonText = std::string_view(reinterpret_cast<const char*>(&file[dataStart]), std::size_t(length));
-            haveJson = true;
-        } else if (type == kChunkBin && !chunks.hasBin) {
-            chunks.bin = &file[dataStart];
-            chunks.binSize = std::size_t(length);
-            chunks.hasBin = true;
-        } // Other chunk types are to be ignored, says the spec.
-        offset = dataStart + length;
-    }
-    if (!haveJson)
-        throw Error(path, "the GLB has no JSON chunk");
-    return chunks;
 }
 
 // Typed access to JSON members, with errors that say where in the document they are.
@@ -646,7 +343,7 @@ GltfDocument readGltfDocument(const std::string& path, const DocumentLimits& lim
 
     std::optional<GlbChunks> glb;
     std::string_view text;
-    if (file->size() >= 4 && readU32(file->data()) == kGlbMagic) {
+    if (startsWithGlbMagic(*file)) {
         glb = parseGlb(path, *file, doc.warnings);
         text = glb->jsonText;
     } else {
@@ -717,30 +414,7 @@ void setSingleBuffer(json& root, const std::vector<std::uint8_t>& bin, bool embe
     root["buffers"] = json::array({std::move(buffer)});
 }
 
-std::string serializeGlb(const json& root, const std::vector<std::uint8_t>& bin)
-{
-    std::string text = root.dump(-1, ' ', false, json::error_handler_t::replace);
-    text.resize((text.size() + 3) / 4 * 4, ' ');
-    const std::size_t binPadded = (bin.size() + 3) / 4 * 4;
-    const std::size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + binPadded);
-    if (total > kMaxGlbBytes)
-        throw Error("GLB", "the model needs " + bytesText(total) + ", more than a GLB can hold (4 GiB)");
-    std::string out;
-    out.reserve(total);
-    appendU32(out, kGlbMagic);
-    appendU32(out, 2);
-    appendU32(out, std::uint32_t(total));
-    appendU32(out, std::uint32_t(text.size()));
-    appendU32(out, kChunkJson);
-    out += text;
-    if (!bin.empty()) {
-        appendU32(out, std::uint32_t(binPadded));
-        appendU32(out, kChunkBin);
-        out.append(reinterpret_cast<const char*>(bin.data()), bin.size());
-        out.append(binPadded - bin.size(), '\0');
-    }
-    return out;
-}
+std::string bytesText(std::uint64_t n) { return std::to_string(n) + (n == 1 ? " byte" : " bytes"); }
 
 std::string indexed(const char* array, std::size_t index) { return std::string(array) + "[" + std::to_string(index) + "]"; }
 

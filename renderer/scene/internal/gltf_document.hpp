@@ -11,7 +11,9 @@
 //   - images: each image's encoded bytes (from its file, data URI or bufferView), or the
 //     reason they are unavailable.
 // Everything a hostile file could use to crash a parser, escape the model's folder or
-// exhaust memory is checked here, before the glTF library sees the document.
+// exhaust memory is checked here, before the glTF library sees the document: the container
+// by glb_container.hpp, the files and data URIs by gltf_resources.hpp, the JSON and the
+// byte ranges by gltf_document.cpp.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -53,9 +55,8 @@ int appendBufferView(nlohmann::json& json, std::vector<std::uint8_t>& bin, const
 // data URI when `embedAsDataUri`), or no buffers at all when bin is empty.
 void setSingleBuffer(nlohmann::json& json, const std::vector<std::uint8_t>& bin, bool embedAsDataUri);
 
-// A complete .glb: header, JSON chunk (space-padded), BIN chunk (zero-padded; omitted
-// when bin is empty). The json's buffer 0, if any, must describe `bin`.
-std::string serializeGlb(const nlohmann::json& json, const std::vector<std::uint8_t>& bin);
+// "1 byte", "12 bytes": how messages count bytes.
+std::string bytesText(std::uint64_t n);
 
 // "buffers[3]": how messages name an element of a top-level array.
 std::string indexed(const char* array, std::size_t index);

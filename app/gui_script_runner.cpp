@@ -1,14 +1,17 @@
+// Running a GUI script: each step becomes real input events pushed into the app's input
+// queue (clicks aimed at controls found by path and scrolled into view first, drags over
+// several frames, text as code points), frames are run until the queue drains, and the
+// expect steps check the state and the pixels (gui_script_checks.hpp). The first failure
+// ends the run, reported as FILE:LINE: step: reason.
 #include "gui_script.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
-#include <fstream>
+#include <cstdlib>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 
 #include <GLFW/glfw3.h>
 #include <nlohmann/json.hpp>
@@ -17,90 +20,13 @@
 #include "io/error.hpp"
 #include "io/image_writer.hpp"
 #include "gui_app.hpp"
+#include "gui_script_checks.hpp"
 #include "ui/widgets.hpp"
 
 namespace iblab::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-struct CommandShape {
-    int minArgs, maxArgs;
-};
-
-// Every command and how many arguments it takes (docs/gui-scripts.md describes each).
-const std::map<std::string, CommandShape>& commandShapes()
-{
-    static const std::map<std::string, CommandShape> shapes = {
-        {"window", {2, 2}},       {"frames", {1, 1}},         {"wait-idle", {0, 1}},      {"wait-until", {3, 4}},
-        {"move", {1, 2}},         {"click", {1, 3}},          {"double-click", {1, 2}},   {"press", {0, 1}},
-        {"release", {0, 1}},      {"drag", {3, 5}},           {"wheel", {1, 3}},          {"key", {1, 16}},
-        {"key-down", {1, 1}},     {"key-up", {1, 1}},         {"type", {1, 1}},           {"set", {2, 2}},
-        {"select", {2, 2}},       {"open", {1, 1}},           {"close-section", {1, 1}},  {"drop", {1, 16}},
-        {"close", {0, 0}},        {"expect", {3, 3}},         {"expect-item", {1, 1}},    {"expect-no-item", {1, 1}},
-        {"expect-pixel", {5, 6}}, {"expect-mean", {3, 7}},    {"snapshot", {1, 6}},       {"expect-changed", {1, 2}},
-        {"expect-unchanged", {1, 2}}, {"screenshot", {1, 1}}, {"print", {1, 1}},          {"sleep", {1, 1}},
-        {"list-items", {0, 1}},
-    };
-    return shapes;
-}
-
-// ${NAME} becomes the environment variable's value, so that a script can name files
-// wherever a test or a user keeps them (${IBLAB_ASSET_DIR}/models/...). An unset variable is
-// an error rather than an empty string that would make a wrong path.
-std::string expandVariables(const std::string& token, int lineNumber)
-{
-    std::string out;
-    for (std::size_t i = 0; i < token.size(); ++i) {
-        if (token.compare(i, 2, "${") != 0) {
-            out += token[i];
-            continue;
-        }
-        const std::size_t end = token.find('}', i);
-        if (end == std::string::npos) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unterminated ${");
-        const std::string name = token.substr(i + 2, end - i - 2);
-        const char* value = std::getenv(name.c_str());
-        if (!value) throw std::runtime_error("line " + std::to_string(lineNumber) + ": environment variable " + name + " is not set");
-        out += value;
-        i = end;
-    }
-    return out;
-}
-
-std::vector<std::string> tokenize(const std::string& line, int lineNumber)
-{
-    std::vector<std::string> tokens;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        if (std::isspace(static_cast<unsigned char>(line[i]))) {
-            ++i;
-            continue;
-        }
-        if (line[i] == '#') break;
-        std::string token;
-        if (line[i] == '"') {
-            ++i;
-            bool closed = false;
-            while (i < line.size()) {
-                if (line[i] == '\\' && i + 1 < line.size()) {
-                    token += line[i + 1];
-                    i += 2;
-                } else if (line[i] == '"') {
-                    closed = true;
-                    ++i;
-                    break;
-                } else {
-                    token += line[i++];
-                }
-            }
-            if (!closed) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unterminated quote");
-        } else {
-            while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) token += line[i++];
-        }
-        tokens.push_back(expandVariables(token, lineNumber));
-    }
-    return tokens;
-}
 
 std::optional<double> number(const std::string& text)
 {
@@ -111,94 +37,14 @@ std::optional<double> number(const std::string& text)
     return value;
 }
 
-std::string lower(std::string text)
+// As lower-casing both and finding one in the other would say (ASCII).
+bool containsIgnoringCase(const std::string& text, const std::string& part)
 {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return text;
+    const auto sameLetter = [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    };
+    return part.empty() || std::search(text.begin(), text.end(), part.begin(), part.end(), sameLetter) != text.end();
 }
-
-const std::map<std::string, int>& keyNames()
-{
-    static const std::map<std::string, int> names = [] {
-        std::map<std::string, int> n = {
-            {"escape", GLFW_KEY_ESCAPE},   {"esc", GLFW_KEY_ESCAPE},        {"enter", GLFW_KEY_ENTER},     {"return", GLFW_KEY_ENTER},
-            {"tab", GLFW_KEY_TAB},         {"space", GLFW_KEY_SPACE},       {"backspace", GLFW_KEY_BACKSPACE}, {"delete", GLFW_KEY_DELETE},
-            {"insert", GLFW_KEY_INSERT},   {"left", GLFW_KEY_LEFT},         {"right", GLFW_KEY_RIGHT},     {"up", GLFW_KEY_UP},
-            {"down", GLFW_KEY_DOWN},       {"home", GLFW_KEY_HOME},         {"end", GLFW_KEY_END},         {"pageup", GLFW_KEY_PAGE_UP},
-            {"pagedown", GLFW_KEY_PAGE_DOWN}, {"minus", GLFW_KEY_MINUS},    {"equal", GLFW_KEY_EQUAL},     {"plus", GLFW_KEY_KP_ADD},
-            {"kp_add", GLFW_KEY_KP_ADD},   {"kp_subtract", GLFW_KEY_KP_SUBTRACT}, {"kp_enter", GLFW_KEY_KP_ENTER},
-            {"ctrl", GLFW_KEY_LEFT_CONTROL}, {"shift", GLFW_KEY_LEFT_SHIFT}, {"alt", GLFW_KEY_LEFT_ALT},   {"super", GLFW_KEY_LEFT_SUPER},
-        };
-        for (char c = 'a'; c <= 'z'; ++c) n[std::string(1, c)] = GLFW_KEY_A + (c - 'a');
-        for (char c = '0'; c <= '9'; ++c) {
-            n[std::string(1, c)] = GLFW_KEY_0 + (c - '0');
-            n["kp_" + std::string(1, c)] = GLFW_KEY_KP_0 + (c - '0');
-        }
-        for (int f = 1; f <= 12; ++f) n["f" + std::to_string(f)] = GLFW_KEY_F1 + f - 1;
-        return n;
-    }();
-    return names;
-}
-
-} // namespace
-
-std::optional<KeyChord> parseKeyChord(const std::string& text)
-{
-    KeyChord chord;
-    std::stringstream parts(text);
-    std::vector<std::string> names;
-    for (std::string part; std::getline(parts, part, '+');) names.push_back(lower(part));
-    if (names.empty()) return std::nullopt;
-    // "ctrl++" leaves an empty last part: the key is '+' itself.
-    if (!text.empty() && text.back() == '+' && (names.empty() || names.back().empty())) names.back() = "plus";
-    for (std::size_t i = 0; i < names.size(); ++i) {
-        const auto found = keyNames().find(names[i]);
-        if (found == keyNames().end()) return std::nullopt;
-        if (i + 1 < names.size()) chord.modifiers.push_back(found->second);
-        else chord.key = found->second;
-    }
-    return chord;
-}
-
-std::vector<ScriptStep> parseGuiScript(const std::string& text)
-{
-    std::vector<ScriptStep> steps;
-    std::istringstream in(text);
-    int lineNumber = 0;
-    for (std::string line; std::getline(in, line);) {
-        ++lineNumber;
-        std::vector<std::string> tokens = tokenize(line, lineNumber);
-        if (tokens.empty()) continue;
-        const std::string command = tokens.front();
-        const auto shape = commandShapes().find(command);
-        if (shape == commandShapes().end()) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown command \"" + command + "\"");
-        const int args = int(tokens.size()) - 1;
-        if (args < shape->second.minArgs || args > shape->second.maxArgs)
-            throw std::runtime_error("line " + std::to_string(lineNumber) + ": " + command + " takes " + std::to_string(shape->second.minArgs) +
-                                     (shape->second.maxArgs != shape->second.minArgs ? " to " + std::to_string(shape->second.maxArgs) : "") +
-                                     " arguments, got " + std::to_string(args));
-        if (command == "key" || command == "key-down" || command == "key-up")
-            for (std::size_t i = 1; i < tokens.size(); ++i)
-                if (!parseKeyChord(tokens[i])) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown key \"" + tokens[i] + "\"");
-        steps.push_back({lineNumber, command, std::vector<std::string>(tokens.begin() + 1, tokens.end()), line});
-    }
-    return steps;
-}
-
-namespace {
-
-struct StepFailed : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-struct Region {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
-
-struct Snapshot {
-    Region region;
-    WindowPixels pixels;
-};
 
 class ScriptRunner {
 public:
@@ -217,7 +63,7 @@ public:
             waitFor([&] { return app_.idle(); }, a.empty() ? 180.0 : need(number(a[0]), "seconds"), [] { return std::string("the app to be idle"); });
         } else if (c == "wait-until") {
             std::string why;
-            waitFor([&] { return check(a[0], a[1], a[2], why); }, a.size() > 3 ? need(number(a[3]), "seconds") : 180.0,
+            waitFor([&] { return checkState(app_.state(), a[0], a[1], a[2], why); }, a.size() > 3 ? need(number(a[3]), "seconds") : 180.0,
                     [&] { return a[0] + " " + a[1] + " " + a[2] + " (last: " + why + ")"; });
         } else if (c == "move") {
             std::size_t i = 0;
@@ -294,7 +140,7 @@ public:
             settle();
         } else if (c == "expect") {
             std::string why;
-            if (!check(a[0], a[1], a[2], why)) throw StepFailed(why);
+            if (!checkState(app_.state(), a[0], a[1], a[2], why)) throw StepFailed(why);
         } else if (c == "expect-item" || c == "expect-no-item") {
             const bool present = app_.items().find(a[0]) != nullptr;
             if (present != (c == "expect-item")) throw StepFailed(present ? "\"" + a[0] + "\" is shown" : "no control \"" + a[0] + "\" is shown" + nearby(a[0]));
@@ -314,7 +160,7 @@ public:
             if (i + 2 != a.size()) throw StepFailed("expect-mean REGION OP VALUE");
             const double mean = meanLevel(capture(), r);
             std::string why;
-            if (!compare(nlohmann::json(mean), a[i], nlohmann::json(need(number(a[i + 1]), "a value")), why))
+            if (!compareValues(nlohmann::json(mean), a[i], nlohmann::json(need(number(a[i + 1]), "a value")), why))
                 throw StepFailed("mean level " + std::to_string(mean) + ": " + why);
         } else if (c == "snapshot") {
             std::size_t i = 1;
@@ -417,7 +263,7 @@ private:
         const std::string last = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1);
         std::string list;
         for (const ui::TrackedItem& item : app_.items().items())
-            if (lower(item.path).find(lower(last)) != std::string::npos) list += (list.empty() ? "" : ", ") + item.path;
+            if (containsIgnoringCase(item.path, last)) list += (list.empty() ? "" : ", ") + item.path;
         return list.empty() ? "" : " (shown: " + list + ")";
     }
 
@@ -542,89 +388,6 @@ private:
         app_.requestPixels();
         frames(1);
         return app_.lastPixels();
-    }
-
-    static Region clipped(Region r, const WindowPixels& p)
-    {
-        return {std::clamp(r.x0, 0, p.width), std::clamp(r.y0, 0, p.height), std::clamp(r.x1, 0, p.width), std::clamp(r.y1, 0, p.height)};
-    }
-
-    static double meanLevel(const WindowPixels& p, Region r)
-    {
-        r = clipped(r, p);
-        double sum = 0.0;
-        std::size_t count = 0;
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x, ++count) {
-                const std::uint8_t* px = &p.rgba[(std::size_t(y) * std::size_t(p.width) + std::size_t(x)) * 4];
-                sum += (double(px[0]) + double(px[1]) + double(px[2])) / 3.0;
-            }
-        if (count == 0) throw StepFailed("empty region");
-        return sum / double(count);
-    }
-
-    static double meanDifference(const Snapshot& before, const WindowPixels& now)
-    {
-        if (before.pixels.width != now.width || before.pixels.height != now.height) return 255.0;
-        const Region r = clipped(before.region, now);
-        double sum = 0.0;
-        std::size_t count = 0;
-        for (int y = r.y0; y < r.y1; ++y)
-            for (int x = r.x0; x < r.x1; ++x)
-                for (int ch = 0; ch < 3; ++ch, ++count) {
-                    const std::size_t at = (std::size_t(y) * std::size_t(now.width) + std::size_t(x)) * 4 + std::size_t(ch);
-                    sum += std::abs(double(now.rgba[at]) - double(before.pixels.rgba[at]));
-                }
-        if (count == 0) throw StepFailed("empty region");
-        return sum / double(count);
-    }
-
-    static bool compare(const nlohmann::json& actual, const std::string& op, const nlohmann::json& expected, std::string& why)
-    {
-        bool ok = false;
-        if (actual.is_number() && expected.is_number()) {
-            const double a = actual.get<double>(), e = expected.get<double>();
-            // Settings travel as float: 0.3 reads back as 0.30000001.
-            const double tolerance = 1e-5 * std::max(1.0, std::abs(e));
-            if (op == "==") ok = std::abs(a - e) <= tolerance;
-            else if (op == "!=") ok = std::abs(a - e) > tolerance;
-            else if (op == "<") ok = a < e;
-            else if (op == "<=") ok = a <= e + tolerance;
-            else if (op == ">") ok = a > e;
-            else if (op == ">=") ok = a >= e - tolerance;
-            else if (op == "~") ok = std::abs(a - e) <= 0.01 * std::max(1.0, std::abs(e));
-            else throw StepFailed("unknown comparison \"" + op + "\" (== != < <= > >= ~ contains)");
-        } else if (op == "==") {
-            ok = actual == expected;
-        } else if (op == "!=") {
-            ok = actual != expected;
-        } else if (op == "contains" || op == "~") {
-            ok = actual.is_string() && expected.is_string() && actual.get<std::string>().find(expected.get<std::string>()) != std::string::npos;
-            if (actual.is_array()) ok = std::find(actual.begin(), actual.end(), expected) != actual.end();
-        } else {
-            throw StepFailed("\"" + op + "\" compares numbers only; got " + actual.dump() + " and " + expected.dump());
-        }
-        if (!ok) why = "got " + actual.dump() + ", expected " + op + " " + expected.dump();
-        return ok;
-    }
-
-    bool check(const std::string& pointerText, const std::string& op, const std::string& valueText, std::string& why) const
-    {
-        const nlohmann::json state = app_.state();
-        nlohmann::json::json_pointer pointer;
-        try {
-            pointer = nlohmann::json::json_pointer(pointerText);
-        } catch (const std::exception&) {
-            throw StepFailed("\"" + pointerText + "\" is not a JSON pointer (like /settings/scene/kind)");
-        }
-        if (!state.contains(pointer)) throw StepFailed("the state has no " + pointerText);
-        nlohmann::json expected;
-        try {
-            expected = nlohmann::json::parse(valueText);
-        } catch (const std::exception&) {
-            expected = valueText; // a bare word is a string: grid, splitsum
-        }
-        return compare(state.at(pointer), op, expected, why);
     }
 
     GuiApp& app_;

@@ -1,0 +1,163 @@
+#include "frame/mesh_pass.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "frame/camera.hpp"
+#include "frame/texture_units.hpp"
+#include "ibl/sampling.hpp"
+
+namespace iblab {
+
+namespace {
+
+struct MeshUniforms {
+    explicit MeshUniforms(const gl::ShaderProgram& p);
+    IblUniforms ibl;
+    gl::Uniform<glm::mat4> viewProjection;
+    gl::Uniform<glm::vec3> cameraPosition;
+    gl::Uniform<glm::vec2> sampleRotation;
+    gl::Uniform<bool> normalizeByAccepted;
+    gl::Uniform<bool> cosineSampledDiffuse;
+    gl::Uniform<int> sampleCount;
+    gl::Uniform<glm::mat4> model;
+    gl::Uniform<glm::mat3> normalMatrix;
+    // The material's factors and texture slots (glTF's).
+    gl::Uniform<glm::vec4> baseColorFactor;
+    gl::Uniform<float> metallicFactor;
+    gl::Uniform<float> roughnessFactor;
+    gl::Uniform<glm::vec3> emissiveFactor;
+    gl::Uniform<float> occlusionStrength;
+    gl::Uniform<float> normalScale;
+    gl::Uniform<float> specular;
+    gl::Uniform<float> ambientOcclusion;
+    gl::Uniform<bool> hasBaseColorTexture;
+    gl::Uniform<bool> hasMetallicRoughnessTexture;
+    gl::Uniform<bool> hasNormalTexture;
+    gl::Uniform<bool> hasOcclusionTexture;
+    gl::Uniform<bool> hasEmissiveTexture;
+    gl::Uniform<glm::ivec4> texCoordSets;
+    gl::Uniform<int> emissiveTexCoordSet;
+};
+
+MeshUniforms::MeshUniforms(const gl::ShaderProgram& p)
+    : ibl(p), viewProjection(p, "uViewProjection"), cameraPosition(p, "uCameraPosition"), sampleRotation(p, "uSampleRotation"),
+      normalizeByAccepted(p, "uNormalizeByAccepted"), cosineSampledDiffuse(p, "uCosineSampledDiffuse"), sampleCount(p, "uSampleCount"),
+      model(p, "uModel"), normalMatrix(p, "uNormalMatrix"), baseColorFactor(p, "uBaseColorFactor"), metallicFactor(p, "uMetallicFactor"),
+      roughnessFactor(p, "uRoughnessFactor"), emissiveFactor(p, "uEmissiveFactor"), occlusionStrength(p, "uOcclusionStrength"),
+      normalScale(p, "uNormalScale"), specular(p, "uSpecular"), ambientOcclusion(p, "uAmbientOcclusion"),
+      hasBaseColorTexture(p, "uHasBaseColorTexture"), hasMetallicRoughnessTexture(p, "uHasMetallicRoughnessTexture"),
+      hasNormalTexture(p, "uHasNormalTexture"), hasOcclusionTexture(p, "uHasOcclusionTexture"), hasEmissiveTexture(p, "uHasEmissiveTexture"),
+      texCoordSets(p, "uTexCoordSets"), emissiveTexCoordSet(p, "uEmissiveTexCoordSet")
+{
+}
+
+void bindMaterial(const MeshUniforms& u, const GpuScene& scene, const SceneDraw& draw, const MaterialSettings& sliders)
+{
+    PbrMaterial material = draw.material;
+    // Procedural scenes take the sliders' material (the grid keeps its own metallic and
+    // roughness); a model keeps its own unless the sliders override it.
+    if (scene.kind != SceneKind::Model || sliders.overrideModel) {
+        material.baseColorFactor = glm::vec4(sliders.baseColor, 1.0f);
+        if (!draw.materialFromScene) {
+            material.metallicFactor = sliders.metallic;
+            material.roughnessFactor = sliders.roughness;
+        }
+    }
+    u.baseColorFactor.set(material.baseColorFactor);
+    u.metallicFactor.set(material.metallicFactor);
+    u.roughnessFactor.set(material.roughnessFactor);
+    u.emissiveFactor.set(material.emissiveFactor);
+    u.occlusionStrength.set(material.occlusionStrength);
+    u.normalScale.set(material.normalScale);
+    u.specular.set(sliders.specular);
+    u.ambientOcclusion.set(sliders.ambientOcclusion);
+    auto bindSlot = [&](const TextureRef& ref, TextureUnit unit, const gl::Uniform<bool>& present) {
+        const bool valid = ref.valid() && std::size_t(ref.index) < scene.textures.size();
+        present.set(valid);
+        glBindTextureUnit(unit, valid ? scene.textures[std::size_t(ref.index)].id() : 0);
+    };
+    bindSlot(material.baseColorTexture, kUnitBaseColor, u.hasBaseColorTexture);
+    bindSlot(material.metallicRoughnessTexture, kUnitMetallicRoughness, u.hasMetallicRoughnessTexture);
+    bindSlot(material.normalTexture, kUnitNormal, u.hasNormalTexture);
+    bindSlot(material.occlusionTexture, kUnitOcclusion, u.hasOcclusionTexture);
+    bindSlot(material.emissiveTexture, kUnitEmissive, u.hasEmissiveTexture);
+    u.texCoordSets.set(glm::ivec4(material.baseColorTexture.texCoord, material.metallicRoughnessTexture.texCoord, material.normalTexture.texCoord,
+                                  material.occlusionTexture.texCoord));
+    u.emissiveTexCoordSet.set(material.emissiveTexture.texCoord);
+}
+
+} // namespace
+
+MeshPass::MeshPass(gl::ShaderLibrary& shaders) : shaders_(shaders)
+{
+    glNamedBufferStorage(hammersley_.id(), kMaxSampleCount * sizeof(float) * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
+}
+
+// The first n Hammersley points, uploaded only when N changes (std140 packs two per vec4).
+void MeshPass::ensureHammersley(int n)
+{
+    if (n == hammersleyCount_) return;
+    std::vector<float> points(std::size_t(n) * 2);
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec2 p = hammersley(std::uint32_t(i), std::uint32_t(n));
+        points[std::size_t(i) * 2] = float(p.x);
+        points[std::size_t(i) * 2 + 1] = float(p.y);
+    }
+    glNamedBufferSubData(hammersley_.id(), 0, GLsizeiptr(points.size() * sizeof(float)), points.data());
+    hammersleyCount_ = n;
+}
+
+bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const Lighting& lighting, float aspect, glm::vec2 sampleRotation,
+                    Output output)
+{
+    if (!lighting.bake) return false;
+    const GpuScene& scene = sceneSlot.ensure(settings.scene);
+    const bool rotating = !keepsExactSampleCount(settings);
+    if (!rotating) sampleRotation = glm::vec2(0.0f);
+    const glm::mat4 viewProjection = cameraProjection(settings.camera, aspect) * cameraView(settings.camera);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, hammersley_.id());
+    const bool gbuffer = output == Output::GBuffer;
+    bool sampledDraws = false;
+    // Per program: the IBL and camera state once; per draw only what differs. The
+    // G-buffer has one program for every draw (the first round takes them all).
+    for (const bool sampled : {false, true}) {
+        if (gbuffer && sampled) break;
+        const int method = gbuffer ? 2 : sampled ? 1 : 0;
+        const MeshUniforms* u = nullptr;
+        for (const SceneDraw& draw : scene.draws) {
+            if (!gbuffer && (draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
+            if (!u) {
+                sampledDraws = sampledDraws || (sampled && rotating);
+                const gl::ShaderProgram& program = shaders_.program({"mesh.vert", "pbr.frag"}, {{"METHOD", std::to_string(method)}});
+                u = &program.uniforms<MeshUniforms>();
+                glUseProgram(program.id());
+                u->ibl.bind(lighting, settings);
+                u->viewProjection.set(viewProjection);
+                u->cameraPosition.set(cameraPosition(settings.camera));
+                u->sampleRotation.set(sampleRotation);
+                u->normalizeByAccepted.set(settings.sampling.normalizeByAccepted);
+                u->cosineSampledDiffuse.set(settings.sampling.cosineSampledDiffuse);
+            }
+            u->model.set(draw.model);
+            u->normalMatrix.set(glm::transpose(glm::inverse(glm::mat3(draw.model))));
+            bindMaterial(*u, scene, draw, settings.material);
+            if (sampled) {
+                const int n = std::clamp(draw.sampleCount > 0 ? draw.sampleCount : settings.sampling.samples, 1, kMaxSampleCount);
+                ensureHammersley(n);
+                u->sampleCount.set(n);
+            }
+            scene.meshes[std::size_t(draw.mesh)].draw();
+        }
+    }
+    glDisable(GL_DEPTH_TEST);
+    return sampledDraws;
+}
+
+} // namespace iblab

@@ -1,0 +1,321 @@
+#pragma once
+// One description per setting: its JSON key, command-line option, label, help and valid
+// range, with a reference into the settings struct. JSON (presets, sidecars, the bake cache
+// key), the command line (app/field_options.hpp), validation and the UI's tooltips and
+// ranges all read the same description, so a setting is added in one table row; its
+// default stays where it belongs, in the struct's member initialiser.
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+#include "ibl/enum_names.hpp"
+#include "io/error.hpp"
+
+namespace iblab {
+
+// How a field appears on the command line.
+enum class CliForm {
+    None,        // not an option (set through JSON or the UI only)
+    Value,       // --name VALUE (booleans take on/off, true/false, 1/0)
+    Flag,        // --name alone sets a boolean true
+    NegatedFlag, // --name alone sets a boolean false ("--no-pdf-filtering")
+};
+
+template <typename Settings>
+struct EnumFieldRef {
+    std::function<std::string_view(const Settings&)> get;
+    std::function<bool(Settings&, std::string_view)> set; // false for an unknown name
+    std::vector<std::string_view> choices;
+};
+
+template <typename Settings>
+using FieldRef = std::variant<std::function<bool&(Settings&)>, std::function<int&(Settings&)>, std::function<float&(Settings&)>,
+                              std::function<double&(Settings&)>, std::function<std::int64_t&(Settings&)>,
+                              std::function<std::string&(Settings&)>, std::function<glm::vec3&(Settings&)>, EnumFieldRef<Settings>>;
+
+struct FieldRange {
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+    // A value outside [min, max] that is also valid, with its meaning: "0 = from the source".
+    std::optional<double> special = std::nullopt;
+    std::string_view specialMeaning = {};
+    bool powerOfTwo = false; // face sizes, sample counts of MSAA
+};
+
+template <typename Settings>
+struct Field {
+    std::string key;        // JSON path, "prefilter.face_size"
+    std::string_view label; // what the UI shows
+    std::string_view help;  // the CLI's help text and the UI's tooltip
+    FieldRef<Settings> ref;
+    FieldRange range = {};
+    std::string cli = {};   // "--prefilter-size"
+    CliForm cliForm = CliForm::None;
+};
+
+template <typename Settings>
+using FieldTable = std::vector<Field<Settings>>;
+
+// A reference to a member, as a captureless lambda: [](S& s) -> auto& { return s.a.b; }.
+// Enums become name-based references through their EnumNames.
+template <typename Settings, typename Access>
+FieldRef<Settings> fieldRef(Access access)
+{
+    using T = std::remove_reference_t<decltype(access(std::declval<Settings&>()))>;
+    if constexpr (std::is_enum_v<T>) {
+        return EnumFieldRef<Settings>{
+            [access](const Settings& s) { return enumName(access(const_cast<Settings&>(s))); },
+            [access](Settings& s, std::string_view name) {
+                const std::optional<T> value = parseEnum<T>(name);
+                if (value) access(s) = *value;
+                return value.has_value();
+            },
+            enumChoices<T>()};
+    } else {
+        return std::function<T&(Settings&)>(access);
+    }
+}
+
+// The fields of a nested struct (the frame's sampling block, also its compare block) as
+// fields of the outer one, under a key prefix ("view.compare.") and an option prefix.
+template <typename Outer, typename Inner, typename Access>
+void appendNested(FieldTable<Outer>& out, const FieldTable<Inner>& inner, Access access, std::string_view keyPrefix,
+                  std::string_view cliPrefix)
+{
+    for (const Field<Inner>& field : inner) {
+        Field<Outer> nested{.key = std::string(keyPrefix) + field.key, .label = field.label, .help = field.help, .range = field.range,
+                            .cli = field.cli, .cliForm = field.cliForm};
+        // "--samples" -> "--b-samples"
+        if (!field.cli.empty() && !cliPrefix.empty()) nested.cli = "--" + std::string(cliPrefix) + field.cli.substr(2);
+        nested.ref = std::visit(
+            [&](const auto& ref) -> FieldRef<Outer> {
+                using Ref = std::decay_t<decltype(ref)>;
+                if constexpr (std::is_same_v<Ref, EnumFieldRef<Inner>>) {
+                    return EnumFieldRef<Outer>{[ref, access](const Outer& o) { return ref.get(access(const_cast<Outer&>(o))); },
+                                               [ref, access](Outer& o, std::string_view name) { return ref.set(access(o), name); },
+                                               ref.choices};
+                } else {
+                    using T = std::remove_reference_t<decltype(ref(std::declval<Inner&>()))>;
+                    return std::function<T&(Outer&)>([ref, access](Outer& o) -> T& { return ref(access(o)); });
+                }
+            },
+            field.ref);
+        out.push_back(std::move(nested));
+    }
+}
+
+template <typename Settings>
+const Field<Settings>* findField(const FieldTable<Settings>& table, std::string_view key)
+{
+    for (const auto& field : table)
+        if (field.key == key) return &field;
+    return nullptr;
+}
+
+// The field's value as JSON.
+template <typename Settings>
+nlohmann::ordered_json fieldJson(const Field<Settings>& field, const Settings& settings)
+{
+    Settings& s = const_cast<Settings&>(settings); // the references only read here
+    return std::visit(
+        [&](const auto& ref) -> nlohmann::ordered_json {
+            using Ref = std::decay_t<decltype(ref)>;
+            if constexpr (std::is_same_v<Ref, EnumFieldRef<Settings>>) {
+                return std::string(ref.get(settings));
+            } else {
+                const auto& value = ref(s);
+                if constexpr (std::is_same_v<std::decay_t<decltype(value)>, glm::vec3>)
+                    return nlohmann::ordered_json::array({value.x, value.y, value.z});
+                else
+                    return value;
+            }
+        },
+        field.ref);
+}
+
+// Every field, nested by the dots of its key, in table order.
+template <typename Settings>
+nlohmann::ordered_json toJson(const FieldTable<Settings>& table, const Settings& settings)
+{
+    nlohmann::ordered_json root = nlohmann::ordered_json::object();
+    for (const auto& field : table) {
+        nlohmann::ordered_json* node = &root;
+        std::string_view key = field.key;
+        for (std::size_t dot = key.find('.'); dot != std::string_view::npos; dot = key.find('.')) {
+            node = &(*node)[std::string(key.substr(0, dot))];
+            key.remove_prefix(dot + 1);
+        }
+        (*node)[std::string(key)] = fieldJson(field, settings);
+    }
+    return root;
+}
+
+// Sets the field from JSON; throws std::runtime_error saying what was expected.
+template <typename Settings>
+void setFieldFromJson(const Field<Settings>& field, Settings& settings, const nlohmann::json& value)
+{
+    std::visit(
+        [&](const auto& ref) {
+            using Ref = std::decay_t<decltype(ref)>;
+            if constexpr (std::is_same_v<Ref, EnumFieldRef<Settings>>) {
+                const std::string name = value.get<std::string>();
+                if (!ref.set(settings, name)) {
+                    std::string expected;
+                    for (std::size_t i = 0; i < ref.choices.size(); ++i)
+                        expected += (i == 0 ? "" : i + 1 == ref.choices.size() ? " or " : ", ") + std::string(ref.choices[i]);
+                    throw std::runtime_error("unknown value \"" + name + "\" (expected " + expected + ")");
+                }
+            } else {
+                auto& target = ref(settings);
+                using T = std::decay_t<decltype(target)>;
+                if constexpr (std::is_same_v<T, glm::vec3>) {
+                    if (!value.is_array() || value.size() != 3) throw std::runtime_error("expected [r, g, b]");
+                    target = glm::vec3(value[0].get<float>(), value[1].get<float>(), value[2].get<float>());
+                } else if constexpr (std::is_same_v<T, bool>) {
+                    if (!value.is_boolean()) throw std::runtime_error("expected true or false");
+                    target = value.get<bool>();
+                } else {
+                    target = value.get<T>();
+                }
+            }
+        },
+        field.ref);
+}
+
+// Reads every field present in `json` (missing ones keep their values). Throws
+// std::runtime_error naming "<what>.<key>" on a value of the wrong type or name.
+template <typename Settings>
+void fromJson(const FieldTable<Settings>& table, const nlohmann::json& json, Settings& settings, std::string_view what)
+{
+    for (const auto& field : table) {
+        const nlohmann::json* node = &json;
+        std::string_view key = field.key;
+        bool present = true;
+        for (std::size_t dot = key.find('.'); present; dot = key.find('.')) {
+            const std::string part(dot == std::string_view::npos ? key : key.substr(0, dot));
+            present = node->is_object() && node->contains(part);
+            if (present) node = &node->at(part);
+            if (dot == std::string_view::npos) break;
+            key.remove_prefix(dot + 1);
+        }
+        if (!present) continue;
+        try {
+            setFieldFromJson(field, settings, *node);
+        } catch (const std::exception& e) {
+            throw std::runtime_error(std::string(what) + "." + field.key + ": " + e.what());
+        }
+    }
+}
+
+// Parses command-line text into the field: numbers, on/off for booleans, enum names,
+// "r,g,b" for colours. Throws std::runtime_error saying what was expected.
+template <typename Settings>
+void setFieldFromText(const Field<Settings>& field, Settings& settings, std::string_view text)
+{
+    auto number = [&](auto& target) {
+        using T = std::decay_t<decltype(target)>;
+        T value{};
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc() || end != text.data() + text.size())
+            throw std::runtime_error("expected a " + std::string(std::is_integral_v<T> ? "whole number" : "number") + ", got \"" +
+                                     std::string(text) + "\"");
+        target = value;
+    };
+    std::visit(
+        [&](const auto& ref) {
+            using Ref = std::decay_t<decltype(ref)>;
+            if constexpr (std::is_same_v<Ref, EnumFieldRef<Settings>>) {
+                setFieldFromJson(field, settings, nlohmann::json(std::string(text)));
+            } else {
+                auto& target = ref(settings);
+                using T = std::decay_t<decltype(target)>;
+                if constexpr (std::is_same_v<T, bool>) {
+                    if (text == "on" || text == "true" || text == "1" || text == "yes") target = true;
+                    else if (text == "off" || text == "false" || text == "0" || text == "no") target = false;
+                    else throw std::runtime_error("expected on or off, got \"" + std::string(text) + "\"");
+                } else if constexpr (std::is_same_v<T, std::string>) {
+                    target = std::string(text);
+                } else if constexpr (std::is_same_v<T, glm::vec3>) {
+                    glm::vec3 v;
+                    std::string_view rest = text;
+                    for (int i = 0; i < 3; ++i) {
+                        const std::size_t comma = rest.find(',');
+                        if ((comma == std::string_view::npos) != (i == 2)) throw std::runtime_error("expected r,g,b, got \"" + std::string(text) + "\"");
+                        const std::string_view part = rest.substr(0, comma);
+                        const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), v[i]);
+                        if (error != std::errc() || end != part.data() + part.size())
+                            throw std::runtime_error("expected r,g,b, got \"" + std::string(text) + "\"");
+                        if (comma != std::string_view::npos) rest.remove_prefix(comma + 1);
+                    }
+                    target = v;
+                } else {
+                    number(target);
+                }
+            }
+        },
+        field.ref);
+}
+
+// The field's value as the text setFieldFromText reads (CLI defaults, UI).
+template <typename Settings>
+std::string fieldText(const Field<Settings>& field, const Settings& settings)
+{
+    const nlohmann::ordered_json j = fieldJson(field, settings);
+    if (j.is_string()) return j.get<std::string>();
+    if (j.is_boolean()) return j.get<bool>() ? "on" : "off";
+    if (j.is_array()) return j[0].dump() + "," + j[1].dump() + "," + j[2].dump();
+    return j.dump();
+}
+
+// The numeric value of a number field, nullopt for the others.
+template <typename Settings>
+std::optional<double> fieldNumber(const Field<Settings>& field, const Settings& settings)
+{
+    const nlohmann::ordered_json j = fieldJson(field, settings);
+    if (j.is_number()) return j.get<double>();
+    return std::nullopt;
+}
+
+// "must be 1..4096" (and ", or 0 = from the source").
+inline std::string rangeText(const FieldRange& range)
+{
+    auto num = [](double v) { return nlohmann::json(v == std::floor(v) && std::abs(v) < 1e15 ? nlohmann::json(std::int64_t(v)) : nlohmann::json(v)).dump(); };
+    std::string text;
+    const bool lower = std::isfinite(range.min), upper = std::isfinite(range.max);
+    if (lower && upper) text = "must be " + num(range.min) + ".." + num(range.max);
+    else if (lower) text = "must be >= " + num(range.min);
+    else if (upper) text = "must be <= " + num(range.max);
+    else text = "must be finite";
+    if (range.powerOfTwo) text = (lower && upper ? "must be a power of two in " + text.substr(std::string("must be ").size()) : text + " and a power of two");
+    if (range.special) text += ", or " + num(*range.special) + " (" + std::string(range.specialMeaning) + ")";
+    return text;
+}
+
+// Throws iblab::Error(what, "<key>: must be 1..4096, got 0") for the first number outside
+// its range (NaN and infinities are outside every range).
+template <typename Settings>
+void validateRanges(const FieldTable<Settings>& table, const Settings& settings, std::string_view what)
+{
+    for (const auto& field : table) {
+        const std::optional<double> value = fieldNumber(field, settings);
+        if (!value) continue;
+        const bool inRange = *value >= field.range.min && *value <= field.range.max &&
+                             (!field.range.powerOfTwo || (*value == std::floor(*value) && std::has_single_bit(std::uint64_t(*value))));
+        const bool ok = std::isfinite(*value) && (inRange || (field.range.special && *value == *field.range.special));
+        if (!ok) throw Error(std::string(what), field.key + ": " + rangeText(field.range) + ", got " + fieldText(field, settings));
+    }
+}
+
+} // namespace iblab

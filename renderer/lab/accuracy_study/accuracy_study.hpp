@@ -1,0 +1,165 @@
+#pragma once
+// accuracy_study: how far real-time specular IBL methods are from the full integral, and the
+// fit of the lobe table (issue #14; docs/accuracy-study.md). CPU only, no GL. What the
+// tool's files share: the options (main.cpp parses them), the measurement's inputs
+// (inputs.cpp: environments, the GPU's LUT and prefiltered chain as the CPU emulates them,
+// cached full integrals, the scenes' pixels and how a pixel's lobes combine), the two
+// commands (evaluate.cpp, fit.cpp) and what they write (report.cpp: the markdown tables, the
+// lobe table's C++ include).
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "ibl/brdf.hpp"
+#include "ibl/image.hpp"
+#include "ibl/specular_approximations.hpp"
+
+namespace iblab::accuracy {
+
+constexpr GeometryTerm kTerm = GeometryTerm::HeightCorrelatedSmith; // SamplingSettings default
+inline const glm::dvec3 kCopper(0.95, 0.64, 0.54);                  // MaterialSettings default base colour
+constexpr double kDielectricF0 = 0.04;                              // 0.16 * 0.5^2
+// The repository: its bundled environments, the unseen ones beside it, the committed table.
+inline const std::filesystem::path kSourceDir = IBLAB_SOURCE_DIR;
+
+struct StudyOptions {
+    std::string command; // eval or fit
+    int width = 256;     // of the environments, downsampled: the reference's resolution
+    // eval
+    int sphere = 64;
+    int grid = 128;
+    std::string sets = "bundled,unseen,procedural";
+    std::vector<std::string> envs;
+    std::string csv;
+    std::vector<std::string> tables;
+    std::vector<double> roughnesses{0.2, 0.3, 0.5, 0.7, 0.9}; // of the spheres
+    // Diagnostics: read the exact prefilter at the requested roughness (O(texels) per read)
+    // instead of the emulated mip chain, to separate the chain's discrete levels from the lobe.
+    bool exactPrefilter = false;
+    bool bins = false; // the copper spheres' errors by n.v band too
+    // fit
+    int taps = 1;
+    int frames = 96;
+    int size = 16;
+    double minRoughness = 0.15;
+    std::string out;
+    std::string init; // fit --taps 3: the one-tap table to start from
+    unsigned seed = 14;
+    // Also the dielectric's specular alone, so that a read that only the dielectric's
+    // diffuse hides (a dark dielectric would show it) is not rewarded.
+    bool mixedObjective = false;
+};
+
+int evalCommand(const StudyOptions& options);
+int fitCommand(const StudyOptions& options);
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t);
+
+// fn(i) for i in [0, count), over all hardware threads.
+template <typename Fn>
+void parallelFor(int count, const Fn& fn)
+{
+    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 64u));
+    std::atomic<int> next{0};
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (int i = next++; i < count; i = next++) fn(i);
+        });
+    for (auto& th : pool) th.join();
+}
+
+// ---- inputs.cpp --------------------------------------------------------------------------
+
+// The split-sum LUT as the GPU reads it: the bake's 128^2 x 2048 table, bilinear.
+struct Lut {
+    int size = 128;
+    std::vector<glm::vec3> table;
+    glm::dvec3 sample(double NdotV, double roughness) const;
+};
+const Lut& lut();
+
+struct EnvCase {
+    std::string name;
+    std::string set; // bundled, unseen, procedural
+    ImageRGB32F image;
+    std::shared_ptr<PrefilteredChain> chain;
+    std::shared_ptr<ReferenceSums> sums;
+    std::uint64_t hash = 0;
+};
+
+// (spec, set) of every environment in `sets` (a list naming bundled, unseen, procedural),
+// then the `extra` specs.
+std::vector<std::pair<std::string, std::string>> environmentList(const std::string& sets, const std::vector<std::string>& extra);
+
+// The environment downsampled to `width`, with its full-integral sums and (withChain) its
+// emulated prefiltered chain.
+EnvCase loadCase(const std::string& spec, const std::string& set, int width, bool withChain);
+
+struct Query {
+    glm::dvec3 n, v;
+    double roughness;
+};
+
+// The full integral for every query (parallel), through the on-disk cache.
+std::vector<FullIntegral> fullIntegrals(const EnvCase& env, const std::vector<Query>& queries, bool withIrradiance);
+
+struct Pixel {
+    glm::dvec3 n, v;
+    double roughness = 0.0;
+    double metallic = 0.0;
+};
+
+// A unit sphere at the origin from the default orbit camera, size x size pixels.
+std::vector<Pixel> spherePixels(int size);
+// The 7 x 7 metallic x roughness grid framed as the bench frames it, size x size pixels.
+std::vector<Pixel> gridPixels(int size);
+
+struct Shaded {
+    glm::dvec3 total, specular;
+};
+
+// Shades a pixel's diffuse and specular as combineLobes does, given the specular radiance.
+Shaded combine(const Pixel& p, glm::dvec3 specular, glm::dvec3 irradiance, glm::dvec3 F0);
+
+// The bench's per-pixel measure (common/error_metrics.glsl).
+double pixelError(glm::dvec3 value, glm::dvec3 reference);
+
+// ---- report.cpp --------------------------------------------------------------------------
+
+// One environment's results: per method, relative RMSE of spheres total, spheres specular,
+// grid total, grid specular.
+struct EnvironmentRow {
+    std::string env, set;
+    std::vector<std::array<double, 4>> values;
+};
+
+// The copper spheres' total relative error by n.v band (--bins): per band, the sum of
+// squares and the count; per environment name, per method.
+constexpr int kBins = 5;
+using Bins = std::array<std::array<double, 2>, kBins>;
+using BinsByEnvironment = std::map<std::string, std::vector<Bins>>;
+
+// The markdown tables on stdout: one per measure, rows = environments, columns = methods
+// (value and ratio to the first, the split sum), then the n.v bands when `bins` is given.
+void printEvaluation(const std::vector<std::string>& methodNames, const std::vector<EnvironmentRow>& rows,
+                     BinsByEnvironment* bins);
+
+// A table in the .inc format fit writes (renderer/ibl/specular_lobe_fit.inc).
+LobeFitTable readLobeTable(const std::string& path);
+// The .inc text of a fitted table, with a header saying how it was made.
+std::string lobeTableInclude(const LobeFitTable& table, const StudyOptions& options);
+
+} // namespace iblab::accuracy

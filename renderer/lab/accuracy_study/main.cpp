@@ -1,0 +1,87 @@
+// accuracy_study's command line: the options into StudyOptions, then eval (evaluate.cpp) or
+// fit (fit.cpp); kUsage is the synopsis that --help prints. The study itself:
+// accuracy_study.hpp and docs/accuracy-study.md.
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "accuracy_study.hpp"
+
+using namespace iblab::accuracy;
+
+namespace {
+
+const char* const kUsage =
+    "usage: accuracy_study eval [--width 256] [--sphere 64] [--grid 128] [--set bundled,unseen,procedural]\n"
+    "                           [--env PATH|builtin:SPEC ...] [--csv FILE] [--table FILE.inc ...]\n"
+    "                           [--bins] [--exact-prefilter] [--roughness 0.2,0.3,...]\n"
+    "       accuracy_study fit  [--width 256] [--taps 1|2|3] [--frames 96] [--size 16] [--out FILE.inc]\n"
+    "                           [--min-roughness 0.15] [--mixed-objective] [--init ONE_TAP.inc] [--seed 14]\n"
+    "eval measures every method against the full integral on the bench's scenes (markdown on stdout);\n"
+    "fit refits the lobe table on the 8 bundled maps (renderer/ibl/specular_lobe_fit.inc by default).\n"
+    "See docs/accuracy-study.md. Caches: <build>/accuracy_cache (delete it to recompute).\n";
+
+std::vector<double> parseList(const std::string& text)
+{
+    std::vector<double> out;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) out.push_back(std::stod(item));
+    return out;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    StudyOptions a;
+    if (argc < 2) {
+        std::fputs(kUsage, stderr);
+        return 2;
+    }
+    a.command = argv[1];
+    if (a.command == "--help" || a.command == "-h") {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    try {
+        for (int i = 2; i < argc; ++i) {
+            const std::string k = argv[i];
+            auto next = [&]() -> std::string {
+                if (i + 1 >= argc) throw std::runtime_error("missing value after " + k);
+                return argv[++i];
+            };
+            if (k == "--width") a.width = std::stoi(next());
+            else if (k == "--sphere") a.sphere = std::stoi(next());
+            else if (k == "--grid") a.grid = std::stoi(next());
+            else if (k == "--set") a.sets = next();
+            else if (k == "--env") a.envs.push_back(next());
+            else if (k == "--csv") a.csv = next();
+            else if (k == "--table") a.tables.push_back(next());
+            else if (k == "--taps") a.taps = std::stoi(next());
+            else if (k == "--frames") a.frames = std::stoi(next());
+            else if (k == "--size") a.size = std::stoi(next());
+            else if (k == "--min-roughness") a.minRoughness = std::stod(next());
+            else if (k == "--out") a.out = next();
+            else if (k == "--init") a.init = next();
+            else if (k == "--exact-prefilter") a.exactPrefilter = true;
+            else if (k == "--bins") a.bins = true;
+            else if (k == "--mixed-objective") a.mixedObjective = true;
+            else if (k == "--roughness") a.roughnesses = parseList(next());
+            else if (k == "--seed") a.seed = unsigned(std::stoul(next()));
+            else {
+                std::fprintf(stderr, "unknown option %s\n%s", k.c_str(), kUsage);
+                return 2;
+            }
+        }
+        if (a.command == "eval") return evalCommand(a);
+        if (a.command == "fit") return fitCommand(a);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "accuracy_study: %s\n", e.what());
+        return 1;
+    }
+    std::fprintf(stderr, "unknown command %s\n%s", a.command.c_str(), kUsage);
+    return 2;
+}
