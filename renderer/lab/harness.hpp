@@ -19,9 +19,9 @@
 //
 // Needs the context that was current when the renderer was made to be current at every call.
 // Public header: no GL.
-#include <array>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>

@@ -266,8 +266,12 @@ std::vector<StressMethod> stressMethods()
     SamplingSettings splitSum;
     splitSum.method = ShadingMethod::SplitSum;
     methods.push_back({"splitsum", splitSum, StressMaterial::WhiteMetal});
-    methods.push_back({"splitsum-sh9", splitSum, StressMaterial::WhitePlastic});
-    methods.push_back({"splitsum-sh9-windowed", splitSum, StressMaterial::WhitePlastic});
+    SamplingSettings plainSh = splitSum;
+    plainSh.diffuse = DiffuseSource::Sh9Plain;
+    methods.push_back({"splitsum-sh9", plainSh, StressMaterial::WhitePlastic});
+    SamplingSettings windowedSh = splitSum;
+    windowedSh.diffuse = DiffuseSource::Sh9;
+    methods.push_back({"splitsum-sh9-windowed", windowedSh, StressMaterial::WhitePlastic});
     SamplingSettings cube = splitSum;
     cube.diffuse = DiffuseSource::IrradianceCube;
     methods.push_back({"splitsum-irradiance-cube", cube, StressMaterial::WhitePlastic});
