@@ -95,9 +95,9 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
     std::printf("environment cube %d (%d mips), prefiltered %d x %d mips (%s layout), GPU memory %.2f MiB\n", r.environmentCube.size,
                 r.environmentCube.levels, r.prefiltered.size, r.prefiltered.levels,
                 std::string(enumName(r.settings.prefilter.layout)).c_str(), double(r.gpuBytes()) / (1024.0 * 1024.0));
-    std::printf("timings (steady clock around glFinish):\n");
+    std::printf("timings (steady clock to each step's fence):\n");
     for (const auto& t : r.timings)
-        std::printf("  %-22s %10.1f ms\n", t.phase.c_str(), t.milliseconds);
+        std::printf("  %-22s %10.1f ms\n", std::string(enumName(t.phase)).c_str(), t.milliseconds);
     std::printf("  %-22s %10.1f ms\n", "total", r.totalMilliseconds);
     if (errors) {
         std::printf("errors against the exact references:\n");
@@ -180,7 +180,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
             j["from_cache"] = result.fromCache;
             j["lut_from_cache"] = {{"schlick-ggx", result.lutFromCache[0]}, {"height-correlated-smith", result.lutFromCache[1]}};
             ordered_json timings;
-            for (const auto& t : result.timings) timings[t.phase] = t.milliseconds;
+            for (const auto& t : result.timings) timings[std::string(enumName(t.phase))] = t.milliseconds;
             timings["total"] = result.totalMilliseconds;
             j["timings_ms"] = timings;
             j["timing_method"] = "steady clock around each step, each step ending in glFinish; shaders: compile (Mesa's disk "

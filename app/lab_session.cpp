@@ -101,7 +101,10 @@ bool LabSession::busy() const { return pendingLoad_.valid() || queuedSpec_ || jo
 std::string LabSession::activity() const
 {
     if (pendingLoad_.valid()) return "loading " + shortName(queuedSpec_ ? *queuedSpec_ : pendingSpec_);
-    if (job_) return "baking: " + job_->currentPhase();
+    if (job_) {
+        const std::optional<bake::BakePhase> phase = job_->currentPhase();
+        return "baking: " + std::string(phase ? enumName(*phase) : "done");
+    }
     return {};
 }
 

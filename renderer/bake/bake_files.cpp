@@ -170,7 +170,7 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
     meta["files"] = files;
     ordered_json timings;
     for (const PhaseTiming& t : result.timings)
-        timings[t.phase] = t.milliseconds;
+        timings[std::string(enumName(t.phase))] = t.milliseconds;
     timings["total"] = result.totalMilliseconds;
     meta["timings_ms"] = timings;
     if (!extraJson.empty()) {

@@ -11,8 +11,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kEnvironmentGroup = "environment";
-
 // Work estimates in texture samples, the unit of BakeSettings::samplesPerStep. Steps that
 // are not sampling passes get a rough equivalent so that the progress bar does not stall
 // on them: shader compilation costs about as much as a few million samples on llvmpipe.
@@ -38,7 +36,7 @@ std::size_t BakeResult::gpuBytes() const
     return total;
 }
 
-double BakeResult::phaseMilliseconds(std::string_view phase) const
+double BakeResult::phaseMilliseconds(BakePhase phase) const
 {
     for (const PhaseTiming& t : timings)
         if (t.phase == phase)
@@ -63,7 +61,12 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, const Environment& environment, con
 
 BakeJob::~BakeJob() = default;
 
-void BakeJob::planCubeSlices(const std::string& phase, const std::string& group, int faceSize, int level, double samplesPerTexel,
+BakeJob::StepGroup BakeJob::lutGroup(GeometryTerm term)
+{
+    return term == GeometryTerm::SchlickGGX ? StepGroup::LutSchlickGgx : StepGroup::LutHeightCorrelatedSmith;
+}
+
+void BakeJob::planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
                              const std::function<void(const CubeSlice&)>& run)
 {
     const int size = std::max(faceSize >> level, 1);
@@ -92,21 +95,21 @@ void BakeJob::plan()
     const int envLevels = std::bit_width(unsigned(envFace)); // full chain down to 1x1
 
     const int equirectLevels = BakePasses::equirectLevelsForCube(image_.width, image_.height, envFace);
-    steps_.push_back({"shaders", "", kCompileCost, [this, equirectLevels] {
+    steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost, [this, equirectLevels] {
                           // The LUTs' program only when no cache could have them.
                           const LutSettings& lut = result_.settings.lut;
                           passes_.compileFor(result_.settings, equirectLevels, cache_ == nullptr && (lut.schlickGgx || lut.heightCorrelatedSmith));
                       }});
     if (cache_)
-        steps_.push_back({"cache_lookup", "", sourceTexels, [this] {
+        steps_.push_back({BakePhase::CacheLookup, StepGroup::None, sourceTexels, [this] {
                               const MipBuilder buildMips = [this](const BakedTexture& t) { passes_.generateMips(t); };
                               if (cache_->loadBake(result_, buildMips, result_.notes)) {
                                   result_.fromCache = true;
-                                  skipGroup(kEnvironmentGroup);
+                                  skipGroup(StepGroup::Environment);
                               }
                           }});
 
-    steps_.push_back({"upload", kEnvironmentGroup, sourceTexels, [this, format, envFace, envLevels, equirectLevels] {
+    steps_.push_back({BakePhase::Upload, StepGroup::Environment, sourceTexels, [this, format, envFace, envLevels, equirectLevels] {
                           equirect_ = passes_.uploadEquirect(image_, equirectLevels);
                           const BakeSettings& st = result_.settings;
                           result_.environmentCube = createCubeTexture(format, envFace, envLevels);
@@ -116,12 +119,12 @@ void BakeJob::plan()
                       }});
 
     // Footprint filtering takes 1..4 taps, about 2 on average.
-    planCubeSlices("environment_cube", kEnvironmentGroup, envFace, 0, 2.0,
+    planCubeSlices(BakePhase::EnvironmentCube, StepGroup::Environment, envFace, 0, 2.0,
                    [this](const CubeSlice& slice) { passes_.equirectToCube(equirect_.id(), result_.environmentCube, slice); });
-    steps_.push_back({"environment_cube", kEnvironmentGroup, 6.0 * envFace * envFace / 3.0,
+    steps_.push_back({BakePhase::EnvironmentCube, StepGroup::Environment, 6.0 * envFace * envFace / 3.0,
                       [this] { passes_.generateMips(result_.environmentCube); }});
 
-    steps_.push_back({"sh9", kEnvironmentGroup, sourceTexels, [this] {
+    steps_.push_back({BakePhase::Sh9, StepGroup::Environment, sourceTexels, [this] {
                           const ShSettings& sh = result_.settings.sh;
                           ShResult& out = result_.sh;
                           out.radiance = sh.device == ShDevice::Cpu ? projectEquirect(image_)
@@ -136,31 +139,30 @@ void BakeJob::plan()
                           out.irradianceWindowed = applyWindow(out.irradiance, sh.window, out.windowWidth);
                       }});
 
-    const std::string irradiancePhase = "irradiance_" + std::string(enumName(s.irradiance));
     switch (s.irradiance) {
     case IrradianceMethod::None: break;
     case IrradianceMethod::Riemann: {
         const double perTexel = double(BakePasses::riemannPhiSteps(s.riemann.sampleDelta)) *
                                 double(BakePasses::riemannThetaSteps(s.riemann.sampleDelta));
-        planCubeSlices(irradiancePhase, kEnvironmentGroup, s.riemann.faceSize, 0, perTexel, [this](const CubeSlice& slice) {
+        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.riemann.faceSize, 0, perTexel, [this](const CubeSlice& slice) {
             passes_.irradianceRiemann(result_.environmentCube, result_.irradianceCube, slice, result_.settings.riemann,
                                       result_.settings.exactTexelSolidAngle);
         });
         break;
     }
     case IrradianceMethod::Importance:
-        planCubeSlices(irradiancePhase, kEnvironmentGroup, s.importance.faceSize, 0, s.importance.samples, [this](const CubeSlice& slice) {
+        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.importance.faceSize, 0, s.importance.samples, [this](const CubeSlice& slice) {
             passes_.irradianceImportance(result_.environmentCube, result_.irradianceCube, slice, result_.settings.importance,
                                          result_.settings.exactTexelSolidAngle);
         });
         break;
     case IrradianceMethod::Moments: {
-        steps_.push_back({irradiancePhase, kEnvironmentGroup, double(envFace) * envFace * 6.0, [this] {
+        steps_.push_back({irradiancePhase(s.irradiance), StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
                               momentTexels_ = passes_.buildIrradianceMoments(result_.environmentCube, result_.settings.moments);
                           }});
         const double groups = 6.0 * s.moments.sourceFaceSize * s.moments.sourceFaceSize;
         // A group costs a few multiply-adds, about a tenth of a filtered texture read.
-        planCubeSlices(irradiancePhase, kEnvironmentGroup, s.moments.faceSize, 0, groups / 10.0, [this](const CubeSlice& slice) {
+        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.moments.faceSize, 0, groups / 10.0, [this](const CubeSlice& slice) {
             passes_.irradianceMoments(momentTexels_, result_.irradianceCube, slice);
         });
         break;
@@ -168,7 +170,7 @@ void BakeJob::plan()
     }
 
     for (int level = 0; level < s.prefilter.levels; ++level)
-        planCubeSlices("prefilter", kEnvironmentGroup, s.prefilter.faceSize, level, double(prefilterSamples(s.prefilter, level)),
+        planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level, double(prefilterSamples(s.prefilter, level)),
                        [this](const CubeSlice& slice) {
                            passes_.prefilter(result_.environmentCube, result_.prefiltered, slice, result_.settings.prefilter,
                                              result_.settings.exactTexelSolidAngle);
@@ -177,41 +179,41 @@ void BakeJob::plan()
     for (GeometryTerm term : kGeometryTerms) {
         if (!s.lut.wants(term))
             continue;
-        const std::string group = "lut_" + std::string(enumName(term));
+        const StepGroup group = lutGroup(term);
         const std::size_t index = std::size_t(term);
         if (cache_)
-            steps_.push_back({"brdf_lut", "", 1.0e5, [this, term, index, group] {
+            steps_.push_back({BakePhase::BrdfLut, StepGroup::None, 1.0e5, [this, term, index, group] {
                                   const LutSettings& lut = result_.settings.lut;
                                   if (cache_->loadLut(lut.size, lut.samples, term, result_.brdfLut[index], result_.notes)) {
                                       result_.lutFromCache[index] = true;
                                       skipGroup(group);
                                   }
                               }});
-        steps_.push_back({"brdf_lut", group, 1.0, [this, index] {
+        steps_.push_back({BakePhase::BrdfLut, group, 1.0, [this, index] {
                               result_.brdfLut[index] = create2DTexture(GL_RGBA16F, result_.settings.lut.size);
                           }});
         const double rowCost = double(s.lut.size) * s.lut.samples;
         const int rows = rowsPerStep(double(s.samplesPerStep), rowCost, s.lut.size);
         for (int row = 0; row < s.lut.size; row += rows) {
             const int count = std::min(rows, s.lut.size - row);
-            steps_.push_back({"brdf_lut", group, rowCost * count, [this, index, term, row, count] {
+            steps_.push_back({BakePhase::BrdfLut, group, rowCost * count, [this, index, term, row, count] {
                                   passes_.brdfLut(result_.brdfLut[index], row, count, result_.settings.lut.samples, term);
                               }});
         }
         if (cache_)
-            steps_.push_back({"brdf_lut", group, 1.0e5, [this, term, index] {
+            steps_.push_back({BakePhase::BrdfLut, group, 1.0e5, [this, term, index] {
                                   cache_->storeLut(result_.brdfLut[index], result_.settings.lut.samples, term);
                               }});
     }
 
     if (cache_)
-        steps_.push_back({"cache_store", kEnvironmentGroup, sourceTexels, [this] { cache_->storeBake(result_); }});
+        steps_.push_back({BakePhase::CacheStore, StepGroup::Environment, sourceTexels, [this] { cache_->storeBake(result_); }});
 
     for (const Step& step : steps_)
         totalCost_ += step.cost;
 }
 
-void BakeJob::skipGroup(const std::string& group)
+void BakeJob::skipGroup(StepGroup group)
 {
     for (auto it = steps_.begin(); it != steps_.end();) {
         if (it->group == group) {
@@ -223,7 +225,7 @@ void BakeJob::skipGroup(const std::string& group)
     }
 }
 
-void BakeJob::addTiming(const std::string& phase, double ms)
+void BakeJob::addTiming(BakePhase phase, double ms)
 {
     auto it = std::find_if(result_.timings.begin(), result_.timings.end(), [&](const PhaseTiming& t) { return t.phase == phase; });
     if (it == result_.timings.end())
@@ -233,22 +235,39 @@ void BakeJob::addTiming(const std::string& phase, double ms)
     result_.totalMilliseconds += ms;
 }
 
+void BakeJob::retireStepInFlight()
+{
+    if (!inFlight_) return;
+    inFlight_->fence.wait();
+    const auto now = Clock::now();
+    // The GPU runs steps in order: this one started when it was issued or when the one before
+    // it finished, whichever was later.
+    const auto started = std::max(inFlight_->issued, lastRetired_);
+    addTiming(inFlight_->phase, std::chrono::duration<double, std::milli>(now - started).count());
+    lastRetired_ = now;
+    inFlight_.reset();
+}
+
 bool BakeJob::step()
 {
     if (steps_.empty() || failed_)
         return false;
     Step current = std::move(steps_.front());
     steps_.pop_front();
-    const auto start = Clock::now();
     try {
+        const auto issued = Clock::now();
         current.run();
-        glFinish();
+        gl::Fence fence = gl::Fence::afterIssuedCommands();
+        retireStepInFlight();
+        inFlight_ = StepInFlight{current.phase, issued, std::move(fence)};
+        if (steps_.empty())
+            retireStepInFlight();
     } catch (...) {
         failed_ = true;
         steps_.clear();
+        inFlight_.reset();
         throw;
     }
-    addTiming(current.phase, std::chrono::duration<double, std::milli>(Clock::now() - start).count());
     doneCost_ += current.cost;
     if (steps_.empty()) {
         // The intermediates are not part of the result.
@@ -283,7 +302,11 @@ float BakeJob::progress() const
     return totalCost_ > 0.0 ? float(std::clamp(doneCost_ / totalCost_, 0.0, 1.0)) : 0.0f;
 }
 
-std::string BakeJob::currentPhase() const { return steps_.empty() ? std::string() : steps_.front().phase; }
+std::optional<BakePhase> BakeJob::currentPhase() const
+{
+    if (steps_.empty()) return std::nullopt;
+    return steps_.front().phase;
+}
 
 BakeResult BakeJob::takeResult()
 {

@@ -8,9 +8,11 @@
 //   BakeResult result = BakeJob(shaders, environment, settings).runToCompletion();   // CLI
 //
 // A step is about settings.samplesPerStep texture samples of one pass on one mip (a band of
-// rows of a face, or one or more whole faces), one SH projection, one cache read or write. Every step ends with glFinish, so per-phase
-// timings are wall-clock GPU time (llvmpipe's timer queries are wrong) and a step never
-// leaves work queued behind the caller's frame. Needs the context that was current when the
+// rows of a face, or one or more whole faces), one SH projection, one cache read or write. Each
+// step ends with a fence, and the next step waits for the previous one's fence after issuing
+// its own commands: the CPU prepares step k while the GPU runs step k - 1, at most one step's
+// work is ever queued behind the caller's frame, and no step stalls on glFinish. Per-phase
+// timings are steady-clock time to each fence (llvmpipe's timer queries are wrong). Needs the context that was current when the
 // job was made to be current at every call. Step failures (a shader that does not compile,
 // a GL error surfaced as an exception) propagate out of step(); the job is then failed.
 #include <chrono>
@@ -18,12 +20,14 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "bake/bake_cache.hpp"
 #include "bake/bake_passes.hpp"
 #include "bake/bake_result.hpp"
 #include "io/environment.hpp"
+#include "gl/fence.hpp"
 #include "gl/shader_library.hpp"
 
 namespace iblab::bake {
@@ -48,24 +52,35 @@ public:
     bool failed() const { return failed_; }
     // Share of the estimated work done, 0..1 (work = texture samples; cache hits skip ahead).
     float progress() const;
-    // The phase the next step belongs to ("" when done).
-    std::string currentPhase() const;
+    // The phase the next step belongs to (nullopt when done).
+    std::optional<BakePhase> currentPhase() const;
 
     // The result, once done (throws std::logic_error before).
     BakeResult takeResult();
 
 private:
+    // A cache hit skips the rest of its group: the environment's results, or one LUT.
+    enum class StepGroup { None, Environment, LutSchlickGgx, LutHeightCorrelatedSmith };
+    static StepGroup lutGroup(GeometryTerm term);
     struct Step {
-        std::string phase;
-        std::string group; // a cache hit skips the rest of its group
+        BakePhase phase;
+        StepGroup group;
         double cost = 1.0;
         std::function<void()> run;
     };
+    // A step whose commands are issued and whose fence has not been seen signalled yet.
+    struct StepInFlight {
+        BakePhase phase;
+        std::chrono::steady_clock::time_point issued;
+        gl::Fence fence;
+    };
     void plan();
-    void planCubeSlices(const std::string& phase, const std::string& group, int faceSize, int level,
-                        double samplesPerTexel, const std::function<void(const CubeSlice&)>& run);
-    void skipGroup(const std::string& group);
-    void addTiming(const std::string& phase, double ms);
+    void planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
+                        const std::function<void(const CubeSlice&)>& run);
+    void skipGroup(StepGroup group);
+    // Waits for the step in flight, if any, and books its time.
+    void retireStepInFlight();
+    void addTiming(BakePhase phase, double ms);
 
     BakePasses passes_;
     BakeCache* cache_;
@@ -74,6 +89,8 @@ private:
     gl::Texture equirect_;
     MomentTexels momentTexels_; // irradiance_moments' groups, between its steps
     std::deque<Step> steps_;
+    std::optional<StepInFlight> inFlight_;
+    std::chrono::steady_clock::time_point lastRetired_{};
     double totalCost_ = 0.0;
     double doneCost_ = 0.0;
     bool failed_ = false;

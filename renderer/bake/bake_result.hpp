@@ -2,6 +2,7 @@
 // What a bake produces: the GL textures, the SH9 coefficients and how long each phase took.
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,9 +20,38 @@ struct ShResult {
     double windowWidth = 0.0;    // the width used (resolved when the settings asked for automatic)
 };
 
+// The bake's phases, in the order they run; their names are the keys of the timings in
+// reports and the cache's metadata.
+enum class BakePhase {
+    Shaders,
+    CacheLookup,
+    Upload,
+    EnvironmentCube,
+    Sh9,
+    IrradianceRiemann,
+    IrradianceImportance,
+    IrradianceMoments,
+    Prefilter,
+    BrdfLut,
+    CacheStore
+};
+
+constexpr BakePhase irradiancePhase(IrradianceMethod method)
+{
+    switch (method) {
+    case IrradianceMethod::Riemann: return BakePhase::IrradianceRiemann;
+    case IrradianceMethod::Importance: return BakePhase::IrradianceImportance;
+    case IrradianceMethod::Moments: return BakePhase::IrradianceMoments;
+    case IrradianceMethod::None: break;
+    }
+    throw std::logic_error("irradiancePhase: IrradianceMethod::None bakes no cube");
+}
+
 struct PhaseTiming {
-    std::string phase;         // "shaders", "upload", "environment_cube", "sh9", ...
-    double milliseconds = 0.0; // steady clock around the phase's steps, each ending in glFinish
+    BakePhase phase = BakePhase::Shaders;
+    // Steady clock from each step's submission to its fence signalling (at most one step is in
+    // flight, so a step's time does not include the one before it), summed over the phase.
+    double milliseconds = 0.0;
 };
 
 struct BakeResult {
@@ -46,7 +76,24 @@ struct BakeResult {
     const BakedTexture& lut(GeometryTerm term) const { return brdfLut[std::size_t(term)]; }
     // GPU memory of the result's textures (all levels and faces), from formats and sizes.
     std::size_t gpuBytes() const;
-    double phaseMilliseconds(std::string_view phase) const; // 0 if the phase did not run
+    double phaseMilliseconds(BakePhase phase) const; // 0 if the phase did not run
 };
 
 } // namespace iblab::bake
+
+namespace iblab {
+template <>
+struct EnumNames<bake::BakePhase> {
+    static constexpr std::array<EnumName<bake::BakePhase>, 11> entries{{{bake::BakePhase::Shaders, "shaders"},
+                                                                        {bake::BakePhase::CacheLookup, "cache_lookup"},
+                                                                        {bake::BakePhase::Upload, "upload"},
+                                                                        {bake::BakePhase::EnvironmentCube, "environment_cube"},
+                                                                        {bake::BakePhase::Sh9, "sh9"},
+                                                                        {bake::BakePhase::IrradianceRiemann, "irradiance_riemann"},
+                                                                        {bake::BakePhase::IrradianceImportance, "irradiance_importance"},
+                                                                        {bake::BakePhase::IrradianceMoments, "irradiance_moments"},
+                                                                        {bake::BakePhase::Prefilter, "prefilter"},
+                                                                        {bake::BakePhase::BrdfLut, "brdf_lut"},
+                                                                        {bake::BakePhase::CacheStore, "cache_store"}}};
+};
+} // namespace iblab

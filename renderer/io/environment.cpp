@@ -310,6 +310,14 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     // Equirect maps are 2:1; allow one texel of rounding either way.
     if (std::abs(std::int64_t(spec.width) - 2 * std::int64_t(spec.height)) > 1)
         throw Error(path, "not equirectangular: " + aspectText(spec.width, spec.height) + ", expected 2:1");
+    // Tiles larger than the image are legal (a 64x64 tile on a 16x8 map), but a header can
+    // declare any size, and the reader decodes a whole tile row at once: refuse absurd ones
+    // before anything is allocated for them.
+    const std::uint64_t tileTexels = std::uint64_t(std::max(spec.tile_width, 0)) * std::uint64_t(std::max(spec.tile_height, 0));
+    if (tileTexels > kMaxTileTexels)
+        throw Error(path, "tiles of " + std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) + " are " +
+                              std::to_string(tileTexels) + " texels each, more than the limit of " +
+                              std::to_string(kMaxTileTexels) + " (2^22)");
     if (options.maxWidth < 2 || options.maxWidth % 2 != 0)
         throw Error(path, "invalid size cap maxWidth=" + std::to_string(options.maxWidth) + " (must be even and >= 2)");
 
@@ -344,7 +352,7 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
 
     // Read in bands of rows (whole tile rows for tiled files), decode, repair, store.
     const int channelsRead = spec.nchannels >= 3 ? 3 : 1; // grey (+alpha) -> replicate
-    const int band = spec.tile_width > 0 ? spec.tile_height * std::max(1, 64 / std::max(1, spec.tile_height)) : 64;
+    const int band = std::min(srcH, spec.tile_width > 0 ? spec.tile_height * std::max(1, 64 / std::max(1, spec.tile_height)) : 64);
     std::vector<float> buffer(std::size_t(band) * std::size_t(srcW) * std::size_t(channelsRead));
     std::vector<float> row(std::size_t(srcW) * 3);
     TexelRepairer repairer(srcW, srcH);

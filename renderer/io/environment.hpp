@@ -74,6 +74,8 @@ struct Environment {
 inline constexpr std::uint64_t kMaxEnvironmentTexels = std::uint64_t(1) << 28;
 // The smallest file accepted as an environment: 8x4 (a cube of 2x2 faces).
 inline constexpr int kMinEnvironmentWidth = 8;
+// Texels in one tile of a tiled file (real files use 32x32 to 512x512; this is 2048x2048).
+inline constexpr std::uint64_t kMaxTileTexels = std::uint64_t(1) << 22;
 
 // Loads a file (any format OpenImageIO reads: .exr including DWAB, .hdr, .png, .jpg, ...)
 // or a builtin. Files must be 2:1 (+-1 texel of rounding). Grey inputs are replicated to

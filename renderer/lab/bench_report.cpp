@@ -132,7 +132,9 @@ std::string benchJsonText(const BenchReport& report)
         else point["sampled_n"] = s.sampling.samples;
         if (s.bake.irradiance == bake::IrradianceMethod::Riemann) point["riemann_delta"] = s.bake.riemann.sampleDelta;
         if (s.bake.irradiance == bake::IrradianceMethod::Importance) point["importance_samples"] = s.bake.importance.samples;
-        point["bake_phases"] = bakePhasesRead(s);
+        nlohmann::ordered_json phases = nlohmann::ordered_json::array();
+        for (const bake::BakePhase phase : bakePhasesRead(s)) phases.push_back(enumName(phase));
+        point["bake_phases"] = phases;
         point["bake_ms"] = p.bakeMilliseconds;
         point["frame_ms"] = p.frameMilliseconds;
         point["cost_ms"] = p.costMilliseconds;

@@ -182,12 +182,13 @@ BenchOptions defaultBenchOptions(bool quick, const std::string& assetDirectory)
     return o;
 }
 
-std::vector<std::string> bakePhasesRead(const SweepPoint& point)
+std::vector<bake::BakePhase> bakePhasesRead(const SweepPoint& point)
 {
-    std::vector<std::string> phases{"upload", "environment_cube"};
-    if (point.sampling.method == ShadingMethod::SplitSum) phases.push_back("prefilter");
-    if (point.sampling.diffuse != DiffuseSource::IrradianceCube || point.sampling.method == ShadingMethod::Sampled) phases.push_back("sh9");
-    else phases.push_back("irradiance_" + std::string(enumName(point.bake.irradiance)));
+    using bake::BakePhase;
+    std::vector<BakePhase> phases{BakePhase::Upload, BakePhase::EnvironmentCube};
+    if (point.sampling.method == ShadingMethod::SplitSum) phases.push_back(BakePhase::Prefilter);
+    if (point.sampling.diffuse != DiffuseSource::IrradianceCube || point.sampling.method == ShadingMethod::Sampled) phases.push_back(BakePhase::Sh9);
+    else phases.push_back(bake::irradiancePhase(point.bake.irradiance));
     return phases;
 }
 
@@ -284,10 +285,10 @@ std::string BenchJob::currentActivity() const
     if (s.phase == State::Phase::Done) return "";
     const std::string where = o.environments[s.environment].name + ": ";
     const SweepPoint& p = o.points[s.point];
-    const std::string bakePhase = s.harness.bakePhase();
+    const std::optional<bake::BakePhase> bakePhase = s.harness.bakePhase();
     switch (s.phase) {
     case State::Phase::Load: return where + "loading";
-    case State::Phase::Bake: return where + "baking " + p.label + (bakePhase.empty() ? "" : " (" + bakePhase + ")");
+    case State::Phase::Bake: return where + "baking " + p.label + (bakePhase ? " (" + std::string(enumName(*bakePhase)) + ")" : "");
     case State::Phase::Reference: return where + "reference";
     case State::Phase::Measure: return where + "rendering " + p.label;
     case State::Phase::Done: break;
@@ -347,7 +348,7 @@ bool BenchJob::step()
         measured.environment = o.environments[s.environment].name;
         measured.setting = p;
         measured.frameMilliseconds = s.harness.medianFrameMilliseconds(s.frameFor(p), o.width, o.height, o.repeats);
-        for (const std::string& phase : bakePhasesRead(p)) measured.bakeMilliseconds += s.harness.currentBake().phaseMilliseconds(phase);
+        for (const bake::BakePhase phase : bakePhasesRead(p)) measured.bakeMilliseconds += s.harness.currentBake().phaseMilliseconds(phase);
         measured.costMilliseconds = measured.bakeMilliseconds + double(o.costFrames) * measured.frameMilliseconds;
         const lab::FrameError error = s.harness.compareWithReference(s.harness.renderer().readHdrFrame(), o.frame.toneMap);
         measured.error = error.linear;

@@ -145,7 +145,7 @@ std::vector<std::string> unmeasuredEnvironments(const BenchReport& report);
 // The bake phases a frame of this setting reads: the upload and environment cube always,
 // then the prefilter (split-sum), SH9 or the irradiance cube that was baked. Not the
 // shaders (compiled once per process) nor the LUTs (no environment in them; cached).
-std::vector<std::string> bakePhasesRead(const SweepPoint& point);
+std::vector<bake::BakePhase> bakePhasesRead(const SweepPoint& point);
 
 // A point is dominated when another point of the same environment is both cheaper and
 // more accurate (strictly: lower cost and lower relative RMSE). A point without an error

@@ -169,7 +169,7 @@ bool Harness::stepBake()
 
 float Harness::bakeProgress() const { return state_->bakeJob ? state_->bakeJob->progress() : 0.0f; }
 
-std::string Harness::bakePhase() const { return state_->bakeJob ? state_->bakeJob->currentPhase() : std::string(); }
+std::optional<bake::BakePhase> Harness::bakePhase() const { return state_->bakeJob ? state_->bakeJob->currentPhase() : std::nullopt; }
 
 const bake::BakeResult& Harness::bake(const bake::BakeSettings& settings)
 {

@@ -23,9 +23,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bake/bake_result.hpp"
 #include "bake/bake_settings.hpp"
 #include "frame/renderer.hpp"
 #include "frame/settings.hpp"
@@ -103,7 +105,7 @@ public:
     void startBake(bake::BakeSettings settings);
     bool stepBake(); // true while steps remain
     float bakeProgress() const;    // of the bake under way, 0..1 (0 when none is)
-    std::string bakePhase() const; // the phase its next step runs ("" when none is)
+    std::optional<bake::BakePhase> bakePhase() const; // the phase its next step runs (nullopt when none is)
     // startBake and every step; the result, which the renderer shows.
     const bake::BakeResult& bake(const bake::BakeSettings& settings);
     // The bake the renderer shows; throws std::logic_error when there is none.

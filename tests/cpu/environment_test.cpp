@@ -387,6 +387,30 @@ TEST(Environment, TiledExrReadsLikeScanlines)
     EXPECT_EQ(env.image.texels, px);
 }
 
+TEST(Environment, AbsurdTileSizeIsRejectedBeforeReading)
+{
+    // A 16x8 tiled EXR whose header claims tiles 2^24 texels high: the fuzzer found that the
+    // reader then allocated a band of whole tile rows, 3 GB for an 8-row image.
+    TempDir dir;
+    const int w = 16, h = 8;
+    const std::string path = dir.file("tall-tiles.exr");
+    writeImage(path, w, h, 3, std::vector<float>(std::size_t(w) * h * 3, 1.0f), OIIO::TypeDesc::HALF, 8);
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // The "tiles" attribute: name, "tiledesc", size 9, then x size, y size (uint32 LE), mode.
+    const std::size_t type = bytes.find(std::string("tiledesc\0", 9));
+    ASSERT_NE(type, std::string::npos);
+    const std::size_t ySize = type + 9 + 4 + 4;
+    const std::uint32_t tall = 1u << 24;
+    std::memcpy(&bytes[ySize], &tall, sizeof tall);
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    const std::string msg = errorOf([&] { loadEnvironment(path); }, "tall-tiles.exr");
+    EXPECT_NE(msg.find("tiles of 8x16777216"), std::string::npos) << msg;
+}
+
 TEST(Environment, SizeCapDownsamplesPreservingEnergy)
 {
     const std::string path = defaultEnvironmentPath((kSourceDir / "assets").string());

@@ -70,7 +70,7 @@ TEST_F(GlTest, ASecondBakeIsLoadedFromTheCacheUnchanged)
     const bake::BakeResult second = runBake(shaders, env, smallBakeSettings(), &cache);
     EXPECT_TRUE(second.fromCache);
     EXPECT_TRUE(second.lutFromCache[0] && second.lutFromCache[1]);
-    EXPECT_EQ(second.phaseMilliseconds("prefilter"), 0.0); // nothing was baked
+    EXPECT_EQ(second.phaseMilliseconds(bake::BakePhase::Prefilter), 0.0); // nothing was baked
     // Half floats written as half-float EXR and read back: bit-identical; mips rebuilt by the
     // same pass from the same level 0.
     expectSameResults(first, second);
@@ -185,7 +185,7 @@ TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
     int steps = 0;
     bool more = true;
     while (more) {
-        EXPECT_FALSE(job.currentPhase().empty());
+        EXPECT_TRUE(job.currentPhase().has_value());
         more = job.step();
         ++steps;
         EXPECT_GE(job.progress(), last);
@@ -207,9 +207,10 @@ TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
     const bake::BakeResult unsliced = whole.takeResult();
     // Each texel is computed by the same code from the same inputs whichever dispatch it is in.
     expectSameResults(sliced, unsliced);
-    const std::string irradiancePhase = "irradiance_" + std::string(enumName(irradiance));
-    for (const char* phase : {"shaders", "upload", "environment_cube", "sh9", irradiancePhase.c_str(), "prefilter", "brdf_lut"})
-        EXPECT_GT(sliced.phaseMilliseconds(phase), 0.0) << phase;
+    using bake::BakePhase;
+    for (const BakePhase phase : {BakePhase::Shaders, BakePhase::Upload, BakePhase::EnvironmentCube, BakePhase::Sh9,
+                                  bake::irradiancePhase(irradiance), BakePhase::Prefilter, BakePhase::BrdfLut})
+        EXPECT_GT(sliced.phaseMilliseconds(phase), 0.0) << enumName(phase);
     EXPECT_GT(sliced.gpuBytes(), 0u);
     }
 }
