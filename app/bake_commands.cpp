@@ -183,7 +183,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
             for (const auto& t : result.timings) timings[std::string(enumName(t.phase))] = t.milliseconds;
             timings["total"] = result.totalMilliseconds;
             j["timings_ms"] = timings;
-            j["timing_method"] = "steady clock around each step, each step ending in glFinish; shaders: compile (Mesa's disk "
+            j["timing_method"] = "steady clock from each step's submission to its fence, one step in flight; shaders: compile (Mesa's disk "
                                  "cache makes a second run warm)";
             j["other_ms"] = {{"environment_load", loadMs},
                              {"context", contextMs},
