@@ -216,6 +216,13 @@ struct RenderedState {
 
 nlohmann::json statusJson(const ui::StatusLine& status) { return {{"text", status.text}, {"error", status.isError}, {"notes", status.notes}}; }
 
+nlohmann::json switchJson(const std::optional<LabSession::SwitchTiming>& timing)
+{
+    if (!timing) return nullptr;
+    return {{"environment", timing->environment}, {"load_ms", timing->loadMs}, {"bake_ms", timing->bakeMs},
+            {"first_frame_ms", timing->firstFrameMs}, {"from_cache", timing->fromCache}};
+}
+
 // Points the Study chart draws: with a positive error and cost (the axes are logarithmic).
 std::size_t plottedPoints(const std::vector<ui::ParetoChart>& charts)
 {
@@ -432,6 +439,9 @@ void GuiApp::Impl::frame()
     platform.setCursor(ImGui::GetMouseCursor());
 
     actOn(requests, viewWidth, viewHeight);
+    const LabSession::Finished switched = session.showRequestedRecent(settings);
+    if (switched.environment) panels.environmentStatus = *switched.environment;
+    if (switched.bake) panels.bakeStatus = *switched.bake;
     if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
 
     // Responsive on a software renderer: while the user drags something, expensive frames
@@ -459,8 +469,12 @@ void GuiApp::Impl::frame()
     const RenderedState current{settings, viewWidth, viewHeight, renderer.contentRevision(), errorView && panels.compare.reference.complete};
     const int framesToConverge = renderer.lastFrameWasSampled() && !keepsExactSampleCount(settings) ? kMaxAccumulatedFrames : 1;
     const bool converged = rendered == current && !interacting && !session.busy() && !capturing && renderer.accumulatedFrames() >= framesToConverge;
+    // While another environment loads and bakes, the view keeps its last image (the previous
+    // environment, lit by its own bake) rather than drawing each frame again: the new one
+    // shows sooner, and never with the old one's lighting.
+    const bool holdFrame = session.switching() && renderer.hasBake();
     const auto renderStart = Clock::now();
-    if (!converged) {
+    if (!converged && !holdFrame) {
         renderer.renderFrame(settings, viewWidth, viewHeight, renderOptions);
         glFinish(); // so that the reported pass time is the GPU's, not the submission's
         stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
@@ -487,6 +501,7 @@ void GuiApp::Impl::frame()
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (std::exchange(pixelsRequested, false)) pixels = platform.readPixels();
     platform.present();
+    session.frameDrawn();
 
     const auto end = Clock::now();
     stats.frameMs = std::chrono::duration<double, std::milli>(end - previousFrame).count();
@@ -556,7 +571,7 @@ nlohmann::json GuiApp::state() const
             {"plotted_points", plottedPoints(p.study.charts)},
             {"chart_open", p.study.chartOpen},
             {"auto_quality", {{"running", p.study.autoQuality.running}, {"have_choice", p.study.autoQuality.haveChoice}, {"applied", p.study.autoQuality.applied}, {"chosen", p.study.autoQuality.chosen}}}}}}},
-        {"session", {{"busy", a.session.busy()}, {"environment", a.session.environment() ? a.session.environment()->source : ""}, {"has_bake", a.renderer.hasBake()}}},
+        {"session", {{"busy", a.session.busy()}, {"environment", a.session.environment() ? a.session.environment()->source : ""}, {"has_bake", a.renderer.hasBake()}, {"last_switch", switchJson(a.session.lastSwitch())}}},
         {"renderer",
          {{"accumulated_frames", a.renderer.accumulatedFrames()},
           {"content_revision", a.renderer.contentRevision()},

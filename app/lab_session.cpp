@@ -13,6 +13,11 @@
 namespace iblab::app {
 namespace {
 
+double millisecondsSince(std::chrono::steady_clock::time_point start)
+{
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 std::string shortName(const std::string& spec)
 {
     return isBuiltinSpec(spec) ? spec : std::filesystem::path(spec).filename().string();
@@ -31,6 +36,15 @@ LabSession::~LabSession()
 
 void LabSession::requestEnvironment(const std::string& spec)
 {
+    // The user waits from their latest request, queued or not.
+    switchRequested_ = std::chrono::steady_clock::now();
+    switchInProgress_ = SwitchTiming{.environment = spec};
+    switchAwaitsFrame_ = false;
+    if (!pendingLoad_.valid() && findRecent(spec)) {
+        recentRequested_ = spec;
+        return;
+    }
+    recentRequested_.reset();
     // One load at a time, and the UI thread never waits for one: a request made while a
     // load runs is queued, and the newest queued request replaces older ones.
     if (pendingLoad_.valid()) {
@@ -44,12 +58,14 @@ void LabSession::requestEnvironment(const std::string& spec)
 ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& settings)
 {
     renderer_.setEnvironment(loaded.image);
+    if (switchInProgress_) switchInProgress_->loadMs = millisecondsSince(switchRequested_);
     const std::string text = shortName(loaded.source) + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
     // Repairs, downsampling and LDR input are the loader's warnings: notes under the line,
     // since the environment loaded and is usable (the bundled courtyard has negative texels
     // from its stitching, repaired to 0, which is nobody's error).
     std::vector<std::string> notes = loaded.warnings;
     settings.environment.source = pendingSpec_.empty() ? loaded.source : pendingSpec_;
+    currentSpec_ = settings.environment.source;
     job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), loaded, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
     environment_ = std::move(loaded);
     return {text, false, std::move(notes)};
@@ -65,11 +81,83 @@ ui::StatusLine LabSession::finishBake()
     for (const auto& note : result->notes) text += "; " + note;
     bake_ = result;
     renderer_.setBake(bake_);
+    rememberCurrent();
+    if (switchInProgress_) {
+        switchInProgress_->bakeMs = millisecondsSince(switchRequested_);
+        switchInProgress_->fromCache = result->fromCache;
+        switchAwaitsFrame_ = true;
+    }
     return {text, false};
+}
+
+std::optional<std::filesystem::file_time_type> LabSession::modificationTime(const std::string& spec)
+{
+    if (isBuiltinSpec(spec)) return std::nullopt;
+    std::error_code ec;
+    const auto time = std::filesystem::last_write_time(spec, ec);
+    if (ec) return std::nullopt;
+    return time;
+}
+
+const LabSession::RecentEnvironment* LabSession::findRecent(const std::string& spec) const
+{
+    for (const RecentEnvironment& recent : recent_)
+        if (recent.spec == spec && recent.bake->settings == bakeSettings_ && recent.modified == modificationTime(spec)) return &recent;
+    return nullptr;
+}
+
+void LabSession::rememberCurrent()
+{
+    if (!environment_ || !bake_ || currentSpec_.empty()) return;
+    std::erase_if(recent_, [&](const RecentEnvironment& recent) { return recent.spec == currentSpec_; });
+    recent_.push_front({currentSpec_, modificationTime(currentSpec_), *environment_, bake_});
+    if (recent_.size() > kRecentEnvironments) recent_.pop_back();
+}
+
+ui::StatusLine LabSession::showRecent(const RecentEnvironment& recent, FrameSettings& settings)
+{
+    job_.reset(); // a bake of the environment being left
+    renderer_.setEnvironment(recent.environment.image);
+    renderer_.setBake(recent.bake);
+    environment_ = recent.environment;
+    bake_ = recent.bake;
+    currentSpec_ = recent.spec;
+    settings.environment.source = recent.spec;
+    if (switchInProgress_) {
+        switchInProgress_->loadMs = switchInProgress_->bakeMs = millisecondsSince(switchRequested_);
+        switchInProgress_->fromCache = true;
+        switchAwaitsFrame_ = true;
+    }
+    const Environment& env = recent.environment;
+    ui::StatusLine line{shortName(env.source) + ": " + std::to_string(env.image.width) + "x" + std::to_string(env.image.height) +
+                            ", kept from earlier with its bake",
+                        false, env.warnings};
+    rememberCurrent();
+    return line;
+}
+
+LabSession::Finished LabSession::showRequestedRecent(FrameSettings& settings)
+{
+    Finished finished;
+    if (!recentRequested_) return finished;
+    const std::string spec = *std::exchange(recentRequested_, std::nullopt);
+    const RecentEnvironment* recent = findRecent(spec);
+    if (!recent) {
+        requestEnvironment(spec); // changed since (a file saved again): load it
+        return finished;
+    }
+    // showRecent reorders recent_: work from a copy of the entry.
+    const RecentEnvironment entry = *recent;
+    finished.environment = showRecent(entry, settings);
+    finished.bake = ui::StatusLine{"kept from earlier (baked in " + std::to_string(int(entry.bake->totalMilliseconds + 0.5)) + " ms" +
+                                       (entry.bake->fromCache ? ", from cache)" : ")"),
+                                   false};
+    return finished;
 }
 
 LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::steady_clock::duration budget)
 {
+    if (recentRequested_) return showRequestedRecent(settings);
     Finished finished;
     if (pendingLoad_.valid() && pendingLoad_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         if (queuedSpec_) {
@@ -81,22 +169,25 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
         try {
             finished.environment = finishLoad(pendingLoad_.get(), settings);
         } catch (const Error& e) {
+            switchInProgress_.reset();
             finished.environment = ui::StatusLine{e.what(), true};
+            return finished;
         }
-        return finished; // the bake starts on the next pump, so this frame shows the new sky
+        // The bake starts in the same pump: from the cache it is often done in it.
     }
     if (job_) {
         try {
             if (!job_->runFor(budget)) finished.bake = finishBake();
         } catch (const std::exception& e) {
             job_.reset();
+            switchInProgress_.reset();
             finished.bake = ui::StatusLine{std::string("bake failed: ") + e.what(), true};
         }
     }
     return finished;
 }
 
-bool LabSession::busy() const { return pendingLoad_.valid() || queuedSpec_ || job_ != nullptr; }
+bool LabSession::busy() const { return pendingLoad_.valid() || queuedSpec_ || recentRequested_ || job_ != nullptr; }
 
 std::string LabSession::activity() const
 {
@@ -107,6 +198,8 @@ std::string LabSession::activity() const
     }
     return {};
 }
+
+bool LabSession::switching() const { return switchInProgress_.has_value() && !switchAwaitsFrame_; }
 
 float LabSession::progress() const { return job_ ? job_->progress() : 0.0f; }
 
@@ -205,6 +298,14 @@ ui::StatusLine LabSession::capture(const std::string& path, const FrameSettings&
         return {e.what(), true};
     }
     return {"saved " + path + " (+ " + path + ".json)", false};
+}
+
+void LabSession::frameDrawn()
+{
+    if (!switchAwaitsFrame_ || !switchInProgress_) return;
+    switchInProgress_->firstFrameMs = millisecondsSince(switchRequested_);
+    lastSwitch_ = std::exchange(switchInProgress_, std::nullopt);
+    switchAwaitsFrame_ = false;
 }
 
 ui::EnvironmentCatalog LabSession::catalog() const

@@ -4,6 +4,8 @@
 // settings. Environment files load on a worker thread and bakes run in slices, so the GUI
 // stays responsive; the headless commands wait for both.
 #include <chrono>
+#include <deque>
+#include <filesystem>
 #include <future>
 #include <memory>
 #include <optional>
@@ -41,7 +43,12 @@ public:
     // Advances background work for about `budget`: a finished load starts its bake; a
     // finished bake goes to the renderer.
     Finished pump(FrameSettings& settings, std::chrono::steady_clock::duration budget);
+    // Shows a requested environment that is among the recent ones at once (the GUI calls it
+    // after acting on the frame's input, so that the frame it then draws has the new lighting).
+    Finished showRequestedRecent(FrameSettings& settings);
     bool busy() const;
+    // An environment was asked for and its bake is not shown yet.
+    bool switching() const;
     // "loading courtyard.exr", "baking: prefilter 40%", or "" when idle.
     std::string activity() const;
     float progress() const;
@@ -64,12 +71,39 @@ public:
     // the settings embedded and in a .json sidecar.
     ui::StatusLine capture(const std::string& path, const FrameSettings& settings) const;
 
+    // What a user waits for when switching environments: from the request to the first frame
+    // drawn with the new lighting. Each time is since the request.
+    struct SwitchTiming {
+        std::string environment;
+        double loadMs = 0.0;       // the file decoded (on the worker thread)
+        double bakeMs = 0.0;       // the bake (or its cache lookup) handed to the renderer
+        double firstFrameMs = 0.0; // the first frame with that bake drawn and presented
+        bool fromCache = false;
+    };
+    // The GUI calls this after presenting a frame: it completes a switch whose bake is done.
+    void frameDrawn();
+    const std::optional<SwitchTiming>& lastSwitch() const { return lastSwitch_; }
+
     ui::EnvironmentCatalog catalog() const;
     const std::optional<Environment>& environment() const { return environment_; }
     const std::shared_ptr<const bake::BakeResult>& bake() const { return bake_; }
     const bake::BakeSettings& bakeSettings() const { return bakeSettings_; }
 
 private:
+    // The last few environments with their bakes: switching back to one shows it at once
+    // (its textures stay on the GPU: ~8 MiB for the default preset, with 6 MiB of pixels).
+    struct RecentEnvironment {
+        std::string spec;
+        std::optional<std::filesystem::file_time_type> modified; // a changed file loads again
+        Environment environment;
+        std::shared_ptr<const bake::BakeResult> bake;
+    };
+    static constexpr std::size_t kRecentEnvironments = 4;
+    static std::optional<std::filesystem::file_time_type> modificationTime(const std::string& spec);
+    const RecentEnvironment* findRecent(const std::string& spec) const;
+    void rememberCurrent();
+    ui::StatusLine showRecent(const RecentEnvironment& recent, FrameSettings& settings);
+
     ui::StatusLine finishLoad(Environment loaded, FrameSettings& settings);
     ui::StatusLine finishBake();
 
@@ -83,6 +117,13 @@ private:
     std::string pendingSpec_;
     std::optional<std::string> queuedSpec_; // asked for while pendingLoad_ runs
     std::future<Environment> pendingLoad_;
+    std::string currentSpec_;                   // what environment_ was asked for as
+    std::optional<std::string> recentRequested_; // a spec of recent_, shown at the next pump
+    std::deque<RecentEnvironment> recent_;      // most recent first
+    std::chrono::steady_clock::time_point switchRequested_;
+    std::optional<SwitchTiming> switchInProgress_;
+    bool switchAwaitsFrame_ = false;
+    std::optional<SwitchTiming> lastSwitch_;
 };
 
 } // namespace iblab::app

@@ -239,12 +239,7 @@ void BakeJob::retireStepInFlight()
 {
     if (!inFlight_) return;
     inFlight_->fence.wait();
-    const auto now = Clock::now();
-    // The GPU runs steps in order: this one started when it was issued or when the one before
-    // it finished, whichever was later.
-    const auto started = std::max(inFlight_->issued, lastRetired_);
-    addTiming(inFlight_->phase, std::chrono::duration<double, std::milli>(now - started).count());
-    lastRetired_ = now;
+    addTiming(inFlight_->phase, std::chrono::duration<double, std::milli>(Clock::now() - inFlight_->issued).count());
     inFlight_.reset();
 }
 
@@ -255,11 +250,12 @@ bool BakeJob::step()
     Step current = std::move(steps_.front());
     steps_.pop_front();
     try {
+        // The previous step's fence first, so that its time is its own (issue to fence), and
+        // then this step's commands: the GPU runs them while the caller draws its frame.
+        retireStepInFlight();
         const auto issued = Clock::now();
         current.run();
-        gl::Fence fence = gl::Fence::afterIssuedCommands();
-        retireStepInFlight();
-        inFlight_ = StepInFlight{current.phase, issued, std::move(fence)};
+        inFlight_ = StepInFlight{current.phase, issued, gl::Fence::afterIssuedCommands()};
         if (steps_.empty())
             retireStepInFlight();
     } catch (...) {
@@ -285,6 +281,10 @@ bool BakeJob::runFor(Clock::duration budget)
         if (!step())
             return false;
     } while (Clock::now() - start < budget);
+    // Done already (a cheap step, or a fast GPU): book it now rather than after the caller's
+    // frame, which would count that frame into the step's time.
+    if (inFlight_ && inFlight_->fence.signalled())
+        retireStepInFlight();
     return true;
 }
 

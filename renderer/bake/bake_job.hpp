@@ -9,10 +9,11 @@
 //
 // A step is about settings.samplesPerStep texture samples of one pass on one mip (a band of
 // rows of a face, or one or more whole faces), one SH projection, one cache read or write. Each
-// step ends with a fence, and the next step waits for the previous one's fence after issuing
-// its own commands: the CPU prepares step k while the GPU runs step k - 1, at most one step's
-// work is ever queued behind the caller's frame, and no step stalls on glFinish. Per-phase
-// timings are steady-clock time to each fence (llvmpipe's timer queries are wrong). Needs the context that was current when the
+// step ends with a fence, and the next step first waits for the previous one's: the GPU runs a
+// slice's last step while the caller draws its frame, at most one step's work is ever queued
+// behind that frame, and no step stalls on glFinish. A step's time is the steady clock from
+// its issue to its fence (llvmpipe's timer queries are wrong); in the GUI, a step still running
+// when its slice ends also counts the frame drawn meanwhile. Needs the context that was current when the
 // job was made to be current at every call. Step failures (a shader that does not compile,
 // a GL error surfaced as an exception) propagate out of step(); the job is then failed.
 #include <chrono>
@@ -90,7 +91,6 @@ private:
     MomentTexels momentTexels_; // irradiance_moments' groups, between its steps
     std::deque<Step> steps_;
     std::optional<StepInFlight> inFlight_;
-    std::chrono::steady_clock::time_point lastRetired_{};
     double totalCost_ = 0.0;
     double doneCost_ = 0.0;
     bool failed_ = false;

@@ -49,8 +49,8 @@ constexpr BakePhase irradiancePhase(IrradianceMethod method)
 
 struct PhaseTiming {
     BakePhase phase = BakePhase::Shaders;
-    // Steady clock from each step's submission to its fence signalling (at most one step is in
-    // flight, so a step's time does not include the one before it), summed over the phase.
+    // Steady clock from each step's submission to its fence signalling (the job waits for one
+    // step's fence before it issues the next), summed over the phase.
     double milliseconds = 0.0;
 };
 

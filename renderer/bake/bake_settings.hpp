@@ -40,6 +40,7 @@ struct EnvironmentCubeSettings {
     // cube never holds more texels than the equirect it comes from (capped at maxFaceSize).
     int faceSize = 0;
     int maxFaceSize = 2048;
+    bool operator==(const EnvironmentCubeSettings&) const = default;
 };
 
 struct ShSettings {
@@ -48,6 +49,7 @@ struct ShSettings {
     // Window width in bands (sh.hpp); 0 picks the gentlest width that makes the windowed
     // irradiance non-negative everywhere (findNonNegativeWindowWidth).
     double windowWidth = 0.0;
+    bool operator==(const ShSettings&) const = default;
 };
 
 // How the irradiance cube is baked: one method per bake, each with its settings struct
@@ -63,6 +65,7 @@ struct RiemannIrradianceSettings {
     float sampleDelta = 0.025f;
     bool mipFiltering = false;
     float mipBias = 0.0f;
+    bool operator==(const RiemannIrradianceSettings&) const = default;
 };
 
 // Cosine-weighted importance sampling with PDF-based source-mip selection. (Not in the
@@ -74,6 +77,7 @@ struct ImportanceIrradianceSettings {
     int samples = 8192;
     bool mipFiltering = true;
     float mipBias = 0.0f;
+    bool operator==(const ImportanceIrradianceSettings&) const = default;
 };
 
 // Irradiance as a sum over groups of environment texels, each group's flux and first moment
@@ -84,6 +88,7 @@ struct ImportanceIrradianceSettings {
 struct MomentIrradianceSettings {
     int faceSize = 32;
     int sourceFaceSize = 8;
+    bool operator==(const MomentIrradianceSettings&) const = default;
 };
 
 struct PrefilterSettings {
@@ -110,6 +115,7 @@ struct PrefilterSettings {
     // (one box-filtered read per texel). false: sampled like every other mip, `samples`
     // times at source lod 0, which is what LearnOpenGL does (every sample is n itself).
     bool mirrorCopy = true;
+    bool operator==(const PrefilterSettings&) const = default;
 };
 
 // The sample count of prefiltered mip `level`, capped at 65536 (1 for a copied mirror level).
@@ -123,6 +129,7 @@ struct LutSettings {
     bool schlickGgx = true;            // GeometryTerm::SchlickGGX
     bool heightCorrelatedSmith = true; // GeometryTerm::HeightCorrelatedSmith
     bool wants(GeometryTerm term) const { return term == GeometryTerm::SchlickGGX ? schlickGgx : heightCorrelatedSmith; }
+    bool operator==(const LutSettings&) const = default;
 };
 
 struct BakeSettings {
@@ -144,6 +151,7 @@ struct BakeSettings {
     // is a band of rows of one face of one mip, or as many whole faces as fit.
     // kUnslicedBake makes each pass one step per mip, for callers with no frame to keep.
     std::int64_t samplesPerStep = 1 << 20;
+    bool operator==(const BakeSettings&) const = default;
 };
 
 inline constexpr std::int64_t kUnslicedBake = std::int64_t(1) << 62;
