@@ -30,6 +30,7 @@
 #include "lab_session.hpp"
 #include "ui/panels.hpp"
 #include "frame/renderer.hpp"
+#include "frame/split_view.hpp"
 #include "study_run.hpp"
 #include "view_overlays.hpp"
 #include "ui/widgets.hpp"
@@ -210,7 +211,8 @@ struct RenderedState {
     FrameSettings settings;
     int width = 0, height = 0;
     std::uint64_t contentRevision = 0;
-    bool referenceComplete = false;
+    bool referenceComplete = false;   // of the error view
+    float referenceMethodProgress = 0.0f; // a side drawn with the reference method shows each step
     bool operator==(const RenderedState&) const = default;
 };
 
@@ -251,6 +253,8 @@ struct GuiApp::Impl {
     CameraInput cameraInput;
     SplitDividerInput divider;
     std::optional<RenderedState> rendered;
+    // A screenshot of a frame that shows a reference waits until the reference is complete.
+    std::optional<ui::CaptureRequest> pendingCapture;
     std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
     Clock::time_point start = Clock::now();
     Clock::time_point previousFrame = Clock::now();
@@ -450,23 +454,28 @@ void GuiApp::Impl::frame()
     const bool interacting = ImGui::IsAnyItemActive() || ImGui::IsMouseDragging(ImGuiMouseButton_Left) ||
                              ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle) ||
                              io.MouseWheel != 0.0f;
-    const bool capturing = requests.capture.has_value();
+    if (requests.capture) pendingCapture = requests.capture;
+    const bool capturing = pendingCapture.has_value();
     Renderer::Options renderOptions;
     if (interacting && !capturing && stats.renderMs > 33.0)
         renderOptions.resolutionScale = std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(previousScale * previousScale))), 0.25f, 1.0f);
     renderOptions.accumulate = !interacting;
     previousScale = renderOptions.resolutionScale;
-    // The error view's reference, one budgeted slice of work per idle frame (a drag would
-    // restart it every frame; it resumes when the drag ends).
+    // The reference (of the error view, or of a side drawn with the reference method), one
+    // budgeted slice of work per idle frame (a drag would restart it every frame; it resumes
+    // when the drag ends).
     const bool errorView = settings.view.mode == ViewMode::Error;
-    if (errorView)
-        panels.compare.reference = interacting || session.busy() ? renderer.referenceStatus(settings, viewWidth, viewHeight)
-                                                                 : renderer.advanceReference(settings, viewWidth, viewHeight, kReferenceBudgetPerFrame);
+    const bool referenceShown = showsReference(settings);
+    panels.compare.reference = !referenceShown ? ReferenceStatus{}
+                               : interacting || session.busy()
+                                   ? renderer.referenceStatus(settings, viewWidth, viewHeight)
+                                   : renderer.advanceReference(settings, viewWidth, viewHeight, kReferenceBudgetPerFrame);
     // A finished image needs no more frames: split-sum is deterministic, the sampled method
-    // stops refining after kMaxAccumulatedFrames (or at once with a frozen sample set), and
-    // the error view waits for its reference.
-    const bool referencePending = errorView && !panels.compare.reference.complete;
-    const RenderedState current{settings, viewWidth, viewHeight, renderer.contentRevision(), errorView && panels.compare.reference.complete};
+    // stops refining after kMaxAccumulatedFrames (or at once with a frozen sample set), the
+    // error view waits for its reference, and the reference method shows each step of it.
+    const bool referencePending = referenceShown && !panels.compare.reference.complete;
+    const RenderedState current{settings, viewWidth, viewHeight, renderer.contentRevision(), errorView && panels.compare.reference.complete,
+                                referenceMethodSide(settings) ? panels.compare.reference.progress : 0.0f};
     const int framesToConverge = renderer.lastFrameWasSampled() && !keepsExactSampleCount(settings) ? kMaxAccumulatedFrames : 1;
     const bool converged = rendered == current && !interacting && !session.busy() && !capturing && renderer.accumulatedFrames() >= framesToConverge;
     // While another environment loads and bakes, the view keeps its last image (the previous
@@ -486,7 +495,10 @@ void GuiApp::Impl::frame()
     stats.width = viewWidth;
     stats.height = viewHeight;
     furnaceReadings = settings.view.mode == ViewMode::Furnace ? renderer.measureSpheres(settings) : std::vector<SphereReading>{};
-    if (requests.capture) capture(*requests.capture);
+    if (pendingCapture && referencePending)
+        panels.captureStatus = {"the screenshot waits for the reference (" + std::to_string(int(100.0f * panels.compare.reference.progress)) + "%)"};
+    else if (pendingCapture)
+        capture(*std::exchange(pendingCapture, std::nullopt));
     // Idle: nothing left to compute until the next input (what scripts wait for). The loop
     // also keeps drawing while a control is hovered (its tooltip) or a field has the
     // keyboard (the caret), and only sleeps when neither.

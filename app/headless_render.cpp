@@ -12,6 +12,7 @@
 #include "frame/camera.hpp"
 #include "commands.hpp"
 #include "frame/conventions.hpp"
+#include "frame/split_view.hpp"
 #include "command_support.hpp"
 #include "gl/shader_library.hpp"
 #include "lab_session.hpp"
@@ -61,10 +62,11 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
             frameBox(settings.camera, scene.centre, scene.halfExtents, float(job.width) / float(job.height));
         }
 
-        // The error view needs the reference of this very frame: run it to completion first.
+        // The error view and the reference method need the reference of this very frame: run
+        // it to completion first.
         double referenceMs = 0.0;
         ReferenceStatus reference;
-        if (settings.view.mode == ViewMode::Error) {
+        if (showsReference(settings)) {
             const auto referenceStart = Clock::now();
             reference = renderer.advanceReference(settings, job.width, job.height, std::chrono::hours(24));
             if (!reference.complete) return fail("the reference did not complete (no bake?)");
@@ -109,7 +111,8 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
                     report["furnace"].push_back({{"metallic", r.metallic},
                                                  {"roughness", r.roughness},
                                                  {"reflected", {r.radiance.r, r.radiance.g, r.radiance.b}}});
-            if (reference.complete) {
+            if (reference.complete) report["timings_ms"]["reference"] = referenceMs;
+            if (reference.complete && settings.view.mode == ViewMode::Error) {
                 const ErrorReport error = renderer.measureError(settings);
                 auto& out = report["error"];
                 out["space"] = enumName(settings.view.errorSpace);
@@ -119,7 +122,6 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
                                                 {"min_resolved_roughness", reference.minResolvedRoughness}};
                 out[settings.view.split ? "a" : "frame"] = errorMetricsJson(error.left);
                 if (error.right) out["b"] = errorMetricsJson(*error.right);
-                report["timings_ms"]["reference"] = referenceMs;
             }
             report["timings_ms"]["start_to_context"] = contextMs;
             report["timings_ms"]["environment_load"] = loadMs;

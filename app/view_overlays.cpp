@@ -7,6 +7,7 @@
 #include <imgui_impl_opengl3.h>
 
 #include "frame/debug_layout.hpp"
+#include "frame/split_view.hpp"
 #include "ui/panels.hpp"
 
 namespace iblab::app {
@@ -20,10 +21,12 @@ void drawViewOverlays(const Renderer& renderer, const FrameSettings& settings, i
     if (settings.view.mode == ViewMode::Final || settings.view.mode == ViewMode::Furnace || settings.view.mode == ViewMode::Error)
         ui::drawSceneLabels(renderer.sceneLabels(settings, width, height), viewOrigin, float(height));
     if (sceneView && settings.view.split) ui::drawSplitDivider(settings, splitColumn(settings.view, width), viewOrigin, viewSize);
-    if (settings.view.mode == ViewMode::Error) {
+    if (showsReference(settings)) {
         const ReferenceStatus reference = renderer.referenceStatus(settings, width, height);
-        if (reference.complete) ui::drawErrorLegend(settings.view, viewOrigin, viewSize);
-        else if (reference.current) ui::drawReferenceProgress(reference, viewOrigin, viewSize);
+        if (reference.complete && settings.view.mode == ViewMode::Error) ui::drawErrorLegend(settings.view, viewOrigin, viewSize);
+        else if (reference.current && !reference.complete)
+            ui::drawReferenceProgress(reference, referenceMethodSide(settings) ? "split sum where tiles have not finished" : "showing the frame until it completes",
+                                      viewOrigin, viewSize);
     }
     if (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut) {
         const TexelProbe probe = mouseInView ? renderer.probe(settings, width, height, mouseInView->x, mouseInView->y) : TexelProbe{};

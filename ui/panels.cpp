@@ -211,11 +211,25 @@ void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene)
 
 namespace {
 
+// "reference 37% (256x128)": how far the reference is, over the bar that shows it.
+std::string referenceProgressText(const ReferenceStatus& r)
+{
+    char text[96];
+    std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d)", 100.0 * r.progress, r.environmentWidth, r.environmentHeight);
+    return text;
+}
+
 // The estimator's controls; the frame's own (A) and the split view's B use the same.
-void drawSamplingControls(SamplingSettings& settings, bool exactCountForced)
+// `reference`: the status of the reference the frame shows, for the reference method's bar.
+void drawSamplingControls(SamplingSettings& settings, bool exactCountForced, const ReferenceStatus& reference)
 {
     const FieldTable<SamplingSettings>& fields = samplingSettingsFields();
     fieldCombo(fields, "method", settings);
+    if (settings.method == ShadingMethod::Reference) {
+        if (reference.current) progressBar("Reference progress", reference.progress, referenceProgressText(reference).c_str());
+        ImGui::TextDisabled(reference.complete ? "The full integral over the map's texels (Compare: reference map)"
+                                               : "Tiles show the full integral as they finish, the split sum until then");
+    }
     if (settings.method == ShadingMethod::Sampled) {
         // N is counted in ones for the N = 1..k check: typed (Ctrl+click), stepped with the
         // buttons or the +/- keys, or dragged on a logarithmic scale.
@@ -241,11 +255,15 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced)
         fieldCheckbox(fields, "cosine_sampled_diffuse", settings);
         fieldCheckbox(fields, "normalize_by_accepted", settings);
     }
-    bool automatic = settings.forcedMip < 0;
-    if (checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;
-    if (!automatic) sliderInt("Forced mip", &settings.forcedMip, 0, 10);
+    // The reference reads no mip and no baked diffuse: of these it shares only the BRDF
+    // (geometry term, energy compensation).
+    if (settings.method != ShadingMethod::Reference) {
+        bool automatic = settings.forcedMip < 0;
+        if (checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;
+        if (!automatic) sliderInt("Forced mip", &settings.forcedMip, 0, 10);
+    }
     fieldCombo(fields, "geometry", settings);
-    fieldCombo(fields, "diffuse", settings);
+    if (settings.method != ShadingMethod::Reference) fieldCombo(fields, "diffuse", settings);
     fieldCheckbox(fields, "multiscatter", settings);
     if (settings.method == ShadingMethod::SplitSum) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
 }
@@ -314,11 +332,11 @@ void drawConventionPanel(PanelState& state, UiRequests& requests)
     }
 }
 
-void drawSamplingPanel(SamplingSettings& settings, bool exactCountForced)
+void drawSamplingPanel(SamplingSettings& settings, bool exactCountForced, const ReferenceStatus& reference)
 {
     Section section("Sampling", true);
     if (!section) return;
-    drawSamplingControls(settings, exactCountForced);
+    drawSamplingControls(settings, exactCountForced, reference);
 }
 
 void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state, std::optional<float> sceneMinRoughness)
@@ -331,32 +349,34 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
     if (errorView) {
         enumCombo("Error space", view.errorSpace, std::array{ErrorSpace::Linear, ErrorSpace::Display}, enumName<ErrorSpace>);
         sliderFloat("Colour bar top", &view.errorScale, 0.01f, 4.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    }
+    // The reference's map and progress, for the error view and for the reference method.
+    const bool referenceMethod = frameSampling.method == ShadingMethod::Reference || (view.split && view.compare.method == ShadingMethod::Reference);
+    if (errorView || referenceMethod) {
         const std::array widths{32, 64, 128, 256, 512};
         if (Combo combo("Reference map", (std::to_string(view.referenceWidth) + " x " + std::to_string(view.referenceWidth / 2)).c_str()); combo)
             for (int w : widths)
                 if (combo.entry((std::to_string(w) + " x " + std::to_string(w / 2)).c_str(), w == view.referenceWidth)) view.referenceWidth = w;
         const ReferenceStatus& r = state.reference;
         if (r.current) {
-            char text[96];
-            std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d)", 100.0 * r.progress, r.environmentWidth, r.environmentHeight);
-            ImGui::ProgressBar(r.progress, ImVec2(-1.0f, 0.0f), text);
+            progressBar("Reference progress", r.progress, referenceProgressText(r).c_str());
             ImGui::TextDisabled("texel %.2f deg: converged for roughness >= %.2f", r.texelDegrees, r.minResolvedRoughness);
             if (sceneMinRoughness && *sceneMinRoughness < r.minResolvedRoughness) {
                 char warning[256];
                 std::snprintf(warning, sizeof warning,
-                              "Roughness %.2f is below that: there the heatmap measures the reference's texels, not the method. Use a wider "
-                              "reference map.",
+                              "Roughness %.2f is below that: there the reference shows the map's texels, not the converged integral "
+                              "(and the heatmap measures them, not the method). Use a wider reference map.",
                               *sceneMinRoughness);
                 drawWarning(warning);
             }
         }
-        if (state.error.valid) {
-            ImGui::TextUnformatted(view.split ? "A (left)" : "Frame");
-            drawMetricsTable("##errorA", state.error.left);
-            if (state.error.right) {
-                ImGui::TextUnformatted("B (right)");
-                drawMetricsTable("##errorB", *state.error.right);
-            }
+    }
+    if (errorView && state.error.valid) {
+        ImGui::TextUnformatted(view.split ? "A (left)" : "Frame");
+        drawMetricsTable("##errorA", state.error.left);
+        if (state.error.right) {
+            ImGui::TextUnformatted("B (right)");
+            drawMetricsTable("##errorB", *state.error.right);
         }
     }
     ImGui::Separator();
@@ -368,7 +388,7 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
     ImGui::TextDisabled("B, right of the divider:");
     ImGui::PushID("B");
     itemRegistry().pushScope("B");
-    drawSamplingControls(view.compare, false);
+    drawSamplingControls(view.compare, false, state.reference);
     itemRegistry().popScope();
     ImGui::PopID();
 }
@@ -552,11 +572,11 @@ void drawErrorLegend(const ViewSettings& view, glm::vec2 viewOrigin, glm::vec2 v
     draw->AddText(ImVec2(origin.x, origin.y - 18.0f), text, title.c_str());
 }
 
-void drawReferenceProgress(const ReferenceStatus& status, glm::vec2 viewOrigin, glm::vec2 viewSize)
+void drawReferenceProgress(const ReferenceStatus& status, const char* meanwhile, glm::vec2 viewOrigin, glm::vec2 viewSize)
 {
-    char text[128];
-    std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d texels): showing the frame until it completes", 100.0 * status.progress,
-                  status.environmentWidth, status.environmentHeight);
+    char text[160];
+    std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d texels): %s", 100.0 * status.progress, status.environmentWidth,
+                  status.environmentHeight, meanwhile);
     const ImVec2 size = ImGui::CalcTextSize(text);
     const ImVec2 at(viewOrigin.x + (viewSize.x - size.x) * 0.5f, viewOrigin.y + 12.0f);
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
@@ -684,7 +704,7 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     drawEnvironmentPanel(settings.environment, state, requests);
     drawScenePanel(settings.scene, state, requests);
     drawMaterialPanel(settings.material, settings.scene);
-    drawSamplingPanel(settings.sampling, sceneDemandsExactSampleCount(settings.scene));
+    drawSamplingPanel(settings.sampling, sceneDemandsExactSampleCount(settings.scene), state.compare.reference);
     drawConventionPanel(state, requests);
     drawToneMapPanel(settings.toneMap);
     drawViewPanel(settings.view);

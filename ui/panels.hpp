@@ -150,7 +150,8 @@ void drawQuitDialog(PanelState& state, UiRequests& requests);
 void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene);
 // exactCountForced: the scene keeps exactly N samples whatever the freeze checkbox says (the
 // counting strip), so the checkbox shows on and cannot be cleared.
-void drawSamplingPanel(SamplingSettings& settings, bool exactCountForced);
+// `reference`: the status of the reference the frame shows (the reference method's progress).
+void drawSamplingPanel(SamplingSettings& settings, bool exactCountForced, const ReferenceStatus& reference);
 // The convention presets (LearnOpenGL, Filament, glTF Sample Viewer, iblab) and what each chose.
 void drawConventionPanel(PanelState& state, UiRequests& requests);
 // The error view's and the split view's controls, the reference's progress and the numbers.
@@ -179,8 +180,9 @@ void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 vi
 
 // The error view's colour bar with its numeric scale, at the bottom right of the view.
 void drawErrorLegend(const ViewSettings& view, glm::vec2 viewOrigin, glm::vec2 viewSize);
-// The reference's progress while the error view waits for it, at the top of the view.
-void drawReferenceProgress(const ReferenceStatus& status, glm::vec2 viewOrigin, glm::vec2 viewSize);
+// The reference's progress while the view waits for it (the error view) or builds it (the
+// reference method), at the top of the view; `meanwhile` says what shows until then.
+void drawReferenceProgress(const ReferenceStatus& status, const char* meanwhile, glm::vec2 viewOrigin, glm::vec2 viewSize);
 // The split view's divider at pixel column `column` and what each side shows.
 void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewOrigin, glm::vec2 viewSize);
 

@@ -166,4 +166,10 @@ bool colourEdit3(const char* label, float colour[3])
 
 bool canvas(const char* label, ImVec2 size, std::string_view kind) { return recorded(ImGui::InvisibleButton(label, size), label, kind); }
 
+void progressBar(const char* label, float fraction, const char* overlay)
+{
+    ImGui::ProgressBar(fraction, ImVec2(-1.0f, 0.0f), overlay);
+    itemRegistry().recordLastItem(label, "progress");
+}
+
 } // namespace iblab::ui

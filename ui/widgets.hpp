@@ -24,7 +24,8 @@ struct TrackedItem {
     std::string path;
     // "header", "button", "checkbox", "slider", "input", "combo", "radio", "colour", "canvas";
     // "entry" for a combo's entries and "part" for a colour's component fields, which are
-    // choices inside a control rather than controls of their own.
+    // choices inside a control rather than controls of their own; "progress" for a progress
+    // bar, which shows and is not used.
     std::string kind;
     ImVec2 min{0.0f, 0.0f}, max{0.0f, 0.0f}; // window pixels, y down
     ImVec2 centre() const { return {0.5f * (min.x + max.x), 0.5f * (min.y + max.y)}; }
@@ -108,5 +109,8 @@ bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::s
 bool colourEdit3(const char* label, float colour[3]);
 // An invisible button of `size` (a chart or a curve), tracked as `kind`.
 bool canvas(const char* label, ImVec2 size, std::string_view kind);
+// A full-width progress bar showing `overlay`, tracked as `label` of kind "progress" (shown,
+// not a control to use).
+void progressBar(const char* label, float fraction, const char* overlay);
 
 } // namespace iblab::ui

@@ -117,17 +117,24 @@ void ReferenceIntegral::start(const ImageRGB32F& environment, int width, int hei
     nextSlice_ = 0;
 }
 
+glm::ivec4 ReferenceIntegral::tileRect(int i) const
+{
+    const glm::ivec2 origin = tiles_.at(std::size_t(i));
+    const glm::ivec2 end = glm::min(origin + tileSize_, glm::ivec2(width_, height_));
+    return {origin.x, origin.y, end.x, end.y};
+}
+
 void ReferenceIntegral::runSlice(gl::ShaderLibrary& shaders, const GBuffer& gbuffer, GeometryTerm geometry)
 {
     if (complete()) return;
     // Tile-major: a tile's pixels finish before the next tile starts.
-    const glm::ivec2 tile = tiles_[std::size_t(nextSlice_ / bands_)];
+    const glm::ivec4 tile = tileRect(nextSlice_ / bands_);
     const int band = nextSlice_ % bands_;
     const gl::ShaderProgram& p = shaders.program({"reference_integral.comp"});
     const IntegralUniforms& u = p.uniforms<IntegralUniforms>();
     glUseProgram(p.id());
-    u.tileOrigin.set(tile);
-    u.tileEnd.set(glm::min(tile + tileSize_, glm::ivec2(width_, height_)));
+    u.tileOrigin.set(glm::ivec2(tile.x, tile.y));
+    u.tileEnd.set(glm::ivec2(tile.z, tile.w));
     u.firstRow.set(band * rowsPerSlice_);
     u.endRow.set(std::min((band + 1) * rowsPerSlice_, environmentHeight_));
     u.geometry.set(int(geometry));

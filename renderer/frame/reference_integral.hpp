@@ -8,6 +8,7 @@
 
 #include <epoxy/gl.h>
 #include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
 
 #include "gl/handles.hpp"
 #include "gl/shader_library.hpp"
@@ -44,6 +45,11 @@ public:
     void runSlice(gl::ShaderLibrary& shaders, const GBuffer& gbuffer, GeometryTerm geometry);
     bool complete() const { return nextSlice_ >= sliceCount(); }
     float progress() const { return sliceCount() == 0 ? 1.0f : float(nextSlice_) / float(sliceCount()); }
+    // Slices run tile-major, so tiles [0, finishedTiles()) have every row of the
+    // environment in their sums; the pixels outside every tile have no surface at all.
+    int finishedTiles() const { return bands_ == 0 ? 0 : nextSlice_ / bands_; }
+    // Pixel rectangle of tile i: x0, y0 (bottom row first), x1, y1 exclusive.
+    glm::ivec4 tileRect(int i) const;
     // RGBA32F: specular radiance and E_ss; irradiance E (before the environment's intensity).
     GLuint specularSum() const { return specularSum_.id(); }
     GLuint irradianceSum() const { return irradianceSum_.id(); }

@@ -55,7 +55,9 @@ ReferenceStatus ReferenceRenderer::advance(const FrameSettings& settings, int wi
         integral_.runSlice(shaders_, gbuffer_, geometry_);
         glFinish();
     }
-    if (integral_.complete() && !resolved_) resolve(settings, lighting);
+    // A resolve is a full-screen pass: cheap next to a slice, so it runs whenever tiles
+    // finished, not only at the end.
+    if (integral_.finishedTiles() != resolvedTiles_ || (integral_.complete() && !resolved_)) resolve(settings, lighting);
     return status(settings, width, height);
 }
 
@@ -92,6 +94,7 @@ void ReferenceRenderer::start(const FrameSettings& settings, int width, int heig
     slicing_ = slicing;
     geometry_ = settings.sampling.geometry;
     resolved_ = false;
+    resolvedTiles_ = 0;
 }
 
 // The environment behind, through the frame's own sky pass; the surfaces from the sums.
@@ -115,7 +118,25 @@ void ReferenceRenderer::resolve(const FrameSettings& settings, const Lighting& l
     triangle_.draw();
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    resolved_ = true;
+    resolved_ = integral_.complete();
+    resolvedTiles_ = integral_.finishedTiles();
+}
+
+void ReferenceRenderer::copyFinished(const FrameKey& key, const gl::RenderTarget& target, int x0, int x1) const
+{
+    if (key != key_ || target.width() != frame_.width() || target.height() != frame_.height()) return;
+    const auto copy = [&](glm::ivec4 rect) {
+        rect.x = std::max(rect.x, x0);
+        rect.z = std::min(rect.z, x1);
+        if (rect.x >= rect.z || rect.y >= rect.w) return;
+        glBlitNamedFramebuffer(frame_.framebuffer(), target.framebuffer(), rect.x, rect.y, rect.z, rect.w, rect.x, rect.y, rect.z, rect.w,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    };
+    if (resolved_) {
+        copy({0, 0, frame_.width(), frame_.height()});
+        return;
+    }
+    for (int tile = 0; tile < resolvedTiles_; ++tile) copy(integral_.tileRect(tile));
 }
 
 FrameReadback ReferenceRenderer::readFrame() const

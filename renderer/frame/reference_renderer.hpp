@@ -6,7 +6,8 @@
 //   advance: ReferenceIntegral slices (reference_integral.comp: one tile x one band of
 //            environment rows each) add into RGBA32F specular and irradiance sums
 //   resolve: the sky pass, then reference_resolve.frag combines G-buffer and sums into the
-//            RGBA32F reference frame
+//            RGBA32F reference frame; also while it runs, whenever tiles have finished, so
+//            that ShadingMethod::Reference can show each tile as soon as it is final
 // It never reads a bake's textures for its surfaces (only the environment it was given and
 // the frame's shading model), so a re-bake keeps it; a new environment or model does not.
 #include <chrono>
@@ -51,6 +52,12 @@ public:
     // Whether the resolved reference is the one of a frame made with this key.
     bool completeFor(const std::optional<FrameKey>& frameKey) const { return resolved_ && frameKey && frameKey == key_; }
 
+    // Copies what is final of the reference made with `key` into columns [x0, x1) of target
+    // (of the reference's size): all of them once it is complete, else the finished tiles
+    // (the background and the unfinished tiles are left as they are). Nothing when the
+    // reference under way is not of that key.
+    void copyFinished(const FrameKey& key, const gl::RenderTarget& target, int x0, int x1) const;
+
     GLuint frameTexture() const { return frame_.texture(); }
     GLuint layerTexture(ReferenceLayer layer) const { return gbuffer_.texture(layer); }
     FrameReadback readFrame() const; // empty until resolved
@@ -78,7 +85,8 @@ private:
     std::optional<FrameKey> key_;
     ReferenceSlicing slicing_;
     GeometryTerm geometry_ = GeometryTerm::HeightCorrelatedSmith;
-    bool resolved_ = false;
+    bool resolved_ = false;   // complete, and frame_ holds all of it
+    int resolvedTiles_ = 0;   // the integral's finished tiles that frame_ holds
 };
 
 } // namespace iblab

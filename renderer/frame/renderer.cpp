@@ -11,6 +11,10 @@
 //   debug view      the bake's prefiltered cube or LUTs            HDR frame, every pixel, in
 //                                                                  place of mesh + sky
 //   MSAA resolve    HDR frame (MSAA)                               HDR frame (RGBA16F)
+//   reference       each side drawn with ShadingMethod::Reference, HDR frame: the finished part of
+//   method          the reference renderer's frame                 that side's reference over its
+//                                                                  columns (the mesh pass previewed
+//                                                                  it with the split sum)
 //   accumulation    HDR frame, the frame's FrameKey                running mean (RGBA32F)
 //   tone map        HDR frame or running mean, ToneMapSettings     display (RGBA8, sRGB)
 //   error view      HDR frame or running mean, the reference       display, in place of the
@@ -18,6 +22,8 @@
 //
 // The reference renderer (reference_renderer.hpp) runs when asked (advanceReference): the
 // mesh pass into its G-buffer, its integral in slices, then the sky pass and its resolve.
+// renderFrame never advances it: a frame shows the reference method's side as far as the
+// last advanceReference took it.
 // What read-back frames say (error, furnace spheres, debug texels) is frame_analysis.hpp.
 #include "frame/renderer.hpp"
 
@@ -80,6 +86,27 @@ struct Renderer::Impl {
     bool sampledDraws = false; // drew with the sampled method and rotating sample sets
     const gl::RenderTarget* resolved = &hdrFrame; // what the display pass read: the frame or the running mean
     std::optional<FrameKey> frameKey;             // reference.keyFor() it, to match it with the reference
+
+    // Whether every side drawn with the reference method shows its complete reference: until
+    // then the side changes as tiles finish, and a running mean of it would mix the stages.
+    bool referenceSidesFinal(const FrameSettings& settings, int width, int height) const
+    {
+        if (!referenceMethodSide(settings)) return true;
+        bool final = true;
+        forEachVisibleSide(settings, width, [&](const FrameSettings& side, int, int) {
+            if (side.sampling.method == ShadingMethod::Reference) final = final && reference.completeFor(reference.keyFor(side, width, height));
+        });
+        return final;
+    }
+
+    // The reference method's sides: their finished reference over the split-sum preview.
+    void copyReferenceSides(const FrameSettings& settings, int width, int height)
+    {
+        if (!referenceMethodSide(settings)) return;
+        forEachVisibleSide(settings, width, [&](const FrameSettings& side, int x0, int x1) {
+            if (side.sampling.method == ShadingMethod::Reference) reference.copyFinished(reference.keyFor(side, width, height), hdrFrame, x0, x1);
+        });
+    }
 
     explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory)) { shaders.setProgramInitializer(assignSamplerUnits); }
 
@@ -154,7 +181,7 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
 
     // A new running mean whenever anything that changes the image changes. Where every
     // side keeps its exact sample count, more frames would only average copies: none.
-    const bool accumulate = options.accumulate && !everySideKeepsExactSampleCount(settings);
+    const bool accumulate = options.accumulate && !everySideKeepsExactSampleCount(settings) && r.referenceSidesFinal(settings, width, height);
     const glm::vec2 rotation = r.accumulation.begin(accumulate ? std::optional<FrameKey>(FrameKey{settings, width, height, r.contentRevision})
                                                                : std::nullopt);
 
@@ -177,13 +204,17 @@ void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int ful
         r.debugView.draw(settings, lighting, width, height);
     } else {
         drawSides(settings, width, height, [&](const FrameSettings& side) {
+            // The reference method's preview where its reference is not finished: the split sum.
+            FrameSettings shaded = side;
+            if (shaded.sampling.method == ShadingMethod::Reference) shaded.sampling.method = ShadingMethod::SplitSum;
             // Meshes first, then the sky behind them: llvmpipe shades only the uncovered pixels.
-            const bool sampled = r.mesh.draw(r.scene, side, lighting, aspect, rotation, MeshPass::Output::Shaded);
+            const bool sampled = r.mesh.draw(r.scene, shaded, lighting, aspect, rotation, MeshPass::Output::Shaded);
             r.sampledDraws = r.sampledDraws || sampled;
-            r.sky.draw(side, lighting, aspect);
+            r.sky.draw(shaded, lighting, aspect);
         });
     }
     if (multisampled) r.msaaFrame.resolveInto(r.hdrFrame);
+    r.copyReferenceSides(settings, width, height);
     r.frameKey = r.reference.keyFor(settings, width, height);
     r.resolved = &r.accumulation.add(r.hdrFrame);
 
@@ -206,12 +237,12 @@ ReferenceStatus Renderer::advanceReference(const FrameSettings& settings, int wi
 {
     Impl& r = *impl_;
     // The reference is of the lit frame, whatever the view: the bake, never the furnace's.
-    return r.reference.advance(settings, width, height, budget, slicing, r.scene, Lighting{r.equirect.id(), r.bake.get()});
+    return r.reference.advance(referenceSubject(settings), width, height, budget, slicing, r.scene, Lighting{r.equirect.id(), r.bake.get()});
 }
 
 ReferenceStatus Renderer::referenceStatus(const FrameSettings& settings, int width, int height) const
 {
-    return impl_->reference.status(settings, width, height);
+    return impl_->reference.status(referenceSubject(settings), width, height);
 }
 FrameReadback Renderer::readReferenceFrame() const { return impl_->reference.readFrame(); }
 FrameReadback Renderer::readReferenceLayer(ReferenceLayer layer) const { return impl_->reference.readLayer(layer); }

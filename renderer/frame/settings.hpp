@@ -49,10 +49,12 @@ struct MaterialSettings {
     bool operator==(const MaterialSettings&) const = default;
 };
 
-enum class ShadingMethod { SplitSum, Sampled };
+// Reference: the full integral over the environment's texels (the reference renderer), the
+// ground truth the real-time methods approximate; progressive in the GUI, complete headless.
+enum class ShadingMethod { SplitSum, Sampled, Reference };
 template <>
 struct EnumNames<ShadingMethod> {
-    static constexpr std::array<EnumName<ShadingMethod>, 2> entries{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}}};
+    static constexpr std::array<EnumName<ShadingMethod>, 3> entries{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}, {ShadingMethod::Reference, "reference"}}};
 };
 // Sh9: the bake's SH9 irradiance as it windowed it (BakeSettings::sh.window); Sh9Plain: the
 // same projection without the window, so that its ringing can be seen.

@@ -25,6 +25,31 @@ bool everySideKeepsExactSampleCount(const FrameSettings& settings)
     return keepsExactSampleCount(settings) && (!settings.view.split || keepsExactSampleCount(compareSide(settings)));
 }
 
+std::optional<FrameSettings> referenceMethodSide(const FrameSettings& settings)
+{
+    // The reference integrates the loaded environment under the frame's own sky: the furnace
+    // (lit by builtin:white), the irradiance background and the views of baked data are not that.
+    if (settings.view.mode != ViewMode::Final && settings.view.mode != ViewMode::Error) return std::nullopt;
+    if (settings.sampling.method == ShadingMethod::Reference) return settings;
+    if (settings.view.split && settings.view.compare.method == ShadingMethod::Reference) return compareSide(settings);
+    return std::nullopt;
+}
+
+bool showsReference(const FrameSettings& settings) { return settings.view.mode == ViewMode::Error || referenceMethodSide(settings); }
+
+FrameSettings referenceSubject(const FrameSettings& settings) { return referenceMethodSide(settings).value_or(settings); }
+
+void forEachVisibleSide(const FrameSettings& settings, int width, const std::function<void(const FrameSettings&, int x0, int x1)>& show)
+{
+    if (!settings.view.split) {
+        show(settings, 0, width);
+        return;
+    }
+    const int divider = splitColumn(settings.view, width);
+    show(settings, 0, divider);
+    show(compareSide(settings), divider, width);
+}
+
 void drawSides(const FrameSettings& settings, int width, int height, const std::function<void(const FrameSettings&)>& drawSide)
 {
     drawSide(settings);

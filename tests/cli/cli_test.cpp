@@ -17,49 +17,15 @@
 #include <nlohmann/json.hpp>
 #include <OpenImageIO/imageio.h>
 
+#include "cli_fixture.hpp"
 #include "malformed_images.hpp"
 
 namespace {
 
+using iblab::cli_testing::Cli;
+using iblab::cli_testing::readExr;
+using iblab::cli_testing::Result;
 namespace fs = std::filesystem;
-
-struct Result {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override
-    {
-        dir = fs::temp_directory_path() / ("iblab-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-
-    // Runs iblab in the test's directory with DISPLAY unset, so that the run is headless
-    // whatever the machine has, and with a bake cache of its own.
-    Result run(const std::string& arguments, const std::string& extraEnvironment = "") const
-    {
-        const fs::path errFile = dir / "stderr.txt";
-        const std::string command = "cd '" + dir.string() + "' && env -u DISPLAY -u WAYLAND_DISPLAY IBLAB_CACHE_DIR='" + (dir / "cache").string() + "' " +
-                                    extraEnvironment + " '" IBLAB_EXECUTABLE "' " + arguments +
-                                    " 2> '" + errFile.string() + "'";
-        Result result;
-        FILE* pipe = popen(command.c_str(), "r");
-        std::array<char, 4096> buffer{};
-        while (std::fgets(buffer.data(), int(buffer.size()), pipe)) result.out += buffer.data();
-        const int status = pclose(pipe);
-        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        std::ifstream err(errFile);
-        result.err.assign(std::istreambuf_iterator<char>(err), {});
-        return result;
-    }
-
-    fs::path dir;
-};
 
 int lineCount(const std::string& text)
 {
@@ -478,16 +444,6 @@ TEST_F(Cli, ErrorViewReportsMetricsAsJson)
     const auto sides = nlohmann::json::parse(split.out)["error"];
     EXPECT_GT(sides["a"]["pixels"].get<int>(), 100);
     EXPECT_GT(sides["b"]["pixels"].get<int>(), 100);
-}
-
-std::vector<float> readExr(const fs::path& path, int& width)
-{
-    auto input = OIIO::ImageInput::open(path.string());
-    if (!input) return {};
-    width = input->spec().width;
-    std::vector<float> pixels(std::size_t(input->spec().width * input->spec().height * 4));
-    input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data());
-    return pixels;
 }
 
 // --split shows A (the frame's options) left of the divider and B (--b-*) from it on.

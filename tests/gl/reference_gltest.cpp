@@ -16,38 +16,15 @@
 #include "ibl/error_metrics.hpp"
 #include "ibl/reference.hpp"
 #include "ibl/tonemap.hpp"
-#include "renderer_fixture.hpp"
+#include "reference_test_support.hpp"
 
 namespace iblab {
 namespace {
 
-constexpr int kSize = 48; // frame width and height: a sphere of ~1000 surface pixels
-
-class Reference : public testing::RendererTest {
-protected:
-    // The loaded map, at its own size: the reference downsamples it itself.
-    ImageRGB32F load(const std::string& spec) { return bakeEnvironment(spec, testing::smallBakeSettings()); }
-    static FrameSettings sphere(glm::vec3 baseColor, float metallic, float roughness)
-    {
-        FrameSettings s;
-        s.scene.kind = SceneKind::Sphere;
-        s.material = {true, baseColor, metallic, roughness, 1.0f, 0.5f};
-        s.view.referenceWidth = 64;
-        frameBox(s.camera, glm::vec3(0.0f), glm::vec3(1.0f), 1.0f);
-        return s;
-    }
-    FrameReadback reference(const FrameSettings& s, const ReferenceSlicing& slicing = {})
-    {
-        const ReferenceStatus status = renderer().advanceReference(s, kSize, kSize, std::chrono::hours(1), slicing);
-        EXPECT_TRUE(status.complete);
-        return renderer().readReferenceFrame();
-    }
-};
-
-glm::vec4 pixelOf(const FrameReadback& f, int x, int y) { return glm::make_vec4(&f.rgba[(std::size_t(y) * std::size_t(f.width) + std::size_t(x)) * 4]); }
-
-// Sample pixels spread over the sphere: centre (n.v = 1), halfway out, and near the rim.
-const glm::ivec2 kSamplePixels[] = {{24, 24}, {14, 30}, {33, 17}, {24, 9}, {38, 24}};
+using testing::kSamplePixels;
+using testing::pixelOf;
+constexpr int kSize = testing::kReferenceFrameSize;
+using Reference = testing::ReferenceTest;
 
 // Every term of the shading model (pbr.frag's combineLobes) from the CPU references, with
 // the surface (N, V, material) the mesh pass left in the G-buffer.
@@ -65,22 +42,9 @@ TEST_F(Reference, MatchesTheCpuIntegralsAtSamplePixels)
         const FrameReadback frame = reference(s);
         const FrameReadback normals = renderer().readReferenceLayer(ReferenceLayer::Normal);
         const FrameReadback views = renderer().readReferenceLayer(ReferenceLayer::View);
-        const double intensity = std::exp2(double(s.environment.intensityEv));
-        const double roughness = s.material.roughness, metallic = s.material.metallic;
-        const glm::dvec3 base(s.material.baseColor);
-        const glm::dvec3 F0 = glm::mix(glm::dvec3(0.16 * 0.5 * 0.5), base, metallic);
         for (const glm::ivec2 p : kSamplePixels) {
             ASSERT_EQ(pixelOf(normals, p.x, p.y).w, 1.0f) << "pixel " << p.x << "," << p.y << " is not on the sphere";
-            const glm::dvec3 n = glm::normalize(glm::dvec3(glm::vec3(pixelOf(normals, p.x, p.y))));
-            const glm::dvec3 v = glm::normalize(glm::dvec3(glm::vec3(pixelOf(views, p.x, p.y))));
-            const double NdotV = std::max(glm::dot(n, v), 1e-4);
-            glm::dvec3 specular = referenceSpecular(env, n, v, roughness, F0, s.sampling.geometry);
-            if (s.sampling.multiscatter) {
-                const double singleScatter = referenceSpecular(white, n, v, roughness, glm::dvec3(1.0), s.sampling.geometry).x;
-                specular *= glm::dvec3(1.0) + F0 * (1.0 / singleScatter - 1.0);
-            }
-            const glm::dvec3 kD = (glm::dvec3(1.0) - fresnelSchlickRoughness(NdotV, F0, roughness)) * (1.0 - metallic);
-            const glm::dvec3 expected = (kD * base / kPi * referenceIrradiance(env, n) + specular) * intensity;
+            const glm::dvec3 expected = testing::cpuReferencePixel(env, white, s, testing::surfaceAt(normals, views, p));
             const glm::vec4 got = pixelOf(frame, p.x, p.y);
             for (int c = 0; c < 3; ++c)
                 // 1e-4 relative: the GPU sums 2048 texels in float (float directions and
