@@ -26,6 +26,7 @@
 #include "io/error.hpp"
 #include "gl/context_info.hpp"
 #include "gl/debug_output.hpp"
+#include "gl/pass_timer.hpp"
 #include "gui_script.hpp"
 #include "lab_session.hpp"
 #include "ui/panels.hpp"
@@ -248,6 +249,7 @@ struct GuiApp::Impl {
     ui::PanelState panels;
     LabSession session;
     ui::FrameStats stats;
+    gl::PassTimer renderTimer; // the frame's passes, without stalling a real GPU
     InputQueue input;
     StudyRun study;
     CameraInput cameraInput;
@@ -482,13 +484,13 @@ void GuiApp::Impl::frame()
     // environment, lit by its own bake) rather than drawing each frame again: the new one
     // shows sooner, and never with the old one's lighting.
     const bool holdFrame = session.switching() && renderer.hasBake();
-    const auto renderStart = Clock::now();
     if (!converged && !holdFrame) {
+        renderTimer.begin();
         renderer.renderFrame(settings, viewWidth, viewHeight, renderOptions);
-        glFinish(); // so that the reported pass time is the GPU's, not the submission's
-        stats.renderMs = std::chrono::duration<double, std::milli>(Clock::now() - renderStart).count();
+        renderTimer.end();
         if (errorView) panels.compare.error = renderer.measureError(settings);
     }
+    if (const std::optional<double> renderMs = renderTimer.latestMilliseconds()) stats.renderMs = *renderMs;
     rendered = current;
     stats.resolutionScale = renderOptions.resolutionScale;
     stats.accumulatedFrames = renderer.accumulatedFrames();

@@ -8,6 +8,7 @@
 
 #include "frame/debug_layout.hpp"
 #include "frame/split_view.hpp"
+#include "ui/overlays.hpp"
 #include "ui/panels.hpp"
 
 namespace iblab::app {

@@ -13,6 +13,7 @@
 #include "ibl/error_metrics.hpp"
 #include "ibl/tonemap.hpp"
 #include "ui/field_widgets.hpp"
+#include "ui/overlays.hpp"
 #include "ui/widgets.hpp"
 
 namespace iblab::ui {
@@ -66,7 +67,7 @@ void drawToneCurve(const ToneMapSettings& settings)
     }
     for (float value : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
         draw->AddLine(toScreen(kMinStops, value), toScreen(kMaxStops, value), gridColour);
-        char label[8];
+        char label[16];
         std::snprintf(label, sizeof label, "%g", value);
         const ImVec2 at = toScreen(kMinStops, value);
         draw->AddText(ImVec2(origin.x + axisWidth - 4.0f - ImGui::CalcTextSize(label).x, at.y - 0.5f * lineHeight), labelColour, label);
@@ -284,17 +285,6 @@ std::optional<float> smoothestRoughness(const FrameSettings& settings)
 }
 
 // "sampled N=16" or "splitsum", the divider's labels.
-std::string samplingSummary(const SamplingSettings& s)
-{
-    std::string text(enumName(s.method));
-    if (s.method == ShadingMethod::Sampled) text += " N=" + std::to_string(s.samples) + (s.pdfMipFiltering ? "" : " mip0");
-    if (s.forcedMip >= 0) text += " mip " + std::to_string(s.forcedMip);
-    text += ", " + std::string(enumName(s.geometry));
-    if (s.multiscatter) text += ", ms";
-    if (s.roughFresnelOnLut && s.method == ShadingMethod::SplitSum) text += ", F_r on LUT";
-    return text;
-}
-
 void drawMetricsTable(const char* id, const ErrorMetrics& m)
 {
     if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_SizingStretchProp)) return;
@@ -476,135 +466,6 @@ void drawQuitDialog(PanelState& state, UiRequests& requests)
     if (requests.quit) ImGui::CloseCurrentPopup();
     itemRegistry().popScope();
     ImGui::EndPopup();
-}
-
-void drawStatsOverlay(const FrameStats& stats)
-{
-    ImGui::Text("%dx%d  frame %.1f ms  passes %.1f ms", stats.width, stats.height, stats.frameMs, stats.renderMs);
-    if (stats.resolutionScale < 1.0f) {
-        ImGui::SameLine();
-        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), " %.0f%% res", 100.0f * stats.resolutionScale);
-    } else if (stats.accumulatedFrames > 1) {
-        ImGui::SameLine();
-        ImGui::TextDisabled(" x%d", stats.accumulatedFrames);
-    }
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("%s", stats.renderer.c_str());
-    ImGui::PopStyleColor();
-}
-
-// Overlays are drawn in the view's pixels (y up, as the renderer reports them), placed at
-// viewOrigin (top-left of the view in window coordinates, y down).
-void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText)
-{
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    const ImU32 text = IM_COL32(230, 230, 230, 255);
-    for (const DebugTile& tile : tiles) {
-        const float left = viewOrigin.x + tile.rect.x, right = viewOrigin.x + tile.rect.z;
-        const float top = viewOrigin.y + viewHeight - tile.rect.w, bottom = viewOrigin.y + viewHeight - tile.rect.y;
-        draw->AddText(ImVec2(left, top - 18.0f), text, tile.label.c_str());
-        if (!axes) continue;
-        // Unit axes on both edges: x = n.v along the bottom, y = roughness up the left side.
-        for (int i = 0; i <= 4; ++i) {
-            const float t = float(i) / 4.0f;
-            char value[8];
-            std::snprintf(value, sizeof value, "%.2f", t);
-            const float x = left + t * (right - left), y = bottom - t * (bottom - top);
-            draw->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 5.0f), text);
-            draw->AddText(ImVec2(x - 12.0f, bottom + 6.0f), text, value);
-            draw->AddLine(ImVec2(left - 5.0f, y), ImVec2(left, y), text);
-            draw->AddText(ImVec2(left - 40.0f, y - 7.0f), text, value);
-        }
-    }
-    if (!probeText.empty() && !ImGui::GetIO().WantCaptureMouse) ImGui::SetTooltip("%s", probeText.c_str());
-}
-
-void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigin, float viewHeight)
-{
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    for (const ScreenLabel& label : labels) {
-        const ImVec2 size = ImGui::CalcTextSize(label.text.c_str());
-        const ImU32 colour = label.title ? IM_COL32(255, 255, 255, 255) : IM_COL32(225, 225, 225, 255);
-        const ImVec2 at(viewOrigin.x + label.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - label.pixel.y - size.y * 0.5f);
-        // A dark backing keeps labels readable over a bright sky.
-        draw->AddRectFilled(ImVec2(at.x - 3.0f, at.y - 1.0f), ImVec2(at.x + size.x + 3.0f, at.y + size.y + 1.0f), IM_COL32(0, 0, 0, 150), 3.0f);
-        draw->AddText(at, colour, label.text.c_str());
-    }
-}
-
-void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 viewOrigin, float viewHeight)
-{
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    for (const SphereReading& r : readings) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.3f", 0.2126f * r.radiance.r + 0.7152f * r.radiance.g + 0.0722f * r.radiance.b);
-        const ImVec2 size = ImGui::CalcTextSize(text);
-        const ImVec2 at(viewOrigin.x + r.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - r.pixel.y - size.y * 0.5f);
-        draw->AddRectFilled(ImVec2(at.x - 2, at.y - 1), ImVec2(at.x + size.x + 2, at.y + size.y + 1), IM_COL32(0, 0, 0, 160));
-        draw->AddText(at, IM_COL32(255, 255, 255, 255), text);
-    }
-}
-
-void drawErrorLegend(const ViewSettings& view, glm::vec2 viewOrigin, glm::vec2 viewSize)
-{
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    constexpr float kBarWidth = 220.0f, kBarHeight = 14.0f, kMargin = 16.0f;
-    constexpr int kSteps = 64;
-    const ImVec2 origin(viewOrigin.x + viewSize.x - kBarWidth - kMargin - 12.0f, viewOrigin.y + viewSize.y - kBarHeight - kMargin - 22.0f);
-    draw->AddRectFilled(ImVec2(origin.x - 10.0f, origin.y - 22.0f), ImVec2(origin.x + kBarWidth + 14.0f, origin.y + kBarHeight + 22.0f),
-                        IM_COL32(0, 0, 0, 170), 4.0f);
-    for (int i = 0; i < kSteps; ++i) {
-        // The very map the error view's shader draws (error_metrics.glsl, compiled as C++).
-        const glm::vec3 c = falseColour((float(i) + 0.5f) / float(kSteps));
-        const float x0 = origin.x + kBarWidth * float(i) / float(kSteps), x1 = origin.x + kBarWidth * float(i + 1) / float(kSteps);
-        draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1, origin.y + kBarHeight), ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
-    }
-    const ImU32 text = IM_COL32(235, 235, 235, 255);
-    for (int i = 0; i <= 4; ++i) {
-        const float t = float(i) / 4.0f;
-        char label[16];
-        std::snprintf(label, sizeof label, "%.3g", double(t * view.errorScale));
-        const float x = origin.x + t * kBarWidth;
-        draw->AddLine(ImVec2(x, origin.y + kBarHeight), ImVec2(x, origin.y + kBarHeight + 4.0f), text);
-        draw->AddText(ImVec2(x - ImGui::CalcTextSize(label).x * 0.5f, origin.y + kBarHeight + 4.0f), text, label);
-    }
-    const std::string title = std::string("relative error, ") + (view.errorSpace == ErrorSpace::Linear ? "linear HDR" : "display");
-    draw->AddText(ImVec2(origin.x, origin.y - 18.0f), text, title.c_str());
-}
-
-void drawReferenceProgress(const ReferenceStatus& status, const char* meanwhile, glm::vec2 viewOrigin, glm::vec2 viewSize)
-{
-    char text[160];
-    std::snprintf(text, sizeof text, "reference %.0f%% (%dx%d texels): %s", 100.0 * status.progress, status.environmentWidth,
-                  status.environmentHeight, meanwhile);
-    const ImVec2 size = ImGui::CalcTextSize(text);
-    const ImVec2 at(viewOrigin.x + (viewSize.x - size.x) * 0.5f, viewOrigin.y + 12.0f);
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    draw->AddRectFilled(ImVec2(at.x - 6, at.y - 3), ImVec2(at.x + size.x + 6, at.y + size.y + 3), IM_COL32(0, 0, 0, 170), 4.0f);
-    draw->AddText(at, IM_COL32(255, 220, 120, 255), text);
-}
-
-void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewOrigin, glm::vec2 viewSize)
-{
-    ImDrawList* draw = ImGui::GetBackgroundDrawList();
-    const float x = viewOrigin.x + float(column);
-    draw->AddLine(ImVec2(x, viewOrigin.y), ImVec2(x, viewOrigin.y + viewSize.y), IM_COL32(0, 0, 0, 200), 3.0f);
-    draw->AddLine(ImVec2(x, viewOrigin.y), ImVec2(x, viewOrigin.y + viewSize.y), IM_COL32(255, 255, 255, 230), 1.0f);
-    const std::string a = "A: " + samplingSummary(settings.sampling);
-    const std::string b = "B: " + samplingSummary(settings.view.compare);
-    const ImU32 background = IM_COL32(0, 0, 0, 170), text = IM_COL32(255, 255, 255, 255);
-    const ImVec2 aSize = ImGui::CalcTextSize(a.c_str()), bSize = ImGui::CalcTextSize(b.c_str());
-    // Each label beside the divider on its own side, but kept inside the view; when the
-    // divider is so near an edge that they would overlap, B moves one line down.
-    const float top = viewOrigin.y + 36.0f;
-    const float aX = std::max(x - aSize.x - 10.0f, viewOrigin.x + 6.0f);
-    const float bX = std::min(x + 10.0f, viewOrigin.x + viewSize.x - bSize.x - 6.0f);
-    const bool overlap = aX + aSize.x + 8.0f > bX;
-    const ImVec2 aAt(aX, top), bAt(bX, overlap ? top + aSize.y + 8.0f : top);
-    draw->AddRectFilled(ImVec2(aAt.x - 4, aAt.y - 2), ImVec2(aAt.x + aSize.x + 4, aAt.y + aSize.y + 2), background, 3.0f);
-    draw->AddText(aAt, text, a.c_str());
-    draw->AddRectFilled(ImVec2(bAt.x - 4, bAt.y - 2), ImVec2(bAt.x + bSize.x + 4, bAt.y + bSize.y + 2), background, 3.0f);
-    draw->AddText(bAt, text, b.c_str());
 }
 
 void drawStudyPanel(PanelState& state, UiRequests& requests)

@@ -163,28 +163,9 @@ void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requ
 void drawViewPanel(ViewSettings& settings);
 void drawPresetPanel(PanelState& state, UiRequests& requests);
 void drawCapturePanel(PanelState& state, UiRequests& requests);
-void drawStatsOverlay(const FrameStats& stats);
 // Starts and stops the quick sweep; its chart is drawn live in a window of its own.
 void drawStudyPanel(PanelState& state, UiRequests& requests);
 void drawStudyChartWindow(StudyState& study);
-
-// Labels of the debug view's tiles (rects y up, in framebuffer pixels), unit axes on each
-// tile when `axes` (the LUTs), and the readout of the texel under the cursor.
-void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText);
-
-// Text anchored in the scene (the grid's axes), projected by the renderer.
-void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigin, float viewHeight);
-
-// The furnace view's numbers: reflected radiance (1 = all energy) over each sphere.
-void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 viewOrigin, float viewHeight);
-
-// The error view's colour bar with its numeric scale, at the bottom right of the view.
-void drawErrorLegend(const ViewSettings& view, glm::vec2 viewOrigin, glm::vec2 viewSize);
-// The reference's progress while the view waits for it (the error view) or builds it (the
-// reference method), at the top of the view; `meanwhile` says what shows until then.
-void drawReferenceProgress(const ReferenceStatus& status, const char* meanwhile, glm::vec2 viewOrigin, glm::vec2 viewSize);
-// The split view's divider at pixel column `column` and what each side shows.
-void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewOrigin, glm::vec2 viewSize);
 
 // The full control window with all of the above, docked at the left.
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests);

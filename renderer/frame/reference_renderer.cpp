@@ -4,6 +4,7 @@
 
 #include "frame/texture_readback.hpp"
 #include "frame/texture_units.hpp"
+#include "gl/fence.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/reference.hpp"
 
@@ -50,10 +51,15 @@ ReferenceStatus ReferenceRenderer::advance(const FrameSettings& settings, int wi
     if (!lighting.bake || source_.empty()) return {};
     FrameKey key = keyFor(settings, width, height);
     if (key != key_ || slicing != slicing_) start(settings, width, height, slicing, std::move(key), scene, lighting);
+    // Each slice waits for the one before it (a fence, not glFinish): the budget counts GPU
+    // work, and at most one slice is still queued when the frame goes on.
     const auto begin = std::chrono::steady_clock::now();
+    gl::Fence previousSlice;
     while (!integral_.complete() && std::chrono::steady_clock::now() - begin < budget) {
         integral_.runSlice(shaders_, gbuffer_, geometry_);
-        glFinish();
+        gl::Fence slice = gl::Fence::afterIssuedCommands();
+        previousSlice.wait();
+        previousSlice = std::move(slice);
     }
     // A resolve is a full-screen pass: cheap next to a slice, so it runs whenever tiles
     // finished, not only at the end.
