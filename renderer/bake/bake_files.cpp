@@ -5,11 +5,11 @@
 #include <memory>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
+#include "io/image_codec.hpp"
 #include "io/image_writer.hpp"
 
 namespace iblab::bake {
@@ -30,17 +30,17 @@ RgbImage readExrRgb(const fs::path& path)
 {
     if (!fs::exists(path))
         throw BakeFileError(path, "missing");
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string());
+    std::string openError;
+    const std::unique_ptr<ImageReader> in = imageCodec().openFile(path.string(), openError);
     if (!in)
-        throw BakeFileError(path, "cannot open: " + oneLine(OIIO::geterror()));
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.nchannels < 3)
-        throw BakeFileError(path, "has " + std::to_string(spec.nchannels) + " channels, expected RGB");
+        throw BakeFileError(path, "cannot open: " + oneLine(openError));
+    const ImageHeader& spec = in->header();
+    if (spec.channels < 3)
+        throw BakeFileError(path, "has " + std::to_string(spec.channels) + " channels, expected RGB");
     RgbImage image{spec.width, spec.height, std::vector<float>(std::size_t(spec.width) * std::size_t(spec.height) * 3)};
     // A truncated file opens (the header is intact) and fails here.
-    if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data()))
-        throw BakeFileError(path, "cannot read pixels: " + oneLine(in->geterror()));
-    in->close();
+    if (!in->readImage(3, PixelType::Float, image.rgb.data()))
+        throw BakeFileError(path, "cannot read pixels: " + oneLine(in->takeError()));
     return image;
 }
 
