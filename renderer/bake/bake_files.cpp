@@ -56,10 +56,10 @@ std::vector<float> dropAlpha(const std::vector<glm::vec4>& texels)
     return rgb;
 }
 
-void writeCubeExr(const fs::path& path, const CubeImage& image, bool halfPixels)
+void writeCubeExr(const fs::path& path, const CubeImage& image, bool halfPixels, const std::string& exrCompression)
 {
     writeExr(path.string(), image.size, 6 * image.size, 3, dropAlpha(image.texels),
-             {.exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float});
+             {.exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float, .exrCompression = exrCompression});
 }
 
 CubeImage readCubeExr(const fs::path& path, int expectedSize)
@@ -189,7 +189,7 @@ void writeBakeSnapshot(const fs::path& directory, const BakeSnapshot& snapshot)
     if (ec)
         throw Error(directory.string(), "cannot create the directory: " + ec.message());
     for (const auto& cube : snapshot.cubes)
-        writeCubeExr(directory / cube.name, cube.image, snapshot.halfPixels);
+        writeCubeExr(directory / cube.name, cube.image, snapshot.halfPixels, snapshot.exrCompression);
     writeTextFileAtomic((directory / "sh.json").string(), snapshot.shJson);
     // Last: an entry without bake.json is incomplete and reads as a miss.
     writeTextFileAtomic((directory / "bake.json").string(), snapshot.metaJson);
@@ -238,7 +238,8 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
     result.sh.windowWidth = sh.value("window_width", 0.0);
 }
 
-void writeLutExr(const fs::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel, bool halfPixels)
+void writeLutExr(const fs::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel, bool halfPixels,
+                 const std::string& exrCompression)
 {
     std::vector<float> rgb;
     rgb.reserve(lut.texels.size() * 3);
@@ -252,7 +253,8 @@ void writeLutExr(const fs::path& path, const Image2D& lut, int samples, Geometry
     // order is what a loader uploading row 0 first expects).
     writeExr(path.string(), lut.size, lut.size, 3, rgb,
              {.settingsJson = lutJsonText(lut.size, samples, term, multiscatterChannel),
-              .exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float});
+              .exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float,
+              .exrCompression = exrCompression});
 }
 
 Image2D readLutExr(const fs::path& path, int expectedSize)

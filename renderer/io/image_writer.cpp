@@ -99,7 +99,7 @@ void writeExr(const std::string& path, int width, int height, int channels, std:
     if (channels == 1)
         image.channelNames = {"Y"};
     image.attributes.emplace_back("oiio:ColorSpace", "Linear");
-    image.attributes.emplace_back("compression", "zip");
+    image.attributes.emplace_back("compression", options.exrCompression);
     writeImage(path, std::move(image), sizeof(float), pixels.data(), options);
 }
 
