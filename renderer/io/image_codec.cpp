@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 #include <dlfcn.h>
@@ -62,6 +63,18 @@ const ImageCodec& imageCodec()
     // A failed load throws out of the initialiser, so the next call tries again.
     static const ImageCodec& codec = *loadCodec();
     return codec;
+}
+
+void preloadImageCodec()
+{
+    // A function-local static: joined when the program exits, before the module's own
+    // statics could be torn down under a thread still loading it.
+    static std::jthread loader([] {
+        try {
+            imageCodec();
+        } catch (const Error&) {
+        }
+    });
 }
 
 } // namespace iblab

@@ -88,6 +88,11 @@ public:
 // dlopen's reason when it cannot be loaded.
 const ImageCodec& imageCodec();
 
+// Starts loading the module on a thread of its own, so that a caller which will soon read
+// an image (the GUI, while it opens its window) does not wait for all of it. Joined at exit;
+// a failure is reported by the next imageCodec() call instead.
+void preloadImageCodec();
+
 // The module's entry point, looked up by this name: returns its codec, which lives as long
 // as the process.
 using ImageCodecEntry = const ImageCodec*();
