@@ -2,6 +2,7 @@
 // Each prints its result on stdout (a table, or JSON with --json) and, on failure, exits
 // non-zero with one line on stderr naming the file or the problem.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +24,7 @@
 #include "field_options.hpp"
 #include "commands.hpp"
 #include "io/environment.hpp"
+#include "io/builtin_environments.hpp"
 #include "io/error.hpp"
 #include "gl/context_error.hpp"
 #include "gl/context_info.hpp"
@@ -43,7 +45,7 @@ ordered_json shArray(const SH9Color& sh)
 }
 
 struct BakeCommandOptions {
-    std::string environment;
+    std::vector<std::string> environments; // files, builtins or directories (every .exr/.hdr in it)
     std::string preset = "default";
     // Each option given replaces the preset's value (bakeSettingsFields() makes them).
     RecordedFieldOptions<bake::BakeSettings> overrides;
@@ -120,94 +122,220 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
     if (!out.empty()) std::printf("written to %s\n", out.c_str());
 }
 
+// What the maps of one `iblab bake` share: the context, the programs compiled in it, and
+// the cache, whose LUTs every map after the first takes from memory.
+struct BakeSession {
+    HeadlessGl gl{/*debugContext=*/true};
+    gl::ShaderLibrary shaders{shaderDirectory()};
+    std::optional<bake::BakeCache> cache;
+};
+
+struct MapBake {
+    std::string environment;
+    std::string out; // "" or the directory for this map's files
+    // true: wait for this map's cache writes before reporting (one map; its report says how
+    // long that took). A batch lets them run under the next map's bake instead.
+    bool waitForWrites = true;
+};
+
+// Bakes one map in the session (made on the first map that loads, so that a bad file fails
+// before any context exists) and prints its table, or returns its JSON report. Throws on
+// failure.
+ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& settings, const MapBake& map,
+                     std::unique_ptr<BakeSession>& session, Clock::time_point processStart)
+{
+    const auto loadStart = Clock::now();
+    const Environment environment = loadEnvironment(map.environment);
+    const double loadMs = millisecondsSince(loadStart);
+
+    const auto contextStart = Clock::now();
+    if (!session) {
+        session = std::make_unique<BakeSession>();
+        if (!o.noCache) session->cache.emplace(o.cacheDir.empty() ? bake::defaultCacheDirectory() : std::filesystem::path(o.cacheDir));
+    }
+    const double contextMs = millisecondsSince(contextStart);
+    gl::ShaderLibrary& shaders = session->shaders;
+    std::optional<bake::BakeCache>& cache = session->cache;
+    const std::size_t glErrorsBefore = session->gl.debug.errorCount();
+
+    // --repeat bakes again in the same process, without the cache, to time warm runs
+    // (llvmpipe loads each shader variant's machine code on its first dispatch in a
+    // process, Mesa's disk cache or not); the result and timings are the last run's.
+    bake::BakeResult result = bake::BakeJob(shaders, environment, settings, cache ? &*cache : nullptr).runToCompletion();
+    std::vector<double> totals{result.totalMilliseconds};
+    for (int i = 1; i < o.repeat; ++i) {
+        result = bake::BakeJob(shaders, environment, settings).runToCompletion();
+        totals.push_back(result.totalMilliseconds);
+    }
+    std::optional<bake::BakeErrors> errors;
+    const bake::AccuracyOptions accuracy;
+    if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, shaders, accuracy);
+
+    if (!map.out.empty()) {
+        const std::filesystem::path dir(map.out);
+        ordered_json extra;
+        if (errors) extra["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
+        bake::writeBakeDirectory(dir, result, extra.empty() ? std::string() : extra.dump());
+        for (GeometryTerm term : bake::kGeometryTerms)
+            if (const bake::BakedTexture& lut = result.lut(term))
+                bake::writeLutExr(dir / ("brdf_lut_" + std::string(enumName(term)) + ".exr"), bake::read2D(lut),
+                                  settings.lut.samples, term, true, false);
+    }
+    glFinish();
+    if (const std::size_t glErrors = session->gl.debug.errorCount() - glErrorsBefore)
+        throw std::runtime_error(std::to_string(glErrors) + " GL error(s), the first: " + session->gl.debug.firstError());
+
+    // The cache's files were being written meanwhile (bake_cache.hpp): the errors above and
+    // the --out files overlapped them, and only what is left is waited for here.
+    const auto waitStart = Clock::now();
+    std::vector<std::string> notes = result.notes;
+    if (cache && map.waitForWrites)
+        for (std::string& note : cache->finishWrites())
+            notes.push_back(std::move(note));
+    const double cacheWriteWaitMs = millisecondsSince(waitStart);
+    for (const std::string& note : notes)
+        std::fprintf(stderr, "iblab bake: %s\n", note.c_str());
+
+    if (!o.json) {
+        printTable(result, errors, map.out);
+        return nullptr;
+    }
+    ordered_json j;
+    j["source"] = result.source;
+    j["source_size"] = {result.sourceWidth, result.sourceHeight};
+    j["renderer"] = gl::describeCurrentContext();
+    j["preset"] = settings.preset;
+    j["settings"] = ordered_json::parse(bake::toJsonText(settings));
+    j["from_cache"] = result.fromCache;
+    j["lut_from_cache"] = {{"schlick-ggx", result.lutFromCache[0]}, {"height-correlated-smith", result.lutFromCache[1]}};
+    ordered_json timings;
+    for (const auto& t : result.timings) timings[std::string(enumName(t.phase))] = t.milliseconds;
+    timings["total"] = result.totalMilliseconds;
+    j["timings_ms"] = timings;
+    j["timing_method"] = "steady clock from each step's submission to its fence, one step in flight; shaders: compile (Mesa's disk "
+                         "cache makes a second run warm)";
+    j["other_ms"] = {{"environment_load", loadMs},
+                     {"context", contextMs},
+                     {"cache_write_wait", cacheWriteWaitMs},
+                     {"process", millisecondsSince(processStart)}};
+    // The writes' own time, on their thread (a batch reports its total instead).
+    if (cache && map.waitForWrites) j["other_ms"]["cache_write"] = cache->writeMilliseconds();
+    if (totals.size() > 1) {
+        j["repeat_totals_ms"] = totals;
+        j["repeat_min_total_ms"] = *std::min_element(totals.begin(), totals.end());
+    }
+    j["gpu_bytes"] = result.gpuBytes();
+    j["textures"] = {{"environment_cube", textureJson(result.environmentCube)},
+                     {"irradiance", textureJson(result.irradianceCube)},
+                     {"prefiltered", textureJson(result.prefiltered)},
+                     {"brdf_lut_schlick-ggx", textureJson(result.brdfLut[0])},
+                     {"brdf_lut_height-correlated-smith", textureJson(result.brdfLut[1])}};
+    j["textures"]["irradiance"]["method"] = enumName(result.settings.irradiance);
+    j["sh"] = ordered_json::parse(bake::shJsonText(result.sh));
+    if (errors) j["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
+    j["notes"] = notes;
+    if (!map.out.empty()) j["output"] = map.out;
+    return j;
+}
+
+bool isEnvironmentFile(const std::filesystem::path& path)
+{
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return extension == ".exr" || extension == ".hdr";
+}
+
+// The maps to bake: each --env in order, a directory standing for every .exr and .hdr in
+// it (sorted by name, hidden files skipped).
+std::vector<std::string> expandEnvironments(const std::vector<std::string>& given)
+{
+    std::vector<std::string> maps;
+    for (const std::string& entry : given) {
+        std::error_code ec;
+        if (!std::filesystem::is_directory(entry, ec)) {
+            maps.push_back(entry);
+            continue;
+        }
+        std::vector<std::string> files;
+        for (std::filesystem::directory_iterator it(entry, ec), end; !ec && it != end; it.increment(ec))
+            if (it->path().filename().string().front() != '.' && isEnvironmentFile(it->path()) && it->is_regular_file(ec))
+                files.push_back(it->path().string());
+        if (ec) throw Error(entry, "cannot list the directory: " + ec.message());
+        if (files.empty()) throw Error(entry, "no .exr or .hdr files in the directory");
+        std::sort(files.begin(), files.end());
+        maps.insert(maps.end(), files.begin(), files.end());
+    }
+    return maps;
+}
+
+// --out DIR for a batch: DIR/<the map's file name without extension>, or the builtin's name.
+std::vector<std::string> batchOutputDirectories(const std::string& out, const std::vector<std::string>& maps)
+{
+    std::vector<std::string> dirs;
+    for (const std::string& map : maps) {
+        std::string name = std::filesystem::path(map).stem().string();
+        if (isBuiltinSpec(map)) name = map.substr(0, map.find('?'));
+        std::replace(name.begin(), name.end(), ':', '-');
+        const std::string dir = (std::filesystem::path(out) / name).string();
+        if (std::find(dirs.begin(), dirs.end(), dir) != dirs.end())
+            throw Error("--out", "two maps would be written to " + dir + "; bake them in separate runs");
+        dirs.push_back(dir);
+    }
+    return dirs;
+}
+
+// Several maps in one process: one context, its programs and the LUTs for all of them, a
+// progress line per map on stderr, one report ({"maps": [...]}: each entry what one map's
+// report is, or {"source", "error"} for a map that failed). A map that fails does not stop
+// the others; the exit status is 1 if any failed.
+int runBakeBatch(const BakeCommandOptions& o, const bake::BakeSettings& settings, const std::vector<std::string>& maps,
+                 Clock::time_point processStart)
+{
+    const std::vector<std::string> outs = o.out.empty() ? std::vector<std::string>(maps.size()) : batchOutputDirectories(o.out, maps);
+    std::unique_ptr<BakeSession> session;
+    ordered_json reports = ordered_json::array();
+    int failed = 0;
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        const auto start = Clock::now();
+        try {
+            reports.push_back(bakeMap(o, settings, {.environment = maps[i], .out = outs[i], .waitForWrites = false}, session, processStart));
+            std::fprintf(stderr, "iblab bake: [%zu/%zu] %s: %.0f ms\n", i + 1, maps.size(), maps[i].c_str(), millisecondsSince(start));
+        } catch (const std::exception& e) {
+            ++failed;
+            reports.push_back({{"source", maps[i]}, {"error", oneLine(e.what())}});
+            std::fprintf(stderr, "iblab bake: [%zu/%zu] %s: failed: %s\n", i + 1, maps.size(), maps[i].c_str(), oneLine(e.what()).c_str());
+        }
+    }
+    const auto waitStart = Clock::now();
+    std::vector<std::string> notes;
+    if (session && session->cache) notes = session->cache->finishWrites();
+    const double cacheWriteWaitMs = millisecondsSince(waitStart);
+    for (const std::string& note : notes)
+        std::fprintf(stderr, "iblab bake: %s\n", note.c_str());
+    if (o.json) {
+        ordered_json j;
+        j["maps"] = reports;
+        j["failed"] = failed;
+        j["notes"] = notes;
+        j["other_ms"] = {{"cache_write_wait", cacheWriteWaitMs}, {"process", millisecondsSince(processStart)}};
+        if (session && session->cache) j["other_ms"]["cache_write"] = session->cache->writeMilliseconds();
+        std::printf("%s\n", j.dump(2).c_str());
+    }
+    return failed > 0 ? 1 : 0;
+}
+
 int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
 {
     try {
         const bake::BakeSettings settings = resolveSettings(o);
-        const auto loadStart = Clock::now();
-        const Environment environment = loadEnvironment(o.environment);
-        const double loadMs = millisecondsSince(loadStart);
-
-        const auto contextStart = Clock::now();
-        HeadlessGl gl(/*debugContext=*/true);
-        const double contextMs = millisecondsSince(contextStart);
-        gl::ShaderLibrary shaders(shaderDirectory());
-        std::optional<bake::BakeCache> cache;
-        if (!o.noCache) cache.emplace(o.cacheDir.empty() ? bake::defaultCacheDirectory() : std::filesystem::path(o.cacheDir));
-
-        // --repeat bakes again in the same process, without the cache, to time warm runs
-        // (llvmpipe loads each shader variant's machine code on its first dispatch in a
-        // process, Mesa's disk cache or not); the result and timings are the last run's.
-        bake::BakeResult result = bake::BakeJob(shaders, environment, settings, cache ? &*cache : nullptr).runToCompletion();
-        std::vector<double> totals{result.totalMilliseconds};
-        for (int i = 1; i < o.repeat; ++i) {
-            result = bake::BakeJob(shaders, environment, settings).runToCompletion();
-            totals.push_back(result.totalMilliseconds);
-        }
-        const auto waitStart = Clock::now();
-        std::vector<std::string> notes = result.notes;
-        if (cache)
-            for (std::string& note : cache->finishWrites())
-                notes.push_back(std::move(note));
-        const double cacheWriteWaitMs = millisecondsSince(waitStart);
-        for (const std::string& note : notes)
-            std::fprintf(stderr, "iblab bake: %s\n", note.c_str());
-
-        std::optional<bake::BakeErrors> errors;
-        const bake::AccuracyOptions accuracy;
-        if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, shaders, accuracy);
-
-        if (!o.out.empty()) {
-            const std::filesystem::path dir(o.out);
-            ordered_json extra;
-            if (errors) extra["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
-            bake::writeBakeDirectory(dir, result, extra.empty() ? std::string() : extra.dump());
-            for (GeometryTerm term : bake::kGeometryTerms)
-                if (const bake::BakedTexture& lut = result.lut(term))
-                    bake::writeLutExr(dir / ("brdf_lut_" + std::string(enumName(term)) + ".exr"), bake::read2D(lut),
-                                      settings.lut.samples, term, true, false);
-        }
-        glFinish();
-        if (gl.debug.errorCount() > 0) return failCommand("bake", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.debug.firstError());
-
-        if (o.json) {
-            ordered_json j;
-            j["source"] = result.source;
-            j["source_size"] = {result.sourceWidth, result.sourceHeight};
-            j["renderer"] = gl::describeCurrentContext();
-            j["preset"] = settings.preset;
-            j["settings"] = ordered_json::parse(bake::toJsonText(settings));
-            j["from_cache"] = result.fromCache;
-            j["lut_from_cache"] = {{"schlick-ggx", result.lutFromCache[0]}, {"height-correlated-smith", result.lutFromCache[1]}};
-            ordered_json timings;
-            for (const auto& t : result.timings) timings[std::string(enumName(t.phase))] = t.milliseconds;
-            timings["total"] = result.totalMilliseconds;
-            j["timings_ms"] = timings;
-            j["timing_method"] = "steady clock from each step's submission to its fence, one step in flight; shaders: compile (Mesa's disk "
-                                 "cache makes a second run warm)";
-            j["other_ms"] = {{"environment_load", loadMs},
-                             {"context", contextMs},
-                             {"cache_write_wait", cacheWriteWaitMs},
-                             {"process", millisecondsSince(processStart)}};
-            if (totals.size() > 1) {
-                j["repeat_totals_ms"] = totals;
-                j["repeat_min_total_ms"] = *std::min_element(totals.begin(), totals.end());
-            }
-            j["gpu_bytes"] = result.gpuBytes();
-            j["textures"] = {{"environment_cube", textureJson(result.environmentCube)},
-                             {"irradiance", textureJson(result.irradianceCube)},
-                             {"prefiltered", textureJson(result.prefiltered)},
-                             {"brdf_lut_schlick-ggx", textureJson(result.brdfLut[0])},
-                             {"brdf_lut_height-correlated-smith", textureJson(result.brdfLut[1])}};
-            j["textures"]["irradiance"]["method"] = enumName(result.settings.irradiance);
-            j["sh"] = ordered_json::parse(bake::shJsonText(result.sh));
-            if (errors) j["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
-            j["notes"] = notes;
-            if (!o.out.empty()) j["output"] = o.out;
-            std::printf("%s\n", j.dump(2).c_str());
-        } else {
-            printTable(result, errors, o.out);
-        }
+        const std::vector<std::string> maps = expandEnvironments(o.environments);
+        // One map named as one --env keeps the single report scripts read; a directory or
+        // several maps make a batch.
+        const bool single = o.environments.size() == 1 && maps.size() == 1 && maps.front() == o.environments.front();
+        if (!single) return runBakeBatch(o, settings, maps, processStart);
+        std::unique_ptr<BakeSession> session;
+        const ordered_json report = bakeMap(o, settings, {.environment = maps.front(), .out = o.out}, session, processStart);
+        if (o.json) std::printf("%s\n", report.dump(2).c_str());
         return 0;
     } catch (const std::exception& e) {
         return failCommand("bake", e.what());
@@ -337,7 +465,10 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     auto o = std::make_shared<BakeCommandOptions>();
     CLI::App* c = app.add_subcommand("bake", "Bake an environment on the GPU (headless): cubemap, SH9, irradiance, GGX "
                                              "prefilter, BRDF LUTs; prints per-phase timings and errors against exact references");
-    c->add_option("--env", o->environment, "Environment: an .exr/.hdr file or builtin:NAME")->required();
+    c->add_option("--env", o->environments,
+                  "Environment: an .exr/.hdr file, builtin:NAME, or a directory (every .exr/.hdr in it); several --env bake "
+                  "one after another in one process (--env A --env B, or --env A B), with a progress line each and one report")
+        ->required();
     c->add_option("--preset", o->preset, "Starting settings: default (fast, accurate) or tutorial (LearnOpenGL's)")
         ->capture_default_str()
         ->check(CLI::IsMember({"default", "tutorial"}));

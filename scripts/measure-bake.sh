@@ -1,15 +1,30 @@
 #!/usr/bin/env bash
-# The bake numbers of the README and docs/bake.md: for each environment, the tutorial preset
-# against the default one (its LUTs cached, as they are after the first bake on a machine),
-# 3 interleaved runs each so both see the same machine load, the minimum reported, and the
-# errors of each against the exact references (deterministic: one run).
-#   scripts/measure-bake.sh [ENV...]    # default: courtyard.exr and sunset.exr
+# The bake numbers of the README and docs/bake.md.
+#   scripts/measure-bake.sh [ENV...]        # tutorial against default preset (default: courtyard.exr and sunset.exr):
+#       the default's LUTs cached, as they are after the first bake on a machine, 3 interleaved
+#       runs each so both see the same machine load, the minimum reported, and the errors of
+#       each against the exact references (deterministic: one run)
+#   scripts/measure-bake.sh batch           # 4 maps in one process against one map per process
+#   scripts/measure-bake.sh cmgen           # iblab against Filament's cmgen, process to process
+#   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
+# Every time is the minimum of 3 interleaved runs; process times are wall clock around the
+# whole process (start, context, load, bake, errors, cache writes, exit).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 iblab=${IBLAB:-build/app/iblab}
-[ $# -gt 0 ] || set -- assets/environments/courtyard.exr assets/environments/sunset.exr
+mode=tutorial
+case "${1:-}" in batch | cmgen | writes) mode=$1; shift ;; esac
 cache=$(mktemp -d)
 trap 'rm -rf "$cache"' EXIT
+# Wall time of one process in ms (stdout and stderr discarded; a failure stops the script).
+wall_ms() {
+  local start end
+  start=$(date +%s%N)
+  "$@" > /dev/null 2>&1 || { echo "measure-bake: failed: $*" >&2; "$@" > /dev/null; exit 1; }
+  end=$(date +%s%N)
+  echo $(((end - start) / 1000000))
+}
+minimum() { tr ' ' '\n' | sort -n | head -1; }
 total() { python3 -c 'import json,sys; print(json.load(sys.stdin)["timings_ms"]["total"])'; }
 errors() {
   python3 -c '
@@ -25,20 +40,132 @@ print("    as shaded, roughness 0, 0.1 .. 1: %s | RMS %.3g, max %.3g" % (" ".joi
 print("    diffuse mean / max at texel centres: %s" % irr)
 print("    diffuse mean / max as shaded: %s | LUT max abs: %s" % (shaded_irr, lut))'
 }
-for env in "$@"; do
-  [ -f "$env" ] || { echo "measure-bake: $env: no such file" >&2; exit 2; }
-  "$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json > /dev/null # the LUTs, once
-  tutorial=() default=()
-  for _ in 1 2 3; do
-    tutorial+=("$("$iblab" bake --env "$env" --preset tutorial --no-cache --no-errors --json | total)")
-    rm -rf "$cache/bake"
-    default+=("$("$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json | total)")
-  done
-  python3 - "$env" "${tutorial[*]}" "${default[*]}" <<'PY'
+measure_tutorial() {
+  [ $# -gt 0 ] || set -- assets/environments/courtyard.exr assets/environments/sunset.exr
+  for env in "$@"; do
+    [ -f "$env" ] || { echo "measure-bake: $env: no such file" >&2; exit 2; }
+    "$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json > /dev/null # the LUTs, once
+    tutorial=() default=()
+    for _ in 1 2 3; do
+      tutorial+=("$("$iblab" bake --env "$env" --preset tutorial --no-cache --no-errors --json | total)")
+      rm -rf "$cache/bake"
+      default+=("$("$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json | total)")
+    done
+    python3 - "$env" "${tutorial[*]}" "${default[*]}" <<'PY'
 import sys
 env, t, d = sys.argv[1], min(map(float, sys.argv[2].split())), min(map(float, sys.argv[3].split()))
 print(f"{env}: tutorial {t:.0f} ms, default (LUTs cached) {d:.0f} ms: {t / d:.1f}x")
 PY
-  echo "  tutorial:"; "$iblab" bake --env "$env" --preset tutorial --no-cache --json | errors
-  echo "  default:"; "$iblab" bake --env "$env" --no-cache --json | errors
-done
+    echo "  tutorial:"; "$iblab" bake --env "$env" --preset tutorial --no-cache --json | errors
+    echo "  default:"; "$iblab" bake --env "$env" --no-cache --json | errors
+  done
+}
+
+# 4 maps in one process (one context, its programs, the LUTs) against one map per process:
+# default preset, LUTs cached, no bake cached, --no-errors (the errors against the exact
+# references are computed per map on the CPU, the same work batched or not).
+measure_batch() {
+  local maps=(assets/environments/courtyard.exr assets/environments/sunset.exr assets/environments/forest.exr
+    assets/environments/city.exr)
+  "$iblab" bake --env "${maps[0]}" --cache-dir "$cache" --no-errors > /dev/null # the LUTs, once
+  local one=() four=() separate=()
+  for _ in 1 2 3; do
+    rm -rf "$cache/bake"
+    one+=("$(wall_ms "$iblab" bake --env "${maps[0]}" --cache-dir "$cache" --no-errors --json)")
+    rm -rf "$cache/bake"
+    four+=("$(wall_ms "$iblab" bake "${maps[@]/#/--env=}" --cache-dir "$cache" --no-errors --json)")
+    rm -rf "$cache/bake"
+    local sum=0
+    for map in "${maps[@]}"; do sum=$((sum + $(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json))); done
+    separate+=("$sum")
+  done
+  python3 - "$(echo "${one[*]}" | minimum)" "$(echo "${four[*]}" | minimum)" "$(echo "${separate[*]}" | minimum)" <<'PY'
+import sys
+one, four, separate = map(float, sys.argv[1:])
+print(f"one map (courtyard.exr) {one:.0f} ms; 4 maps in one process {four:.0f} ms = {four / one:.2f}x one map; "
+      f"the same 4 maps in 4 processes {separate:.0f} ms")
+PY
+}
+
+# iblab against Filament's cmgen on courtyard at 1024x512 as .hdr (oiiotool converts it; without
+# it both read the .exr): cmgen --size=128 --ibl-samples=64 --ibl-ld (Filament's own defaults
+# for a prefiltered cube), iblab bake at its default preset (prefilter 128, more samples, the
+# moment irradiance cube, SH9), LUTs cached, errors against the exact references on.
+measure_cmgen() {
+  local map=assets/environments/courtyard.exr
+  if command -v oiiotool > /dev/null; then
+    oiiotool "$map" --resize 1024x512 -o "$cache/courtyard.hdr"
+    map=$cache/courtyard.hdr
+  else
+    echo "measure-bake: no oiiotool: both tools read $map"
+  fi
+  "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors > /dev/null # the LUTs, once
+  local have_cmgen=1
+  command -v cmgen > /dev/null || { have_cmgen=0; echo "measure-bake: cmgen is not installed (Debian: libfilament-tools): iblab alone"; }
+  local ours=() ours_no_errors=() theirs=()
+  for _ in 1 2 3; do
+    if [ $have_cmgen = 1 ]; then
+      rm -rf "$cache/cmgen"
+      theirs+=("$(wall_ms cmgen --size=128 --ibl-samples=64 --ibl-ld="$cache/cmgen" "$map")")
+    fi
+    rm -rf "$cache/bake"
+    ours+=("$(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --json)")
+    rm -rf "$cache/bake"
+    ours_no_errors+=("$(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json)")
+  done
+  local with without reference=""
+  with=$(echo "${ours[*]}" | minimum)
+  without=$(echo "${ours_no_errors[*]}" | minimum)
+  [ $have_cmgen = 1 ] && reference=$(echo "${theirs[*]}" | minimum)
+  python3 - "$with" "$without" "$reference" <<'PY'
+import sys
+with_errors, without, cmgen = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+line = f"courtyard 1024x512: iblab bake {with_errors:.0f} ms with the errors against the exact references, {without:.0f} ms with --no-errors"
+if cmgen:
+    cmgen = float(cmgen)
+    line += f"; cmgen {cmgen:.0f} ms: iblab takes {with_errors / cmgen:.2f}x cmgen's time with errors, {without / cmgen:.2f}x without"
+print(line)
+PY
+  rm -rf "$cache/bake"
+  "$iblab" bake --env "$map" --cache-dir "$cache" --json | python3 -c '
+import json, sys
+j = json.load(sys.stdin)
+t, o = j["timings_ms"], j["other_ms"]
+print("  iblab, one run: bake %.0f ms (of which shaders %.0f), environment load %.0f, context %.0f, cache write wait %.0f, "
+      "process until the report %.0f" % (t["total"], t["shaders"], o["environment_load"], o["context"], o["cache_write_wait"], o["process"]))'
+  echo "  iblab errors against the exact references:"
+  "$iblab" bake --env "$map" --no-cache --json | errors
+}
+
+# The cache's EXR writes against the bake, per OpenEXR compression: the bake's own time, the
+# writes' time on their thread, how long the process then waited for them (after the errors
+# and the report, which the writes overlap; --no-errors here, so the wait is the longest it
+# can be), and the size of the entry. Default preset, courtyard.exr, LUTs cached.
+measure_writes() {
+  local map=assets/environments/courtyard.exr
+  "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors > /dev/null # the LUTs, once
+  echo "| compression | bake, ms | cache write (its thread), ms | process waited for it, ms | entry size, KiB |"
+  echo "|---|---|---|---|---|"
+  for compression in zip none rle zips piz pxr24 b44 dwaa; do
+    local rows=()
+    for _ in 1 2 3; do
+      rm -rf "$cache/bake"
+      rows+=("$(IBLAB_CACHE_EXR_COMPRESSION=$compression "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json |
+        python3 -c 'import json,sys; j=json.load(sys.stdin); o=j["other_ms"]; print("%.0f,%.0f,%.0f" % (j["timings_ms"]["total"], o["cache_write"], o["cache_write_wait"]))')")
+    done
+    local size
+    size=$(du -sk "$cache/bake" | cut -f1)
+    python3 - "$compression" "$size" "${rows[@]}" <<'PY'
+import sys
+name, size, rows = sys.argv[1], sys.argv[2], [list(map(float, r.split(","))) for r in sys.argv[3:]]
+print("| %s | %s |  %s |" % (name, " | ".join("%.0f" % min(r[i] for r in rows) for i in range(3)), size))
+PY
+  done
+}
+
+case $mode in
+  tutorial) measure_tutorial "$@" ;;
+  batch) measure_batch ;;
+  cmgen) measure_cmgen ;;
+  writes) measure_writes ;;
+esac

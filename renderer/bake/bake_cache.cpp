@@ -1,5 +1,6 @@
 #include "bake/bake_cache.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -58,29 +59,55 @@ fs::path defaultCacheDirectory()
     return {};
 }
 
-BakeCache::BakeCache(fs::path root) : root_(std::move(root)) {}
+BakeCache::BakeCache(fs::path root) : root_(std::move(root))
+{
+    const char* compression = envOrNull("IBLAB_CACHE_EXR_COMPRESSION");
+    exrCompression_ = compression ? compression : kCacheExrCompression;
+}
 
 BakeCache::~BakeCache() { finishWrites(); }
 
-void BakeCache::writeInBackground(std::function<void()> write)
+void BakeCache::writeInBackground(fs::path target, std::function<void()> write)
 {
-    pending_.push_back(std::async(std::launch::async, [this, write = std::move(write)] {
-        try {
-            write();
-        } catch (const std::exception& e) {
-            const std::lock_guard<std::mutex> lock(notesMutex_);
-            writeNotes_.push_back(std::string("bake cache: not stored: ") + oneLine(e.what()));
-        }
-    }));
+    pending_.push_back({std::move(target), std::async(std::launch::async, [this, write = std::move(write)] {
+                            const auto start = std::chrono::steady_clock::now();
+                            std::string failure;
+                            try {
+                                write();
+                            } catch (const std::exception& e) {
+                                failure = std::string("bake cache: not stored: ") + oneLine(e.what());
+                            }
+                            const std::lock_guard<std::mutex> lock(notesMutex_);
+                            writeMilliseconds_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                            if (!failure.empty())
+                                writeNotes_.push_back(std::move(failure));
+                        })});
+}
+
+std::vector<std::string> BakeCache::settleWrites(const fs::path& target)
+{
+    std::erase_if(pending_, [&target](PendingWrite& write) {
+        if (write.target == target)
+            write.done.wait();
+        return write.done.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    });
+    const std::lock_guard<std::mutex> lock(notesMutex_);
+    return std::exchange(writeNotes_, {});
 }
 
 std::vector<std::string> BakeCache::finishWrites()
 {
-    for (std::future<void>& f : pending_)
-        f.wait();
+    for (PendingWrite& write : pending_)
+        write.done.wait();
     pending_.clear();
     const std::lock_guard<std::mutex> lock(notesMutex_);
     return std::exchange(writeNotes_, {});
+}
+
+double BakeCache::writeMilliseconds()
+{
+    const std::lock_guard<std::mutex> lock(notesMutex_);
+    return writeMilliseconds_;
 }
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)
@@ -104,9 +131,9 @@ bool BakeCache::loadBake(BakeResult& result, const MipBuilder& buildMips, std::v
 {
     if (!enabled())
         return false;
-    for (std::string& note : finishWrites())
-        notes.push_back(std::move(note));
     const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));
+    for (std::string& note : settleWrites(dir))
+        notes.push_back(std::move(note));
     if (!hasBakeDirectory(dir))
         return false;
     try {
@@ -127,16 +154,18 @@ void BakeCache::storeBake(const BakeResult& result)
     if (!enabled())
         return;
     auto snapshot = std::make_shared<BakeSnapshot>(snapshotBake(result));
-    writeInBackground([dir = bakeDirectory(bakeKey(result.contentHash, result.settings)), snapshot] { writeBakeSnapshot(dir, *snapshot); });
+    snapshot->exrCompression = exrCompression_;
+    const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));
+    writeInBackground(dir, [dir, snapshot] { writeBakeSnapshot(dir, *snapshot); });
 }
 
 bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes)
 {
     if (!enabled())
         return false;
-    for (std::string& note : finishWrites())
-        notes.push_back(std::move(note));
     const fs::path path = lutPath(lutKey(size, samples, term));
+    for (std::string& note : settleWrites(path))
+        notes.push_back(std::move(note));
     if (!fs::exists(path))
         return false;
     try {
@@ -157,12 +186,13 @@ void BakeCache::storeLut(const BakedTexture& lut, int samples, GeometryTerm term
     if (!enabled())
         return;
     auto image = std::make_shared<Image2D>(read2D(lut));
-    writeInBackground([path = lutPath(lutKey(lut.size, samples, term)), image, samples, term] {
+    const fs::path path = lutPath(lutKey(lut.size, samples, term));
+    writeInBackground(path, [path, image, samples, term, compression = exrCompression_] {
         std::error_code ec;
         fs::create_directories(path.parent_path(), ec);
         if (ec)
             throw Error(path.parent_path().string(), "cannot create the directory: " + ec.message());
-        writeLutExr(path, *image, samples, term, true, true);
+        writeLutExr(path, *image, samples, term, true, true, compression);
     });
 }
 

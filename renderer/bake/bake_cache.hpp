@@ -13,11 +13,14 @@
 // entry without it is incomplete: a miss). A corrupt file (truncated EXR, bad JSON, wrong
 // size) is reported as one line naming it, the entry is removed and the bake is redone.
 // Failing to write the cache (read-only disk) is reported the same way and is not an error.
+// The EXRs use kCacheExrCompression ($IBLAB_CACHE_EXR_COMPRESSION overrides it, for
+// scripts/measure-bake.sh writes, which measured the choice: docs/bake.md).
 //
 // Stores read the textures back on the calling (GL) thread and write the files on a
 // background thread: encoding and the fsyncs of the atomic writes take 100-200 ms for a
-// 256 cube, which would otherwise stall the frame (GUI) or the bake's timing. Lookups wait
-// for the writes in flight first, so a store followed by a load always hits.
+// 256 cube, which would otherwise stall the frame (GUI) or the bake's timing. A lookup waits
+// for the writes in flight to its own entry, so a store followed by a load always hits, and
+// for no other: a batch's next map bakes while the previous one's files are written.
 #include <future>
 #include <mutex>
 #include <cstdint>
@@ -33,6 +36,8 @@ namespace iblab::bake {
 
 // Empty when none of the variables is set.
 std::filesystem::path defaultCacheDirectory();
+
+inline constexpr const char* kCacheExrCompression = "rle";
 
 class BakeCache {
 public:
@@ -63,14 +68,25 @@ public:
 
     // Waits for the background writes; returns one line for each that failed.
     std::vector<std::string> finishWrites();
+    // The time the finished background writes took, summed (they run beside the caller).
+    double writeMilliseconds();
 
 private:
-    void writeInBackground(std::function<void()> write);
+    struct PendingWrite {
+        std::filesystem::path target; // the entry's directory or the LUT's file
+        std::future<void> done;
+    };
+    void writeInBackground(std::filesystem::path target, std::function<void()> write);
+    // Waits for the writes to `target` in flight, forgets the finished ones, and returns one
+    // line for each write that failed so far.
+    std::vector<std::string> settleWrites(const std::filesystem::path& target);
 
     std::filesystem::path root_;
-    std::vector<std::future<void>> pending_;
-    std::mutex notesMutex_;
+    std::vector<PendingWrite> pending_;
+    std::string exrCompression_;
+    std::mutex notesMutex_; // guards the two below, which the writing threads update
     std::vector<std::string> writeNotes_; // failures of background writes, not yet collected
+    double writeMilliseconds_ = 0.0;
 };
 
 } // namespace iblab::bake

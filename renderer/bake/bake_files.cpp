@@ -5,11 +5,11 @@
 #include <memory>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
+#include "io/image_codec.hpp"
 #include "io/image_writer.hpp"
 
 namespace iblab::bake {
@@ -30,17 +30,17 @@ RgbImage readExrRgb(const fs::path& path)
 {
     if (!fs::exists(path))
         throw BakeFileError(path, "missing");
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string());
+    std::string openError;
+    const std::unique_ptr<ImageReader> in = imageCodec().openFile(path.string(), openError);
     if (!in)
-        throw BakeFileError(path, "cannot open: " + oneLine(OIIO::geterror()));
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.nchannels < 3)
-        throw BakeFileError(path, "has " + std::to_string(spec.nchannels) + " channels, expected RGB");
+        throw BakeFileError(path, "cannot open: " + oneLine(openError));
+    const ImageHeader& spec = in->header();
+    if (spec.channels < 3)
+        throw BakeFileError(path, "has " + std::to_string(spec.channels) + " channels, expected RGB");
     RgbImage image{spec.width, spec.height, std::vector<float>(std::size_t(spec.width) * std::size_t(spec.height) * 3)};
     // A truncated file opens (the header is intact) and fails here.
-    if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, image.rgb.data()))
-        throw BakeFileError(path, "cannot read pixels: " + oneLine(in->geterror()));
-    in->close();
+    if (!in->readImage(3, PixelType::Float, image.rgb.data()))
+        throw BakeFileError(path, "cannot read pixels: " + oneLine(in->takeError()));
     return image;
 }
 
@@ -56,10 +56,10 @@ std::vector<float> dropAlpha(const std::vector<glm::vec4>& texels)
     return rgb;
 }
 
-void writeCubeExr(const fs::path& path, const CubeImage& image, bool halfPixels)
+void writeCubeExr(const fs::path& path, const CubeImage& image, bool halfPixels, const std::string& exrCompression)
 {
     writeExr(path.string(), image.size, 6 * image.size, 3, dropAlpha(image.texels),
-             {.exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float});
+             {.exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float, .exrCompression = exrCompression});
 }
 
 CubeImage readCubeExr(const fs::path& path, int expectedSize)
@@ -189,7 +189,7 @@ void writeBakeSnapshot(const fs::path& directory, const BakeSnapshot& snapshot)
     if (ec)
         throw Error(directory.string(), "cannot create the directory: " + ec.message());
     for (const auto& cube : snapshot.cubes)
-        writeCubeExr(directory / cube.name, cube.image, snapshot.halfPixels);
+        writeCubeExr(directory / cube.name, cube.image, snapshot.halfPixels, snapshot.exrCompression);
     writeTextFileAtomic((directory / "sh.json").string(), snapshot.shJson);
     // Last: an entry without bake.json is incomplete and reads as a miss.
     writeTextFileAtomic((directory / "bake.json").string(), snapshot.metaJson);
@@ -238,7 +238,8 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
     result.sh.windowWidth = sh.value("window_width", 0.0);
 }
 
-void writeLutExr(const fs::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel, bool halfPixels)
+void writeLutExr(const fs::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel, bool halfPixels,
+                 const std::string& exrCompression)
 {
     std::vector<float> rgb;
     rgb.reserve(lut.texels.size() * 3);
@@ -252,7 +253,8 @@ void writeLutExr(const fs::path& path, const Image2D& lut, int samples, Geometry
     // order is what a loader uploading row 0 first expects).
     writeExr(path.string(), lut.size, lut.size, 3, rgb,
              {.settingsJson = lutJsonText(lut.size, samples, term, multiscatterChannel),
-              .exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float});
+              .exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float,
+              .exrCompression = exrCompression});
 }
 
 Image2D readLutExr(const fs::path& path, int expectedSize)

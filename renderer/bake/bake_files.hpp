@@ -47,6 +47,7 @@ struct BakeSnapshot {
     };
     std::vector<CubeFile> cubes;
     bool halfPixels = true;
+    std::string exrCompression = "zip"; // ImageWriteOptions::exrCompression
     std::string shJson;
     std::string metaJson; // bake.json
 };
@@ -70,7 +71,7 @@ void readBakeDirectory(const std::filesystem::path& directory, BakeResult& resul
 
 // LUT files. multiscatterChannel false writes 0 in B (the `iblab lut` default).
 void writeLutExr(const std::filesystem::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel,
-                 bool halfPixels);
+                 bool halfPixels, const std::string& exrCompression = "zip");
 // Throws BakeFileError unless the file is an RGB EXR of expectedSize^2.
 Image2D readLutExr(const std::filesystem::path& path, int expectedSize);
 

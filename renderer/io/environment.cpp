@@ -7,18 +7,19 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numeric>
 #include <mutex>
 #include <optional>
 #include <sstream>
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include "ibl/equirect.hpp"
 
 #include "io/builtin_environments.hpp"
 #include "io/error.hpp"
+#include "io/image_codec.hpp"
 #include "ibl/conventions.hpp"
 
 namespace iblab {
@@ -171,13 +172,7 @@ std::string aspectText(int w, int h)
     return text + formatShort(double(w) / h) + ":1";
 }
 
-std::string oiioError(const OIIO::ImageInput* in, const char* fallback)
-{
-    std::string e = in ? in->geterror() : OIIO::geterror();
-    if (e.empty())
-        e = OIIO::geterror();
-    return e.empty() ? std::string(fallback) : e;
-}
+std::string orFallback(std::string error, const char* fallback) { return error.empty() ? std::string(fallback) : error; }
 
 // OpenEXR 3.1 allocates each header attribute at the size the file claims before reading it,
 // so a 41-byte file claiming a 1.8 GB string attribute makes it allocate 1.8 GB (found by
@@ -283,10 +278,11 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
         throw Error(path, "empty file (0 bytes)");
 
     checkExrAttributeSizes(path, fs::file_size(path, ec));
-    auto in = OIIO::ImageInput::open(path);
+    std::string openError;
+    const std::unique_ptr<ImageReader> in = imageCodec().openFile(path, openError);
     if (!in)
-        throw Error(path, "cannot read as an image: " + oiioError(nullptr, "unknown format"));
-    const OIIO::ImageSpec spec = in->spec();
+        throw Error(path, "cannot read as an image: " + orFallback(openError, "unknown format"));
+    const ImageHeader& spec = in->header();
 
     // Header checks, all before allocating anything.
     if (spec.deep)
@@ -295,7 +291,7 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
         throw Error(path, "image has no pixels (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ")");
     if (spec.depth > 1)
         throw Error(path, "volume images are not supported (depth " + std::to_string(spec.depth) + ")");
-    if (spec.nchannels < 1)
+    if (spec.channels < 1)
         throw Error(path, "image has no channels");
     const std::uint64_t texels = std::uint64_t(spec.width) * std::uint64_t(spec.height);
     if (texels > kMaxEnvironmentTexels)
@@ -313,9 +309,9 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     // Tiles larger than the image are legal (a 64x64 tile on a 16x8 map), but a header can
     // declare any size, and the reader decodes a whole tile row at once: refuse absurd ones
     // before anything is allocated for them.
-    const std::uint64_t tileTexels = std::uint64_t(std::max(spec.tile_width, 0)) * std::uint64_t(std::max(spec.tile_height, 0));
+    const std::uint64_t tileTexels = std::uint64_t(std::max(spec.tileWidth, 0)) * std::uint64_t(std::max(spec.tileHeight, 0));
     if (tileTexels > kMaxTileTexels)
-        throw Error(path, "tiles of " + std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) + " are " +
+        throw Error(path, "tiles of " + std::to_string(spec.tileWidth) + "x" + std::to_string(spec.tileHeight) + " are " +
                               std::to_string(tileTexels) + " texels each, more than the limit of " +
                               std::to_string(kMaxTileTexels) + " (2^22)");
     if (options.maxWidth < 2 || options.maxWidth % 2 != 0)
@@ -329,10 +325,10 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     env.image = downsample ? ImageRGB32F(options.maxWidth, options.maxWidth / 2) : ImageRGB32F(srcW, srcH);
 
     // Encoding of the stored values.
-    const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(spec.format.basetype);
-    const bool eightBit = base == OIIO::TypeDesc::UINT8 || base == OIIO::TypeDesc::INT8;
-    const bool integer = eightBit || base == OIIO::TypeDesc::UINT16 || base == OIIO::TypeDesc::INT16;
-    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+    const PixelType base = spec.storedType;
+    const bool eightBit = base == PixelType::UInt8 || base == PixelType::Int8;
+    const bool integer = eightBit || base == PixelType::UInt16 || base == PixelType::Int16;
+    const std::string& colorSpace = spec.colorSpace;
     const std::string cs = lower(colorSpace);
     Encoding encoding = Encoding::Linear;
     float gamma = 1.0f;
@@ -351,8 +347,8 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     }
 
     // Read in bands of rows (whole tile rows for tiled files), decode, repair, store.
-    const int channelsRead = spec.nchannels >= 3 ? 3 : 1; // grey (+alpha) -> replicate
-    const int band = std::min(srcH, spec.tile_width > 0 ? spec.tile_height * std::max(1, 64 / std::max(1, spec.tile_height)) : 64);
+    const int channelsRead = spec.channels >= 3 ? 3 : 1; // grey (+alpha) -> replicate
+    const int band = std::min(srcH, spec.tileWidth > 0 ? spec.tileHeight * std::max(1, 64 / std::max(1, spec.tileHeight)) : 64);
     std::vector<float> buffer(std::size_t(band) * std::size_t(srcW) * std::size_t(channelsRead));
     std::vector<float> row(std::size_t(srcW) * 3);
     TexelRepairer repairer(srcW, srcH);
@@ -362,14 +358,9 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     float maxValue = 0.0f;
     for (int y0 = 0; y0 < srcH; y0 += band) {
         const int y1 = std::min(srcH, y0 + band);
-        const bool ok = spec.tile_width > 0
-                            ? in->read_tiles(0, 0, spec.x, spec.x + srcW, spec.y + y0, spec.y + y1, spec.z, spec.z + 1, 0,
-                                             channelsRead, OIIO::TypeFloat, buffer.data())
-                            : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channelsRead,
-                                                 OIIO::TypeFloat, buffer.data());
-        if (!ok || in->has_error())
-            throw Error(path, "cannot read pixels (truncated or corrupt file?): " +
-                                  oiioError(in.get(), "no reason given"));
+        const bool ok = in->readRows(spec.y + y0, spec.y + y1, channelsRead, PixelType::Float, buffer.data());
+        if (!ok || in->hasError())
+            throw Error(path, "cannot read pixels (truncated or corrupt file?): " + orFallback(in->takeError(), "no reason given"));
         for (int y = y0; y < y1; ++y) {
             const float* src = &buffer[std::size_t(y - y0) * std::size_t(srcW) * std::size_t(channelsRead)];
             for (int x = 0; x < srcW; ++x)
@@ -390,8 +381,6 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
                 std::memcpy(&env.image.texels[env.image.offset(0, y)], row.data(), row.size() * sizeof(float));
         }
     }
-    in->close();
-
     env.repair = repairer.report;
     if (eightBit || maxValue <= 1.0f) {
         std::string w = eightBit ? "8-bit input" : "no value above 1 (max " + formatShort(maxValue) + ")";

@@ -1,12 +1,10 @@
 #include "io/image_writer.hpp"
 
-#include <memory>
-
-#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
+#include "io/image_codec.hpp"
 
 namespace iblab {
 namespace {
@@ -44,43 +42,30 @@ void checkLayout(const std::string& path, int width, int height, int channels, s
                               std::to_string(channels) + ")");
 }
 
-// formatName: OpenImageIO's plugin name ("png", "openexr"); the temporary file's name does
-// not end in the right extension, so the writer is chosen explicitly.
-void writeImage(const std::string& path, const char* formatName, OIIO::ImageSpec spec, OIIO::TypeDesc dataType,
-                const void* data, const ImageWriteOptions& options)
+// image: all but the metadata and the rows, which come from `data` and the options.
+void writeImage(const std::string& path, ImageWrite image, std::size_t bytesPerValue, const void* data,
+                const ImageWriteOptions& options)
 {
     const Settings settings = parseSettings(path, options.settingsJson);
     if (!settings.compact.empty()) {
-        spec.attribute("ImageDescription", settings.compact);
-        spec.attribute("iblab:settings", settings.compact);
+        image.attributes.emplace_back("ImageDescription", settings.compact);
+        image.attributes.emplace_back("iblab:settings", settings.compact);
     }
-    spec.attribute("Software", "iblab");
-    if (spec.nchannels == 2 || spec.nchannels == 4)
-        spec.alpha_channel = spec.nchannels - 1;
+    image.attributes.emplace_back("Software", "iblab");
+    if (image.channels == 2 || image.channels == 4)
+        image.alphaChannel = image.channels - 1;
 
-    // A negative y stride walks the rows from the last one up: the flip costs no copy.
-    const OIIO::stride_t rowBytes = OIIO::stride_t(spec.width) * spec.nchannels * OIIO::stride_t(dataType.size());
-    const char* first = static_cast<const char*>(data);
-    OIIO::stride_t yStride = rowBytes;
+    // A negative row stride walks the rows from the last one up: the flip costs no copy.
+    const std::ptrdiff_t rowBytes = std::ptrdiff_t(image.width) * image.channels * std::ptrdiff_t(bytesPerValue);
+    image.firstRow = data;
+    image.rowStride = rowBytes;
     if (options.bottomUp) {
-        first += rowBytes * (spec.height - 1);
-        yStride = -rowBytes;
+        image.firstRow = static_cast<const char*>(data) + rowBytes * (image.height - 1);
+        image.rowStride = -rowBytes;
     }
 
-    writeFileAtomic(path, [&](const std::string& temp) {
-        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(formatName);
-        if (!out)
-            throw Error(path, std::string("no ") + formatName + " writer: " + OIIO::geterror());
-        if (!out->open(temp, spec))
-            throw Error(path, "cannot write: " + out->geterror());
-        if (!out->write_image(dataType, first, OIIO::AutoStride, yStride)) {
-            const std::string why = out->geterror();
-            out->close();
-            throw Error(path, "cannot write pixels: " + why);
-        }
-        if (!out->close())
-            throw Error(path, "cannot finish writing: " + out->geterror());
-    });
+    const ImageCodec& codec = imageCodec();
+    writeFileAtomic(path, [&](const std::string& temp) { codec.writeFile(path, temp, image); });
     if (!settings.pretty.empty())
         writeTextFileAtomic(settingsSidecarPath(path), settings.pretty);
 }
@@ -93,25 +78,29 @@ void writePng8(const std::string& path, int width, int height, int channels, std
                const ImageWriteOptions& options)
 {
     checkLayout(path, width, height, channels, pixels.size(), false);
-    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
+    ImageWrite image{.format = "png", .width = width, .height = height, .channels = channels};
+    image.attributes.emplace_back("oiio:ColorSpace", "sRGB");
     // PNG stores unassociated alpha; without this hint OpenImageIO would treat our bytes
     // as premultiplied and divide colour by alpha. The bytes given are the bytes stored.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    writeImage(path, "png", spec, OIIO::TypeDesc::UINT8, pixels.data(), options);
+    image.attributes.emplace_back("oiio:UnassociatedAlpha", 1);
+    writeImage(path, std::move(image), sizeof(std::uint8_t), pixels.data(), options);
 }
 
 void writeExr(const std::string& path, int width, int height, int channels, std::span<const float> pixels,
               const ImageWriteOptions& options)
 {
     checkLayout(path, width, height, channels, pixels.size(), true);
-    OIIO::ImageSpec spec(width, height, channels,
-                         options.exrPixelType == ExrPixelType::Half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+    ImageWrite image{.format = "openexr",
+                     .width = width,
+                     .height = height,
+                     .channels = channels,
+                     .storedType = options.exrPixelType == ExrPixelType::Half ? PixelType::Half : PixelType::Float,
+                     .dataType = PixelType::Float};
     if (channels == 1)
-        spec.channelnames = {"Y"};
-    spec.attribute("oiio:ColorSpace", "Linear");
-    spec.attribute("compression", "zip");
-    writeImage(path, "openexr", spec, OIIO::TypeDesc::FLOAT, pixels.data(), options);
+        image.channelNames = {"Y"};
+    image.attributes.emplace_back("oiio:ColorSpace", "Linear");
+    image.attributes.emplace_back("compression", options.exrCompression);
+    writeImage(path, std::move(image), sizeof(float), pixels.data(), options);
 }
 
 void writeExr(const std::string& path, const ImageRGB32F& image, const ImageWriteOptions& options)

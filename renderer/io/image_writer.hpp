@@ -23,6 +23,8 @@ struct ImageWriteOptions {
     // before touching the disk.
     std::string settingsJson;
     ExrPixelType exrPixelType = ExrPixelType::Float; // EXR only
+    // EXR only: OpenEXR's compression by OpenImageIO's name ("zip", "none", "piz", "dwaa", ...).
+    std::string exrCompression = "zip";
 };
 
 // 8-bit PNG (sRGB-encoded values, as a display shows them). channels: 1 (grey), 2 (grey +

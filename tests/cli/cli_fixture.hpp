@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
+
+#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
@@ -63,6 +66,13 @@ inline std::vector<float> readExr(const fs::path& path, int& width)
     std::vector<float> pixels(std::size_t(input->spec().width * input->spec().height * 4));
     input->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data());
     return pixels;
+}
+
+inline int lineCount(const std::string& text)
+{
+    int lines = 0;
+    for (char c : text) lines += c == '\n';
+    return lines;
 }
 
 } // namespace iblab::cli_testing

@@ -22,17 +22,7 @@
 
 namespace {
 
-using iblab::cli_testing::Cli;
-using iblab::cli_testing::readExr;
-using iblab::cli_testing::Result;
-namespace fs = std::filesystem;
-
-int lineCount(const std::string& text)
-{
-    int lines = 0;
-    for (char c : text) lines += c == '\n';
-    return lines;
-}
+using namespace iblab::cli_testing;
 
 TEST_F(Cli, BareCommandRendersHeadlessWithoutADisplay)
 {

@@ -1,24 +1,19 @@
 #include "scene/internal/image_codec.hpp"
 
 #include <algorithm>
-
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <memory>
 
 #include "io/error.hpp"
+#include "io/image_codec.hpp"
 #include "scene/internal/gltf_document.hpp"
 
 namespace iblab::scene_detail {
 namespace {
 
-// OpenImageIO keeps unretrieved error texts per thread; fetch them so that they neither
-// pile up nor surface in a later, unrelated message.
-std::string takeError(const OIIO::ImageInput* in)
+// OpenImageIO keeps unretrieved error texts per thread; ImageReader::takeError fetches
+// them so that they neither pile up nor surface in a later, unrelated message.
+std::string describeError(std::string text)
 {
-    std::string text = in ? in->geterror() : std::string();
-    const std::string global = OIIO::geterror();
-    if (text.empty())
-        text = global;
     text = oneLine(text);
     return text.empty() ? "unrecognised or corrupt image data" : text;
 }
@@ -51,21 +46,15 @@ std::optional<TextureImage> decodeImage(const std::vector<std::uint8_t>& encoded
     // one fails); it is never opened as a file, the proxy supplies the bytes.
     const std::string mime = sniffImageMimeType(encoded);
     const std::string hint = mime == "image/jpeg" ? "memory.jpg" : mime == "image/png" ? "memory.png" : "memory.img";
-    OIIO::Filesystem::IOMemReader memory(encoded.data(), encoded.size());
-    OIIO::ImageSpec config;
-    // glTF colours are straight (unassociated) alpha; OpenImageIO would premultiply.
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    // With a config spec, OpenImageIO 2.4 takes the proxy from this hint, not only from
-    // the argument: without it the reader tries to open "memory.png" from disk.
-    void* proxy = &memory;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    auto in = OIIO::ImageInput::open(hint, &config, &memory);
+    // glTF colours are straight (unassociated) alpha, as openMemory reads them.
+    std::string openError;
+    const std::unique_ptr<ImageReader> in = imageCodec().openMemory(encoded, hint, openError);
     if (!in) {
-        problem = "cannot be decoded: " + takeError(nullptr);
+        problem = "cannot be decoded: " + describeError(openError);
         return std::nullopt;
     }
-    const OIIO::ImageSpec spec = in->spec();
-    const int width = spec.width, height = spec.height, channels = spec.nchannels;
+    const ImageHeader& spec = in->header();
+    const int width = spec.width, height = spec.height, channels = spec.channels;
     if (width < 1 || height < 1 || spec.depth > 1 || channels < 1) {
         problem = "has an unusable size " + std::to_string(width) + "x" + std::to_string(height) + " (" +
                   std::to_string(channels) + " channels)";
@@ -85,13 +74,13 @@ std::optional<TextureImage> decodeImage(const std::vector<std::uint8_t>& encoded
     image.height = (height + factor - 1) / factor;
     image.rgba8.resize(std::size_t(image.width) * std::size_t(image.height) * 4);
     const auto fail = [&] {
-        problem = "cannot be decoded: " + takeError(in.get());
+        problem = "cannot be decoded: " + describeError(in->takeError());
         return std::nullopt;
     };
 
     if (factor == 1) {
         std::vector<std::uint8_t> texels(std::size_t(width) * std::size_t(height) * std::size_t(channels));
-        if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, texels.data()))
+        if (!in->readImage(channels, PixelType::UInt8, texels.data()))
             return fail();
         for (std::size_t i = 0, n = std::size_t(width) * std::size_t(height); i < n; ++i)
             toRgba(&texels[i * std::size_t(channels)], channels, &image.rgba8[i * 4]);
@@ -104,7 +93,7 @@ std::optional<TextureImage> decodeImage(const std::vector<std::uint8_t>& encoded
     std::vector<std::uint32_t> sums(std::size_t(image.width) * 4);
     std::vector<std::uint32_t> counts(std::size_t(image.width));
     for (int y = 0; y < height; ++y) {
-        if (!in->read_scanline(spec.y + y, spec.z, OIIO::TypeDesc::UINT8, row.data()))
+        if (!in->readRows(spec.y + y, spec.y + y + 1, channels, PixelType::UInt8, row.data()))
             return fail();
         for (int x = 0; x < width; ++x) {
             std::uint8_t texel[4];
@@ -129,16 +118,14 @@ std::optional<TextureImage> decodeImage(const std::vector<std::uint8_t>& encoded
 
 std::vector<std::uint8_t> encodePng(int width, int height, const std::vector<std::uint8_t>& rgba8)
 {
-    std::vector<std::uint8_t> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
-    auto out = OIIO::ImageOutput::create("memory.png", &memory);
-    if (!out)
-        throw Error("PNG encoder", takeError(nullptr));
-    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (!out->open("memory.png", spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgba8.data()) || !out->close())
-        throw Error("PNG encoder", oneLine(out->geterror()));
-    return bytes;
+    const ImageWrite image{.format = "png",
+                           .width = width,
+                           .height = height,
+                           .channels = 4,
+                           .firstRow = rgba8.data(),
+                           .rowStride = std::ptrdiff_t(width) * 4,
+                           .attributes = {{"oiio:UnassociatedAlpha", 1}}};
+    return imageCodec().encode("PNG encoder", image);
 }
 
 } // namespace iblab::scene_detail

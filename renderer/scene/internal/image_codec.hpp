@@ -1,6 +1,6 @@
 #pragma once
-// PRIVATE to iblab_scene: texture image decoding and encoding through OpenImageIO, in
-// memory (no temporary files).
+// PRIVATE to iblab_scene: texture image decoding and encoding through OpenImageIO (the
+// image module, io/image_codec.hpp), in memory (no temporary files).
 #include <cstdint>
 #include <optional>
 #include <string>
