@@ -247,7 +247,8 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced)
     fieldCombo(fields, "geometry", settings);
     fieldCombo(fields, "diffuse", settings);
     fieldCheckbox(fields, "multiscatter", settings);
-    if (settings.method == ShadingMethod::SplitSum) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
+    if (readsPrefilteredCube(settings.method)) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
+    if (settings.method == ShadingMethod::SplitSum) fieldCombo(fields, "specular_direction", settings);
 }
 
 // The smoothest roughness the scene shows, where the settings say it (a glTF's own
@@ -273,7 +274,8 @@ std::string samplingSummary(const SamplingSettings& s)
     if (s.forcedMip >= 0) text += " mip " + std::to_string(s.forcedMip);
     text += ", " + std::string(enumName(s.geometry));
     if (s.multiscatter) text += ", ms";
-    if (s.roughFresnelOnLut && s.method == ShadingMethod::SplitSum) text += ", F_r on LUT";
+    if (s.roughFresnelOnLut && readsPrefilteredCube(s.method)) text += ", F_r on LUT";
+    if (s.specularDirection != SpecularDirection::Reflection && s.method == ShadingMethod::SplitSum) text += ", " + std::string(enumName(s.specularDirection)) + " dir";
     return text;
 }
 

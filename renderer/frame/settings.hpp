@@ -54,6 +54,16 @@ template <>
 struct EnumNames<ShadingMethod> {
     static constexpr std::array<EnumName<ShadingMethod>, 2> entries{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}}};
 };
+// Where the split sum reads the prefiltered cube: at the reflection R (Karis 2013), or at a
+// dominant direction between R and N that follows the true lobe's off-specular peak:
+// Frostbite's (Lagarde & de Rousiers 2014, listing 22) or Filament's (mix(R, N, alpha^2)).
+// The formulas: common/specular_lobe.glsl; their measured error: docs/accuracy-study.md.
+enum class SpecularDirection { Reflection, Frostbite, Filament };
+template <>
+struct EnumNames<SpecularDirection> {
+    static constexpr std::array<EnumName<SpecularDirection>, 3> entries{
+        {{SpecularDirection::Reflection, "reflection"}, {SpecularDirection::Frostbite, "frostbite"}, {SpecularDirection::Filament, "filament"}}};
+};
 // Sh9: the bake's SH9 irradiance as it windowed it (BakeSettings::sh.window); Sh9Plain: the
 // same projection without the window, so that its ringing can be seen.
 enum class DiffuseSource { Sh9, Sh9Plain, IrradianceCube };
@@ -62,6 +72,9 @@ struct EnumNames<DiffuseSource> {
     static constexpr std::array<EnumName<DiffuseSource>, 3> entries{
         {{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::Sh9Plain, "sh9-plain"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
 };
+
+// Whether the method reads the bake's prefiltered cube (the split sum's part 1).
+inline bool readsPrefilteredCube(ShadingMethod method) { return method == ShadingMethod::SplitSum; }
 
 // The sampled method's largest N: the Hammersley table the renderer uploads holds this many.
 inline constexpr int kMaxSampleCount = 1024;
@@ -83,6 +96,9 @@ struct SamplingSettings {
     // on top of the LUT that already integrates it. false: prefiltered * (F0 A + B), exact for
     // the split sum (Karis 2013). The convention presets turn it on for LearnOpenGL.
     bool roughFresnelOnLut = false;
+    // Split sum: the direction it reads the prefiltered cube at. The convention presets set it
+    // as each engine does (Filament's for Filament).
+    SpecularDirection specularDirection = SpecularDirection::Reflection;
     // Sampled method: divide by the samples above the horizon, as LearnOpenGL's prefilter
     // does, instead of by N (unbiased); for comparing the two.
     bool normalizeByAccepted = false;

@@ -139,6 +139,22 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
         points.push_back(p);
     }
+    // Where the cube is read, each on the base bake with the default's diffuse
+    // (the moment irradiance cube), so that the split sum at R among them is today's default
+    // shading and a run of this family alone has its baseline (docs/accuracy-study.md).
+    for (SpecularDirection direction : {SpecularDirection::Reflection, SpecularDirection::Frostbite, SpecularDirection::Filament}) {
+        SweepPoint p;
+        p.family = SweepFamily::SpecularLobe;
+        p.bake = base;
+        p.bake.irradiance = bake::IrradianceMethod::Moments;
+        if (quick) p.bake.moments.faceSize = 16;
+        p.sampling.diffuse = DiffuseSource::IrradianceCube;
+        p.sampling.specularDirection = direction;
+        p.series = specularReadName(p.sampling);
+        p.label = p.series + ", prefilter face " + std::to_string(base.prefilter.faceSize) + ", " + std::to_string(base.prefilter.samples) + " samples";
+        p.parameter = base.prefilter.samples;
+        points.push_back(p);
+    }
     for (int groups : quick ? std::vector<int>{4} : std::vector<int>{4, 8}) {
         SweepPoint p;
         p.family = SweepFamily::Diffuse;
@@ -153,6 +169,17 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         points.push_back(p);
     }
     return points;
+}
+
+std::string specularReadName(const SamplingSettings& sampling)
+{
+    if (sampling.method != ShadingMethod::SplitSum) return "";
+    switch (sampling.specularDirection) {
+    case SpecularDirection::Reflection: return "split-sum";
+    case SpecularDirection::Frostbite: return "split-sum, Frostbite direction";
+    case SpecularDirection::Filament: return "split-sum, Filament direction";
+    }
+    return "";
 }
 
 std::vector<BenchEnvironment> builtinBenchEnvironments(int width)
@@ -185,7 +212,7 @@ BenchOptions defaultBenchOptions(bool quick, const std::string& assetDirectory)
 std::vector<std::string> bakePhasesRead(const SweepPoint& point)
 {
     std::vector<std::string> phases{"upload", "environment_cube"};
-    if (point.sampling.method == ShadingMethod::SplitSum) phases.push_back("prefilter");
+    if (readsPrefilteredCube(point.sampling.method)) phases.push_back("prefilter");
     if (point.sampling.diffuse != DiffuseSource::IrradianceCube || point.sampling.method == ShadingMethod::Sampled) phases.push_back("sh9");
     else phases.push_back("irradiance_" + std::string(enumName(point.bake.irradiance)));
     return phases;
@@ -355,9 +382,12 @@ bool BenchJob::step()
         report_.points.push_back(std::move(measured));
         markDominated(report_.points);
 
-        s.harness.retireBake();
+        // Consecutive points on the same bake (the sampled N, the diffuse SH9 variants, the
+        // specular reads) measure the one bake: baking it again would give the same textures.
+        const bool nextSharesBake = s.point + 1 < o.points.size() && bake::toJsonText(o.points[s.point + 1].bake) == bake::toJsonText(p.bake);
+        if (!nextSharesBake) s.harness.retireBake();
         if (++s.point < o.points.size()) {
-            startBake();
+            if (!nextSharesBake) startBake();
             return true;
         }
         if (++s.environment < o.environments.size()) {

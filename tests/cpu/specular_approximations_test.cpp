@@ -190,6 +190,39 @@ TEST(SpecularApproximations, WhiteFurnaceMatchesTheSplitSum)
     std::printf("white furnace: largest relative difference from the split sum %.2g\n", largest);
 }
 
+TEST(SpecularApproximations, SpecularDirectionSettingReadsWhereTheStudysMethodsRead)
+{
+    // The shader's SpecularDirection (specularDirectionTowardsNormal) and the study's
+    // FrostbiteDominant / FilamentDominant reads: one direction each, R for Reflection.
+    const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, 0.9, -0.3));
+    const glm::dvec3 v = glm::normalize(glm::dvec3(0.9, 0.1, 0.4));
+    const glm::dvec3 R = 2.0 * glm::dot(n, v) * n - v;
+    for (double roughness : {0.1, 0.4, 0.7, 1.0}) {
+        glm::dvec3 studyFrostbite, studyFilament;
+        const PrefilteredLookup record = [&](glm::dvec3 d, double) { return d; };
+        SpecularShadingInputs in;
+        in.n = n;
+        in.v = v;
+        in.roughness = roughness;
+        in.lut = glm::dvec3(1.0, 0.0, 1.0);
+        in.F0 = glm::dvec3(1.0);
+        studyFrostbite = glm::normalize(shadeSpecularApproximation(SpecularMethod::FrostbiteDominant, in, record));
+        studyFilament = glm::normalize(shadeSpecularApproximation(SpecularMethod::FilamentDominant, in, record));
+        const float alpha = float(roughness * roughness);
+        const auto setting = [&](int direction) {
+            return glm::dvec3(shared::lobeTapDirection(glm::vec3(n), glm::vec3(R), shared::specularDirectionTowardsNormal(direction, alpha)));
+        };
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(setting(SPECULAR_DIRECTION_FROSTBITE)[c], studyFrostbite[c], 1e-5) << roughness;
+            EXPECT_NEAR(setting(SPECULAR_DIRECTION_FILAMENT)[c], studyFilament[c], 1e-5) << roughness;
+            EXPECT_NEAR(setting(SPECULAR_DIRECTION_REFLECTION)[c], R[c], 1e-5) << roughness;
+        }
+        // Both lean towards N, Frostbite's more (at roughness 1 it reads N itself).
+        EXPECT_GE(glm::dot(studyFilament, n), glm::dot(R, n) - 1e-9);
+        EXPECT_GE(glm::dot(studyFrostbite, n), glm::dot(studyFilament, n) - 1e-9);
+    }
+}
+
 TEST(SpecularApproximations, FittedTableIsWellFormed)
 {
     const LobeFitTable& t = fittedLobeTable();

@@ -6,6 +6,7 @@
 #include "common/sampling.glsl"
 #include "common/prefilter_lod.glsl"
 #include "common/sh9.glsl"
+#include "common/specular_lobe.glsl"
 
 uniform samplerCube uEnvironmentCube; // radiance with a box-filtered mip chain (PDF mip filtering source)
 uniform samplerCube uPrefiltered;     // mip m = roughness prefilterRoughnessFromMip(m, levels, layout)
@@ -20,6 +21,7 @@ uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
 uniform int uDiffuseSource;  // 0: SH9, 1: irradiance cube
 uniform bool uMultiscatter;
 uniform bool uRoughFresnelOnLut; // LearnOpenGL's F_roughness * A + B (SamplingSettings::roughFresnelOnLut)
+uniform int uSpecularDirection;  // SPECULAR_DIRECTION_* of specular_lobe.glsl: where the split sum reads the cube
 uniform float uForcedMip;    // < 0: automatic
 uniform bool uPdfMipFiltering;
 uniform float uMipBias;
@@ -65,10 +67,13 @@ vec3 combineLobes(SurfacePoint s, float NdotV, vec3 irradianceOverPi, vec3 specu
 // roughness-aware Fresnel instead of F0; that counts Fresnel twice (it is already inside A
 // and B), so by default F_roughness only sets the diffuse weight kD = (1 - F)(1 - metallic),
 // and uRoughFresnelOnLut reproduces the tutorial for the convention presets.
+// uSpecularDirection moves the read from R towards N (a dominant direction).
 vec3 shadeSplitSum(SurfacePoint s)
 {
     float NdotV = max(dot(s.N, s.V), 1e-4);
     vec3 R = reflect(-s.V, s.N);
+    if (uSpecularDirection != SPECULAR_DIRECTION_REFLECTION)
+        R = lobeTapDirection(s.N, R, specularDirectionTowardsNormal(uSpecularDirection, s.roughness * s.roughness));
     float lod = uForcedMip >= 0.0 ? uForcedMip : prefilterMipFromRoughness(s.roughness, uPrefilteredLevels, uPrefilteredLayout);
     vec3 prefiltered = textureLod(uPrefiltered, toEnvironment(R), lod).rgb * uEnvironmentIntensity;
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
