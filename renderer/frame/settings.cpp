@@ -18,7 +18,7 @@ const FieldTable<SamplingSettings>& samplingSettingsFields()
     using S = SamplingSettings;
     constexpr CliForm value = CliForm::Value, flag = CliForm::Flag;
     static const FieldTable<S> fields{
-        {"method", "Method", "Shading: splitsum|sampled", fieldRef<S>([](S& s) -> auto& { return s.method; }), {}, "--method", value},
+        {"method", "Method", "Shading: splitsum|sampled|fitted-lobe", fieldRef<S>([](S& s) -> auto& { return s.method; }), {}, "--method", value},
         {"samples", "N (samples)", "N, samples per pixel for the sampled method", fieldRef<S>([](S& s) -> auto& { return s.samples; }),
          {1, kMaxSampleCount}, "--samples", value},
         // --mip takes "auto" for -1 (app/cli.cpp).

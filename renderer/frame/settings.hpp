@@ -49,10 +49,14 @@ struct MaterialSettings {
     bool operator==(const MaterialSettings&) const = default;
 };
 
-enum class ShadingMethod { SplitSum, Sampled };
+// FittedLobe: the split sum's LUT with the prefiltered cube read where and as wide as the
+// true lobe is, per (n.v, roughness) from a table fitted against the full integral (the
+// "Fresnel-split fitted lobe" of docs/accuracy-study.md; common/specular_lobe.glsl).
+enum class ShadingMethod { SplitSum, Sampled, FittedLobe };
 template <>
 struct EnumNames<ShadingMethod> {
-    static constexpr std::array<EnumName<ShadingMethod>, 2> entries{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}}};
+    static constexpr std::array<EnumName<ShadingMethod>, 3> entries{
+        {{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}, {ShadingMethod::FittedLobe, "fitted-lobe"}}};
 };
 // Where the split sum reads the prefiltered cube: at the reflection R (Karis 2013), or at a
 // dominant direction between R and N that follows the true lobe's off-specular peak:
@@ -74,7 +78,7 @@ struct EnumNames<DiffuseSource> {
 };
 
 // Whether the method reads the bake's prefiltered cube (the split sum's part 1).
-inline bool readsPrefilteredCube(ShadingMethod method) { return method == ShadingMethod::SplitSum; }
+inline bool readsPrefilteredCube(ShadingMethod method) { return method == ShadingMethod::SplitSum || method == ShadingMethod::FittedLobe; }
 
 // The sampled method's largest N: the Hammersley table the renderer uploads holds this many.
 inline constexpr int kMaxSampleCount = 1024;

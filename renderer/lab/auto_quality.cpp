@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -185,12 +186,15 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
                         }
                         add(p, std::string("split-sum, ") + (cube ? "irradiance cube" : "SH9"));
                     }
-    // The reads that follow the true lobe (docs/accuracy-study.md: the dominant directions) on
-    // the prefilters the split sum's candidates use, at the default's mip count.
-    for (SpecularDirection direction : {SpecularDirection::Frostbite, SpecularDirection::Filament})
+    // The reads that follow the true lobe (docs/accuracy-study.md: the dominant directions and
+    // the fitted lobe) on the prefilters the split sum's candidates use, at the default's mip count.
+    for (const auto& [method, direction] : {std::pair{ShadingMethod::SplitSum, SpecularDirection::Frostbite},
+                                            std::pair{ShadingMethod::SplitSum, SpecularDirection::Filament},
+                                            std::pair{ShadingMethod::FittedLobe, SpecularDirection::Reflection}})
         for (int face : space.faces)
             for (int samples : space.prefilterSamples) {
                 SweepPoint p = prefiltered(SweepFamily::SpecularLobe, face, space.levels.back(), samples);
+                p.sampling.method = method;
                 p.sampling.specularDirection = direction;
                 add(p, specularReadName(p.sampling) + ", SH9");
             }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "bake/bake_result.hpp"
 #include "lab/auto_quality.hpp"
@@ -139,16 +140,20 @@ std::vector<SweepPoint> sweepPoints(bool quick)
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
         points.push_back(p);
     }
-    // Where the cube is read, each on the base bake with the default's diffuse
+    // Where and how wide the cube is read, each on the base bake with the default's diffuse
     // (the moment irradiance cube), so that the split sum at R among them is today's default
     // shading and a run of this family alone has its baseline (docs/accuracy-study.md).
-    for (SpecularDirection direction : {SpecularDirection::Reflection, SpecularDirection::Frostbite, SpecularDirection::Filament}) {
+    for (const auto& [method, direction] : {std::pair{ShadingMethod::SplitSum, SpecularDirection::Reflection},
+                                            std::pair{ShadingMethod::SplitSum, SpecularDirection::Frostbite},
+                                            std::pair{ShadingMethod::SplitSum, SpecularDirection::Filament},
+                                            std::pair{ShadingMethod::FittedLobe, SpecularDirection::Reflection}}) {
         SweepPoint p;
         p.family = SweepFamily::SpecularLobe;
         p.bake = base;
         p.bake.irradiance = bake::IrradianceMethod::Moments;
         if (quick) p.bake.moments.faceSize = 16;
         p.sampling.diffuse = DiffuseSource::IrradianceCube;
+        p.sampling.method = method;
         p.sampling.specularDirection = direction;
         p.series = specularReadName(p.sampling);
         p.label = p.series + ", prefilter face " + std::to_string(base.prefilter.faceSize) + ", " + std::to_string(base.prefilter.samples) + " samples";
@@ -173,6 +178,7 @@ std::vector<SweepPoint> sweepPoints(bool quick)
 
 std::string specularReadName(const SamplingSettings& sampling)
 {
+    if (sampling.method == ShadingMethod::FittedLobe) return "fitted lobe";
     if (sampling.method != ShadingMethod::SplitSum) return "";
     switch (sampling.specularDirection) {
     case SpecularDirection::Reflection: return "split-sum";

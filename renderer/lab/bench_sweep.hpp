@@ -46,7 +46,7 @@ struct BenchEnvironment {
 
 // What a sweep point varies: the split sum's prefilter, the sampled method's N, the diffuse
 // source, (auto quality) a fixed preset measured beside the candidates, or where and how
-// wide the prefiltered cube is read (R, the dominant directions: specular-lobe).
+// wide the prefiltered cube is read (R, the dominant directions, the fitted lobe: specular-lobe).
 enum class SweepFamily { SplitSum, Sampled, Diffuse, Preset, SpecularLobe };
 // The reports' spelling, in the enum's order.
 inline constexpr std::array<std::string_view, 5> kSweepFamilyNames{"split-sum", "sampled", "diffuse", "preset", "specular-lobe"};
@@ -94,7 +94,7 @@ struct BenchOptions {
 // quick one (a few points of each family on small bakes, for tests and the Study panel).
 std::vector<SweepPoint> sweepPoints(bool quick);
 // How a point reads the prefiltered cube, in words: "split-sum" (at R), "split-sum, Frostbite
-// direction"; empty for a method that does not read it.
+// direction", "fitted lobe"; empty for a method that does not read it.
 std::string specularReadName(const SamplingSettings& sampling);
 // The bake every sweep point starts from: the default preset without the irradiance cubes,
 // only the default geometry term's LUT, and (quick) small enough for tens of milliseconds.

@@ -138,11 +138,13 @@ TEST(AutoQuality, RoughScenesDropFacesOnlySmoothSurfacesResolve)
 TEST(AutoQuality, OffersTheSpecularReadsAsCandidatesAndAppliesThem)
 {
     const AutoCandidates c = autoCandidates(/*quick=*/true, grid(2.0));
-    for (SpecularDirection direction : {SpecularDirection::Frostbite, SpecularDirection::Filament}) {
+    for (const auto& [method, direction] : {std::pair{ShadingMethod::SplitSum, SpecularDirection::Frostbite},
+                                            std::pair{ShadingMethod::SplitSum, SpecularDirection::Filament},
+                                            std::pair{ShadingMethod::FittedLobe, SpecularDirection::Reflection}}) {
         const auto found = std::find_if(c.points.begin(), c.points.end(), [&](const SweepPoint& p) {
-            return p.family == SweepFamily::SpecularLobe && p.sampling.specularDirection == direction;
+            return p.family == SweepFamily::SpecularLobe && p.sampling.method == method && p.sampling.specularDirection == direction;
         });
-        ASSERT_NE(found, c.points.end()) << enumName(direction);
+        ASSERT_NE(found, c.points.end()) << enumName(method) << " " << enumName(direction);
         EXPECT_NE(found->label, describeSettings(SweepPoint{})) << "its label says where it reads";
         AutoChoice choice;
         choice.found = true;
