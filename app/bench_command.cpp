@@ -24,6 +24,7 @@ namespace {
 
 struct BenchCommandOptions {
     std::vector<std::string> environments;
+    std::vector<std::string> families; // empty: every family of the sweep
     SceneSettings scene{.kind = SceneKind::Grid};
     std::string out = "bench";
     bool json = false;
@@ -94,6 +95,10 @@ int runBench(const BenchCommandOptions& o)
         Renderer renderer(shaderDirectory());
         bench::BenchOptions options = bench::defaultBenchOptions(o.quick, assetDirectory().string());
         if (!o.environments.empty()) options.environments = namedEnvironments(o.environments);
+        if (!o.families.empty())
+            std::erase_if(options.points, [&](const bench::SweepPoint& p) {
+                return std::find(o.families.begin(), o.families.end(), bench::sweepFamilyName(p.family)) == o.families.end();
+            });
         options.frame.scene = o.scene;
         if (o.width > 0) options.width = o.width;
         if (o.height > 0) options.height = o.height;
@@ -175,6 +180,8 @@ Command addBenchCommand(CLI::App& app, ProcessClock::time_point)
          },
          "Scene: sphere|grid|counting|sweep|FILE.gltf|FILE.glb")
         ->default_str("grid");
+    c->add_option("--family", o->families, "Only the sweep points of this family; repeat for several (default: every family)")
+        ->check(CLI::IsMember(std::vector<std::string>(bench::kSweepFamilyNames.begin(), bench::kSweepFamilyNames.end())));
     c->add_option("--out", o->out, "Directory for bench.csv, bench.json, bench.md and pareto.png")->capture_default_str();
     c->add_flag("--json", o->json, "Print the JSON report on stdout instead of the CSV's path");
     c->add_flag("--quick", o->quick, "A tiny sweep on a small builtin (seconds; for tests)");

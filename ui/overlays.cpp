@@ -19,7 +19,8 @@ std::string samplingSummary(const SamplingSettings& s)
     if (s.forcedMip >= 0) text += " mip " + std::to_string(s.forcedMip);
     text += ", " + std::string(enumName(s.geometry));
     if (s.multiscatter) text += ", ms";
-    if (s.roughFresnelOnLut && s.method == ShadingMethod::SplitSum) text += ", F_r on LUT";
+    if (s.roughFresnelOnLut && readsPrefilteredCube(s.method)) text += ", F_r on LUT";
+    if (s.specularDirection != SpecularDirection::Reflection && s.method == ShadingMethod::SplitSum) text += ", " + std::string(enumName(s.specularDirection)) + " dir";
     return text;
 }
 

@@ -266,7 +266,8 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced, con
     fieldCombo(fields, "geometry", settings);
     if (settings.method != ShadingMethod::Reference) fieldCombo(fields, "diffuse", settings);
     fieldCheckbox(fields, "multiscatter", settings);
-    if (settings.method == ShadingMethod::SplitSum) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
+    if (readsPrefilteredCube(settings.method)) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
+    if (settings.method == ShadingMethod::SplitSum) fieldCombo(fields, "specular_direction", settings);
 }
 
 // The smoothest roughness the scene shows, where the settings say it (a glTF's own

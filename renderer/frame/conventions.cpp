@@ -11,12 +11,17 @@ namespace {
 // SH irradiance); glTF-Sample-Viewer's ibl_sampler.js and ibl.glsl (getIBLRadianceGGX uses
 // k_S = F0 + (max(1 - roughness, F0) - F0) (1 - n.v)^5, the roughness-aware Fresnel, on the
 // LUT). iblab is the lab's own default: the exact F0 A + B and energy compensation on.
+// Where the cube is read: Filament's getReflectedVector leans R towards N by alpha^2
+// (common/specular_lobe.glsl); LearnOpenGL's and the Sample Viewer's ibl code read at R.
 constexpr std::array kConventions{
-    ConventionPreset{"learnopengl", "LearnOpenGL", "tutorial", GeometryTerm::SchlickGGX, true, false, DiffuseSource::IrradianceCube},
-    ConventionPreset{"filament", "Filament", "filament", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::Sh9},
+    ConventionPreset{"learnopengl", "LearnOpenGL", "tutorial", GeometryTerm::SchlickGGX, true, false, DiffuseSource::IrradianceCube,
+                     SpecularDirection::Reflection},
+    ConventionPreset{"filament", "Filament", "filament", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::Sh9,
+                     SpecularDirection::Filament},
     ConventionPreset{"gltf-viewer", "glTF Sample Viewer", "gltf-viewer", GeometryTerm::HeightCorrelatedSmith, true, false,
-                     DiffuseSource::IrradianceCube},
-    ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::IrradianceCube},
+                     DiffuseSource::IrradianceCube, SpecularDirection::Reflection},
+    ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::IrradianceCube,
+                     SpecularDirection::Reflection},
 };
 
 std::string formatted(const char* format, double value)
@@ -61,6 +66,7 @@ void applyConvention(const ConventionPreset& convention, SamplingSettings& sampl
     sampling.roughFresnelOnLut = convention.roughFresnelOnLut;
     sampling.multiscatter = convention.multiscatter;
     sampling.diffuse = convention.diffuse;
+    sampling.specularDirection = convention.specularDirection;
 }
 
 std::vector<std::pair<std::string, std::string>> conventionChoices(const ConventionPreset& convention)
@@ -81,6 +87,9 @@ std::vector<std::pair<std::string, std::string>> conventionChoices(const Convent
                                 : bake.irradiance == bake::IrradianceMethod::Moments ? "moment cube"
                                 : bake.irradiance == bake::IrradianceMethod::Riemann ? "Riemann cube"
                                                                                       : "cosine-sampled cube");
+    rows.emplace_back("specular direction", convention.specularDirection == SpecularDirection::Filament    ? "mix(R, N, alpha^2) (Filament)"
+                                            : convention.specularDirection == SpecularDirection::Frostbite ? "lerp(N, R, s (sqrt(s) + alpha)), s = 1 - alpha (Frostbite)"
+                                                                                                            : "R");
     return rows;
 }
 

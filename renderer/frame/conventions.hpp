@@ -3,7 +3,7 @@
 // up image-based lighting, as presets of the lab. A convention is a bake preset (cube and
 // prefilter sizes, roughness-per-mip layout, source-mip bias, LUT; bake_settings.cpp says
 // where each value comes from) plus the split-sum shading choices that go with it (geometry
-// term, Fresnel on the LUT, energy compensation, diffuse source). Rendering one material under
+// term, Fresnel on the LUT, energy compensation, diffuse source, where the cube is read). Rendering one material under
 // each shows where the differences come from: `iblab conventions`, or the GUI's combo.
 #include <span>
 #include <string>
@@ -24,6 +24,7 @@ struct ConventionPreset {
     bool roughFresnelOnLut = false;
     bool multiscatter = false;
     DiffuseSource diffuse = DiffuseSource::Sh9;
+    SpecularDirection specularDirection = SpecularDirection::Reflection;
 };
 
 std::span<const ConventionPreset> conventionPresets();
@@ -36,7 +37,7 @@ bake::BakeSettings conventionBakeSettings(const ConventionPreset& convention);
 void applyConvention(const ConventionPreset& convention, SamplingSettings& sampling);
 
 // What the convention chose, one (aspect, choice) per row: geometry term, roughness per mip,
-// source-mip bias, prefilter, LUT, Fresnel, energy compensation, diffuse.
+// source-mip bias, prefilter, LUT, Fresnel, energy compensation, diffuse, specular direction.
 std::vector<std::pair<std::string, std::string>> conventionChoices(const ConventionPreset& convention);
 
 } // namespace iblab

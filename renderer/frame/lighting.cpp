@@ -7,14 +7,20 @@
 
 #include "bake/bake_result.hpp"
 #include "frame/texture_units.hpp"
+#include "ibl/specular_approximations.hpp"
 
 namespace iblab {
+
+// The shader reads SamplingSettings::specularDirection by common/specular_lobe.glsl's numbers.
+static_assert(int(SpecularDirection::Reflection) == SPECULAR_DIRECTION_REFLECTION);
+static_assert(int(SpecularDirection::Frostbite) == SPECULAR_DIRECTION_FROSTBITE);
+static_assert(int(SpecularDirection::Filament) == SPECULAR_DIRECTION_FILAMENT);
 
 IblUniforms::IblUniforms(const gl::ShaderProgram& p)
     : environmentYaw(p, "uEnvironmentYaw"), environmentIntensity(p, "uEnvironmentIntensity"), shIrradiance(p, "uShIrradiance"),
       prefilteredLevels(p, "uPrefilteredLevels"), prefilteredLayout(p, "uPrefilteredLayout"), environmentFaceSize(p, "uEnvironmentFaceSize"),
       environmentLevels(p, "uEnvironmentLevels"), geometry(p, "uGeometry"), diffuseSource(p, "uDiffuseSource"), multiscatter(p, "uMultiscatter"),
-      roughFresnelOnLut(p, "uRoughFresnelOnLut"), forcedMip(p, "uForcedMip"), pdfMipFiltering(p, "uPdfMipFiltering"), mipBias(p, "uMipBias")
+      roughFresnelOnLut(p, "uRoughFresnelOnLut"), specularDirection(p, "uSpecularDirection"), forcedMip(p, "uForcedMip"), pdfMipFiltering(p, "uPdfMipFiltering"), mipBias(p, "uMipBias")
 {
 }
 
@@ -47,6 +53,7 @@ void IblUniforms::bind(const Lighting& lighting, const FrameSettings& settings) 
     diffuseSource.set(settings.sampling.diffuse == DiffuseSource::IrradianceCube && bool(irradiance) ? 1 : 0);
     multiscatter.set(settings.sampling.multiscatter);
     roughFresnelOnLut.set(settings.sampling.roughFresnelOnLut);
+    specularDirection.set(int(settings.sampling.specularDirection));
     forcedMip.set(float(settings.sampling.forcedMip));
     pdfMipFiltering.set(settings.sampling.pdfMipFiltering);
     mipBias.set(settings.sampling.mipBias);

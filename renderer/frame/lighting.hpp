@@ -38,6 +38,7 @@ struct IblUniforms {
     gl::Uniform<int> diffuseSource;
     gl::Uniform<bool> multiscatter;
     gl::Uniform<bool> roughFresnelOnLut;
+    gl::Uniform<int> specularDirection;
     gl::Uniform<float> forcedMip;
     gl::Uniform<bool> pdfMipFiltering;
     gl::Uniform<float> mipBias;

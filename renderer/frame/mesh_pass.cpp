@@ -9,6 +9,7 @@
 #include "frame/camera.hpp"
 #include "frame/texture_units.hpp"
 #include "ibl/sampling.hpp"
+#include "ibl/specular_approximations.hpp"
 
 namespace iblab {
 
@@ -23,6 +24,8 @@ struct MeshUniforms {
     gl::Uniform<bool> normalizeByAccepted;
     gl::Uniform<bool> cosineSampledDiffuse;
     gl::Uniform<int> sampleCount;
+    gl::Uniform<bool> fittedLobe;
+    gl::Uniform<int> lobeFitLayout;
     gl::Uniform<glm::mat4> model;
     gl::Uniform<glm::mat3> normalMatrix;
     // The material's factors and texture slots (glTF's).
@@ -46,7 +49,8 @@ struct MeshUniforms {
 MeshUniforms::MeshUniforms(const gl::ShaderProgram& p)
     : ibl(p), viewProjection(p, "uViewProjection"), cameraPosition(p, "uCameraPosition"), sampleRotation(p, "uSampleRotation"),
       normalizeByAccepted(p, "uNormalizeByAccepted"), cosineSampledDiffuse(p, "uCosineSampledDiffuse"), sampleCount(p, "uSampleCount"),
-      model(p, "uModel"), normalMatrix(p, "uNormalMatrix"), baseColorFactor(p, "uBaseColorFactor"), metallicFactor(p, "uMetallicFactor"),
+      fittedLobe(p, "uFittedLobe"), lobeFitLayout(p, "uLobeFitLayout"), model(p, "uModel"), normalMatrix(p, "uNormalMatrix"),
+      baseColorFactor(p, "uBaseColorFactor"), metallicFactor(p, "uMetallicFactor"),
       roughnessFactor(p, "uRoughnessFactor"), emissiveFactor(p, "uEmissiveFactor"), occlusionStrength(p, "uOcclusionStrength"),
       normalScale(p, "uNormalScale"), specular(p, "uSpecular"), ambientOcclusion(p, "uAmbientOcclusion"),
       hasBaseColorTexture(p, "uHasBaseColorTexture"), hasMetallicRoughnessTexture(p, "uHasMetallicRoughnessTexture"),
@@ -90,9 +94,24 @@ void bindMaterial(const MeshUniforms& u, const GpuScene& scene, const SceneDraw&
     u.emissiveTexCoordSet.set(material.emissiveTexture.texCoord);
 }
 
+// The table as the CPU core samples it (LobeFitTable::sample): bilinear between texel
+// centres, clamped to the edge texels.
+gl::Texture uploadLobeFit(const LobeFitTable& table)
+{
+    gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture.id(), 1, GL_RGBA32F, table.nvSize, table.roughnessSize);
+    glTextureSubImage2D(texture.id(), 0, 0, 0, table.nvSize, table.roughnessSize, GL_RGBA, GL_FLOAT, table.cells.data());
+    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
 } // namespace
 
-MeshPass::MeshPass(gl::ShaderLibrary& shaders) : shaders_(shaders)
+MeshPass::MeshPass(gl::ShaderLibrary& shaders)
+    : shaders_(shaders), lobeFit_(uploadLobeFit(fittedLobeTable())), lobeFitLayout_(fittedLobeTable().taps)
 {
     glNamedBufferStorage(hammersley_.id(), kMaxSampleCount * sizeof(float) * 2, nullptr, GL_DYNAMIC_STORAGE_BIT);
 }
@@ -144,6 +163,9 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
                 u->sampleRotation.set(sampleRotation);
                 u->normalizeByAccepted.set(settings.sampling.normalizeByAccepted);
                 u->cosineSampledDiffuse.set(settings.sampling.cosineSampledDiffuse);
+                u->fittedLobe.set(settings.sampling.method == ShadingMethod::FittedLobe);
+                u->lobeFitLayout.set(lobeFitLayout_);
+                glBindTextureUnit(kUnitLobeFit, lobeFit_.id());
             }
             u->model.set(draw.model);
             u->normalMatrix.set(glm::transpose(glm::inverse(glm::mat3(draw.model))));

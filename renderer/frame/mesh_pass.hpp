@@ -1,10 +1,11 @@
 #pragma once
 // The mesh pass (mesh.vert + pbr.frag): every draw of the scene, shaded with the split sum
-// (METHOD 0) or N importance samples (METHOD 1, the first N Hammersley points rotated by
-// the frame's Cranley-Patterson offset), or written as the reference renderer's G-buffer
-// (METHOD 2). Depth-tested, so it runs before the sky pass.
+// or the fitted lobe (METHOD 0, a uniform tells them apart) or N importance samples
+// (METHOD 1, the first N Hammersley points rotated by the frame's Cranley-Patterson offset),
+// or written as the reference renderer's G-buffer (METHOD 2). Depth-tested, so it runs
+// before the sky pass.
 //   reads:  the scene (built for SceneSettings on first use), the camera, MaterialSettings,
-//           SamplingSettings, the environment and the bake
+//           SamplingSettings, the environment and the bake, the fitted lobe's table
 //   writes: radiance and coverage 1 (shaded), or the ReferenceLayer attachments of the
 //           bound G-buffer; depth
 #include <glm/vec2.hpp>
@@ -29,6 +30,9 @@ private:
     gl::ShaderLibrary& shaders_;
     gl::Buffer hammersley_ = gl::createBuffer();
     int hammersleyCount_ = 0;
+    // fittedLobeTable() as an RGBA32F texture, uploaded once: it depends on no environment.
+    gl::Texture lobeFit_;
+    int lobeFitLayout_ = 0;
 };
 
 } // namespace iblab

@@ -18,7 +18,7 @@ const FieldTable<SamplingSettings>& samplingSettingsFields()
     using S = SamplingSettings;
     constexpr CliForm value = CliForm::Value, flag = CliForm::Flag;
     static const FieldTable<S> fields{
-        {"method", "Method", "Shading: splitsum|sampled|reference (the full integral, slow)", fieldRef<S>([](S& s) -> auto& { return s.method; }), {}, "--method", value},
+        {"method", "Method", "Shading: splitsum|sampled|fitted-lobe|reference (the full integral, slow)", fieldRef<S>([](S& s) -> auto& { return s.method; }), {}, "--method", value},
         {"samples", "N (samples)", "N, samples per pixel for the sampled method", fieldRef<S>([](S& s) -> auto& { return s.samples; }),
          {1, kMaxSampleCount}, "--samples", value},
         // --mip takes "auto" for -1 (app/cli.cpp).
@@ -38,6 +38,9 @@ const FieldTable<SamplingSettings>& samplingSettingsFields()
          fieldRef<S>([](S& s) -> auto& { return s.multiscatter; }), {}, "--multiscatter", flag},
         {"rough_fresnel_on_lut", "F_roughness on the LUT", "Split sum as LearnOpenGL: F_roughness(n.v) * A + B instead of F0 * A + B",
          fieldRef<S>([](S& s) -> auto& { return s.roughFresnelOnLut; }), {}, "--rough-fresnel-lut", flag},
+        {"specular_direction", "Specular direction",
+         "Split sum: where the prefiltered cube is read: reflection (R)|frostbite|filament (dominant directions towards N)",
+         fieldRef<S>([](S& s) -> auto& { return s.specularDirection; }), {}, "--specular-direction", value},
         {"normalize_by_accepted", "Normalise by accepted samples",
          "Sampled method: divide by the samples above the horizon (LearnOpenGL) instead of by N",
          fieldRef<S>([](S& s) -> auto& { return s.normalizeByAccepted; }), {}, "--normalize-accepted", flag},

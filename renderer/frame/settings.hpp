@@ -49,12 +49,28 @@ struct MaterialSettings {
     bool operator==(const MaterialSettings&) const = default;
 };
 
+// FittedLobe: the split sum's LUT with the prefiltered cube read where and as wide as the
+// true lobe is, per (n.v, roughness) from a table fitted against the full integral (the
+// "Fresnel-split fitted lobe" of docs/accuracy-study.md; common/specular_lobe.glsl).
 // Reference: the full integral over the environment's texels (the reference renderer), the
 // ground truth the real-time methods approximate; progressive in the GUI, complete headless.
-enum class ShadingMethod { SplitSum, Sampled, Reference };
+enum class ShadingMethod { SplitSum, Sampled, FittedLobe, Reference };
 template <>
 struct EnumNames<ShadingMethod> {
-    static constexpr std::array<EnumName<ShadingMethod>, 3> entries{{{ShadingMethod::SplitSum, "splitsum"}, {ShadingMethod::Sampled, "sampled"}, {ShadingMethod::Reference, "reference"}}};
+    static constexpr std::array<EnumName<ShadingMethod>, 4> entries{{{ShadingMethod::SplitSum, "splitsum"},
+                                                                      {ShadingMethod::Sampled, "sampled"},
+                                                                      {ShadingMethod::FittedLobe, "fitted-lobe"},
+                                                                      {ShadingMethod::Reference, "reference"}}};
+};
+// Where the split sum reads the prefiltered cube: at the reflection R (Karis 2013), or at a
+// dominant direction between R and N that follows the true lobe's off-specular peak:
+// Frostbite's (Lagarde & de Rousiers 2014, listing 22) or Filament's (mix(R, N, alpha^2)).
+// The formulas: common/specular_lobe.glsl; their measured error: docs/accuracy-study.md.
+enum class SpecularDirection { Reflection, Frostbite, Filament };
+template <>
+struct EnumNames<SpecularDirection> {
+    static constexpr std::array<EnumName<SpecularDirection>, 3> entries{
+        {{SpecularDirection::Reflection, "reflection"}, {SpecularDirection::Frostbite, "frostbite"}, {SpecularDirection::Filament, "filament"}}};
 };
 // Sh9: the bake's SH9 irradiance as it windowed it (BakeSettings::sh.window); Sh9Plain: the
 // same projection without the window, so that its ringing can be seen.
@@ -64,6 +80,9 @@ struct EnumNames<DiffuseSource> {
     static constexpr std::array<EnumName<DiffuseSource>, 3> entries{
         {{DiffuseSource::Sh9, "sh9"}, {DiffuseSource::Sh9Plain, "sh9-plain"}, {DiffuseSource::IrradianceCube, "irradiance-cube"}}};
 };
+
+// Whether the method reads the bake's prefiltered cube (the split sum's part 1).
+inline bool readsPrefilteredCube(ShadingMethod method) { return method == ShadingMethod::SplitSum || method == ShadingMethod::FittedLobe; }
 
 // The sampled method's largest N: the Hammersley table the renderer uploads holds this many.
 inline constexpr int kMaxSampleCount = 1024;
@@ -85,6 +104,9 @@ struct SamplingSettings {
     // on top of the LUT that already integrates it. false: prefiltered * (F0 A + B), exact for
     // the split sum (Karis 2013). The convention presets turn it on for LearnOpenGL.
     bool roughFresnelOnLut = false;
+    // Split sum: the direction it reads the prefiltered cube at. The convention presets set it
+    // as each engine does (Filament's for Filament).
+    SpecularDirection specularDirection = SpecularDirection::Reflection;
     // Sampled method: divide by the samples above the horizon, as LearnOpenGL's prefilter
     // does, instead of by N (unbiased); for comparing the two.
     bool normalizeByAccepted = false;

@@ -33,6 +33,7 @@ enum TextureUnit : GLuint {
     kUnitSpecularSum,
     kUnitIrradianceSum,
     kUnitReferenceFrame,
+    kUnitLobeFit, // the fitted lobe's table (MeshPass)
 };
 
 inline constexpr std::pair<const char*, TextureUnit> kSamplerUnits[] = {
@@ -58,6 +59,7 @@ inline constexpr std::pair<const char*, TextureUnit> kSamplerUnits[] = {
     {"uSpecularSum", kUnitSpecularSum},
     {"uIrradianceSum", kUnitIrradianceSum},
     {"uReferenceFrame", kUnitReferenceFrame},
+    {"uLobeFit", kUnitLobeFit},
 };
 
 } // namespace iblab

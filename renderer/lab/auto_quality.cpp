@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -53,7 +54,8 @@ int largestUsefulFace(double minRoughness, int levels)
 
 bool pdfFiltered(const SweepPoint& p) { return p.sampling.method == ShadingMethod::Sampled ? p.sampling.pdfMipFiltering : p.bake.prefilter.mipFiltering; }
 int samplesOf(const SweepPoint& p) { return p.sampling.method == ShadingMethod::Sampled ? p.sampling.samples : p.bake.prefilter.samples; }
-bool readsCube(const SweepPoint& p) { return p.sampling.method == ShadingMethod::SplitSum && p.sampling.diffuse == DiffuseSource::IrradianceCube; }
+bool readsPrefiltered(const SweepPoint& p) { return readsPrefilteredCube(p.sampling.method); }
+bool readsCube(const SweepPoint& p) { return readsPrefiltered(p) && p.sampling.diffuse == DiffuseSource::IrradianceCube; }
 
 std::string pointSummary(const BenchPoint& p)
 {
@@ -131,7 +133,7 @@ std::string describeSettings(const SweepPoint& p)
     if (p.sampling.method == ShadingMethod::Sampled)
         text = "sampled, N = " + std::to_string(p.sampling.samples);
     else
-        text = "split-sum, prefilter face " + std::to_string(p.bake.prefilter.faceSize) + ", " + std::to_string(p.bake.prefilter.levels) + " mips, " +
+        text = specularReadName(p.sampling) + ", prefilter face " + std::to_string(p.bake.prefilter.faceSize) + ", " + std::to_string(p.bake.prefilter.levels) + " mips, " +
                std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth, "%.3g") + " per mip)";
     text += pdfFiltered(p) ? ", PDF mips" : ", no PDF mips";
     if (readsCube(p)) {
@@ -159,18 +161,23 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
         p.label = describeSettings(p);
         all.push_back(std::move(p));
     };
+    // A candidate that reads the prefilter of this face, mip count and samples.
+    const auto prefiltered = [&](SweepFamily family, int face, int levels, int samples) {
+        SweepPoint p;
+        p.family = family;
+        p.parameter = samples;
+        p.bake = base;
+        p.bake.prefilter.faceSize = face;
+        p.bake.prefilter.levels = levels;
+        p.bake.prefilter.samples = samples;
+        return p;
+    };
     for (bool cube : {false, true})
         for (int face : space.faces)
             for (int levels : space.levels)
                 for (bool pdf : {true, false})
                     for (int samples : space.prefilterSamples) {
-                        SweepPoint p;
-                        p.family = SweepFamily::SplitSum;
-                        p.parameter = samples;
-                        p.bake = base;
-                        p.bake.prefilter.faceSize = face;
-                        p.bake.prefilter.levels = levels;
-                        p.bake.prefilter.samples = samples;
+                        SweepPoint p = prefiltered(SweepFamily::SplitSum, face, levels, samples);
                         p.bake.prefilter.mipFiltering = pdf;
                         if (cube) {
                             p.bake.irradiance = bake::IrradianceMethod::Importance;
@@ -179,6 +186,18 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
                         }
                         add(p, std::string("split-sum, ") + (cube ? "irradiance cube" : "SH9"));
                     }
+    // The reads that follow the true lobe (docs/accuracy-study.md: the dominant directions and
+    // the fitted lobe) on the prefilters the split sum's candidates use, at the default's mip count.
+    for (const auto& [method, direction] : {std::pair{ShadingMethod::SplitSum, SpecularDirection::Frostbite},
+                                            std::pair{ShadingMethod::SplitSum, SpecularDirection::Filament},
+                                            std::pair{ShadingMethod::FittedLobe, SpecularDirection::Reflection}})
+        for (int face : space.faces)
+            for (int samples : space.prefilterSamples) {
+                SweepPoint p = prefiltered(SweepFamily::SpecularLobe, face, space.levels.back(), samples);
+                p.sampling.method = method;
+                p.sampling.specularDirection = direction;
+                add(p, specularReadName(p.sampling) + ", SH9");
+            }
     for (bool pdf : {true, false})
         for (int n : space.sampledN) {
             SweepPoint p;
@@ -207,7 +226,7 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
             ++droppedUnfiltered;
             continue;
         }
-        if (p.sampling.method == ShadingMethod::SplitSum && p.bake.prefilter.faceSize > largestUsefulFace(facts.minRoughness, p.bake.prefilter.levels)) {
+        if (readsPrefiltered(p) && p.bake.prefilter.faceSize > largestUsefulFace(facts.minRoughness, p.bake.prefilter.levels)) {
             ++droppedFaces;
             continue;
         }
@@ -215,7 +234,7 @@ AutoCandidates autoCandidates(bool quick, const SceneFacts& facts)
             ++droppedCubes;
             continue;
         }
-        if (p.sampling.method == ShadingMethod::SplitSum) largestKept = std::max(largestKept, p.bake.prefilter.faceSize);
+        if (readsPrefiltered(p)) largestKept = std::max(largestKept, p.bake.prefilter.faceSize);
         out.points.push_back(std::move(p));
     }
 
@@ -336,7 +355,7 @@ bake::BakeSettings appliedBakeSettings(const AutoChoice& choice, bake::BakeSetti
 {
     const SweepPoint& p = choice.chosen.setting;
     current.preset = "auto";
-    if (p.sampling.method == ShadingMethod::SplitSum) current.prefilter = p.bake.prefilter;
+    if (readsPrefiltered(p)) current.prefilter = p.bake.prefilter;
     // A cube the frame does not read is bake time for nothing.
     // Its candidates measure the importance-sampled cube; none when the frame reads SH9 (a
     // cube the frame does not read is bake time for nothing).
@@ -352,6 +371,7 @@ SamplingSettings appliedSampling(const AutoChoice& choice, SamplingSettings curr
     current.samples = chosen.samples;
     current.pdfMipFiltering = chosen.pdfMipFiltering;
     current.diffuse = chosen.diffuse;
+    current.specularDirection = chosen.specularDirection;
     return current;
 }
 

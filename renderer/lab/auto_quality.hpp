@@ -3,8 +3,8 @@
 // the reference, as the viewer sees it (after tone mapping, in 8-bit steps).
 //
 // It measures rather than predicts: the candidates (prefilter face size, mip count and
-// samples per mip, PDF source-mip filtering, runtime N for the sampled method, SH9 or the
-// irradiance cube for diffuse) run as a bench sweep on the current environment and scene, so
+// samples per mip, PDF source-mip filtering, where the prefiltered cube is read, runtime N for
+// the sampled method, SH9 or the irradiance cube for diffuse) run as a bench sweep on the current environment and scene, so
 // the scene's roughness range and the environment's dynamic range are what the measurement
 // sees. Before measuring, both facts prune candidates that cannot be right for this scene:
 //
@@ -62,7 +62,7 @@ int referenceWidthFor(const SceneFacts& facts, bool quick);
 
 struct AutoCandidates {
     SceneFacts facts;                 // what they were pruned by
-    std::vector<SweepPoint> points;   // family SplitSum or Sampled; each a whole configuration
+    std::vector<SweepPoint> points;   // family SplitSum, SpecularLobe or Sampled; each a whole configuration
     int referenceWidth = 0;           // referenceWidthFor(facts, quick)
     std::vector<std::string> reasons; // what was pruned and why
 };

@@ -57,7 +57,7 @@ std::string benchCsvText(const BenchReport& report)
     out << "\n";
     for (const BenchPoint& p : report.points) {
         const SweepPoint& s = p.setting;
-        const bool splitSum = s.sampling.method == ShadingMethod::SplitSum;
+        const bool splitSum = readsPrefilteredCube(s.sampling.method);
         // Empty, not 0, where nothing was measured: 0 would read as exact.
         const auto error = [&](double value, const char* format) { return measured(p) ? formatNumber(value, format) : std::string(); };
         const std::vector<std::string> row{csvField(p.environment),
@@ -127,9 +127,10 @@ std::string benchJsonText(const BenchReport& report)
                                      {"method", enumName(s.sampling.method)},
                                      {"diffuse", diffuseName(s)},
                                      {"pdf_mips", pdfFiltering(s)}};
-        if (s.sampling.method == ShadingMethod::SplitSum)
+        if (readsPrefilteredCube(s.sampling.method)) {
             point["prefilter"] = {{"face", s.bake.prefilter.faceSize}, {"samples", s.bake.prefilter.samples}, {"levels", s.bake.prefilter.levels}};
-        else point["sampled_n"] = s.sampling.samples;
+            point["specular_read"] = specularReadName(s.sampling);
+        } else point["sampled_n"] = s.sampling.samples;
         if (s.bake.irradiance == bake::IrradianceMethod::Riemann) point["riemann_delta"] = s.bake.riemann.sampleDelta;
         if (s.bake.irradiance == bake::IrradianceMethod::Importance) point["importance_samples"] = s.bake.importance.samples;
         nlohmann::ordered_json phases = nlohmann::ordered_json::array();

@@ -45,10 +45,11 @@ struct BenchEnvironment {
 };
 
 // What a sweep point varies: the split sum's prefilter, the sampled method's N, the diffuse
-// source, or (auto quality) a fixed preset measured beside the candidates.
-enum class SweepFamily { SplitSum, Sampled, Diffuse, Preset };
+// source, (auto quality) a fixed preset measured beside the candidates, or where and how
+// wide the prefiltered cube is read (R, the dominant directions, the fitted lobe: specular-lobe).
+enum class SweepFamily { SplitSum, Sampled, Diffuse, Preset, SpecularLobe };
 // The reports' spelling, in the enum's order.
-inline constexpr std::array<std::string_view, 4> kSweepFamilyNames{"split-sum", "sampled", "diffuse", "preset"};
+inline constexpr std::array<std::string_view, 5> kSweepFamilyNames{"split-sum", "sampled", "diffuse", "preset", "specular-lobe"};
 inline std::string_view sweepFamilyName(SweepFamily family) { return kSweepFamilyNames[std::size_t(family)]; }
 
 // One method and its settings. `series` names the curve it belongs to on the chart (every
@@ -89,9 +90,12 @@ struct BenchOptions {
 };
 
 // The full sweep (split-sum over prefilter samples x PDF filtering x face sizes, sampled
-// N = 1..256 with and without mip filtering, the diffuse sources) or the quick one (a few
-// points of each family on small bakes, for tests and the Study panel).
+// N = 1..256 with and without mip filtering, the diffuse sources, the specular reads) or the
+// quick one (a few points of each family on small bakes, for tests and the Study panel).
 std::vector<SweepPoint> sweepPoints(bool quick);
+// How a point reads the prefiltered cube, in words: "split-sum" (at R), "split-sum, Frostbite
+// direction", "fitted lobe"; empty for a method that does not read it.
+std::string specularReadName(const SamplingSettings& sampling);
 // The bake every sweep point starts from: the default preset without the irradiance cubes,
 // only the default geometry term's LUT, and (quick) small enough for tens of milliseconds.
 bake::BakeSettings benchBaseBake(bool quick);

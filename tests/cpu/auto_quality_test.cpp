@@ -135,6 +135,27 @@ TEST(AutoQuality, RoughScenesDropFacesOnlySmoothSurfacesResolve)
     EXPECT_EQ(sampled(pruned), sampled(smooth));
 }
 
+TEST(AutoQuality, OffersTheSpecularReadsAsCandidatesAndAppliesThem)
+{
+    const AutoCandidates c = autoCandidates(/*quick=*/true, grid(2.0));
+    for (const auto& [method, direction] : {std::pair{ShadingMethod::SplitSum, SpecularDirection::Frostbite},
+                                            std::pair{ShadingMethod::SplitSum, SpecularDirection::Filament},
+                                            std::pair{ShadingMethod::FittedLobe, SpecularDirection::Reflection}}) {
+        const auto found = std::find_if(c.points.begin(), c.points.end(), [&](const SweepPoint& p) {
+            return p.family == SweepFamily::SpecularLobe && p.sampling.method == method && p.sampling.specularDirection == direction;
+        });
+        ASSERT_NE(found, c.points.end()) << enumName(method) << " " << enumName(direction);
+        EXPECT_NE(found->label, describeSettings(SweepPoint{})) << "its label says where it reads";
+        AutoChoice choice;
+        choice.found = true;
+        choice.chosen.setting = *found;
+        const SamplingSettings applied = appliedSampling(choice, SamplingSettings{});
+        EXPECT_EQ(applied.specularDirection, direction);
+        EXPECT_EQ(applied.method, found->sampling.method);
+        EXPECT_EQ(appliedBakeSettings(choice, bake::defaultPreset()).prefilter.faceSize, found->bake.prefilter.faceSize);
+    }
+}
+
 TEST(AutoQuality, AllMetalScenesDropTheIrradianceCube)
 {
     const auto cubes = [](const AutoCandidates& c) {

@@ -47,6 +47,9 @@ TEST(ConventionPresets, ReproduceWhatEachViewerChose)
     EXPECT_FLOAT_EQ(filament.prefilter.mipBias, 1.0f);
     EXPECT_TRUE(preset("filament").multiscatter);
     EXPECT_FALSE(preset("filament").roughFresnelOnLut);
+    // getReflectedVector: the prefiltered cube is read at mix(R, N, alpha^2), not at R.
+    EXPECT_EQ(preset("filament").specularDirection, SpecularDirection::Filament);
+    EXPECT_EQ(preset("learnopengl").specularDirection, SpecularDirection::Reflection);
     // Its shading reads roughness 0.5 at lod 4 x 0.75 = 3 of its 5 levels.
     EXPECT_FLOAT_EQ(bake::prefilterMipFromRoughness(0.5f, float(filament.prefilter.levels), int(filament.prefilter.layout)), 3.0f);
 
@@ -68,13 +71,17 @@ TEST(ConventionPresets, ApplyingOneSetsTheSplitSumShadingItUses)
     sampling.method = ShadingMethod::Sampled;
     sampling.forcedMip = 3;
     sampling.samples = 77;
+    sampling.specularDirection = SpecularDirection::Frostbite;
     applyConvention(preset("learnopengl"), sampling);
     EXPECT_EQ(sampling.method, ShadingMethod::SplitSum);
     EXPECT_EQ(sampling.forcedMip, -1);
     EXPECT_EQ(sampling.geometry, GeometryTerm::SchlickGGX);
     EXPECT_TRUE(sampling.roughFresnelOnLut);
     EXPECT_EQ(sampling.diffuse, DiffuseSource::IrradianceCube);
+    EXPECT_EQ(sampling.specularDirection, SpecularDirection::Reflection);
     EXPECT_EQ(sampling.samples, 77); // not the convention's business
+    applyConvention(preset("filament"), sampling);
+    EXPECT_EQ(sampling.specularDirection, SpecularDirection::Filament);
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 // Lab settings are the preset format and the screenshot metadata: every field must survive
 // a round trip, and a bad preset must say which key is wrong.
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -56,6 +57,21 @@ TEST(Settings, EveryFieldSurvivesJson)
     EXPECT_TRUE(r.sampling.freezeSampleSet);
     EXPECT_TRUE(r.view.compare.freezeSampleSet);
     EXPECT_EQ(r.view.msaaSamples, 8);
+}
+
+TEST(Settings, SpecularReadsSurviveJsonInTheirOneSpelling)
+{
+    FrameSettings s;
+    s.sampling.method = ShadingMethod::FittedLobe;
+    s.sampling.specularDirection = SpecularDirection::Filament;
+    s.view.compare.specularDirection = SpecularDirection::Frostbite;
+    const std::string json = toJsonText(s);
+    EXPECT_EQ(frameSettingsFromJsonText(json), s);
+    EXPECT_NE(json.find("\"method\": \"fitted-lobe\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"specular_direction\": \"filament\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"specular_direction\": \"frostbite\""), std::string::npos) << json;
+    // A preset written before the setting existed reads at R.
+    EXPECT_EQ(frameSettingsFromJsonText("{}").sampling.specularDirection, SpecularDirection::Reflection);
 }
 
 // The renderer keys its images on settings compared by value: every field must take part

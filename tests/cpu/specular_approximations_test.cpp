@@ -18,25 +18,15 @@
 #include "ibl/error_metrics.hpp"
 #include "ibl/reference.hpp"
 #include "ibl/specular_approximations.hpp"
+#include "lobe_test_environment.hpp"
 
 namespace iblab {
 namespace {
 
 constexpr GeometryTerm kTerm = GeometryTerm::HeightCorrelatedSmith;
 
-// An outdoor-like map of this test's own: a sky brightening towards the zenith, a warm sun
-// 25 degrees up, a dark ground and a bright vertical strip (a window) on one side, so that
-// a lobe's position and width both matter.
-ImageRGB32F testEnvironment(int width)
-{
-    const glm::dvec3 sun = glm::normalize(glm::dvec3(0.5, 0.42, -0.75));
-    return paintEquirect(width, width / 2, [&](glm::dvec3 d) {
-        glm::dvec3 L = d.y > 0.0 ? glm::dvec3(0.3, 0.45, 0.8) * (0.4 + 0.6 * d.y) : glm::dvec3(0.06, 0.05, 0.04);
-        if (glm::dot(d, sun) > std::cos(glm::radians(6.0))) L += glm::dvec3(40.0, 32.0, 22.0);
-        if (d.x < -0.8 && std::abs(d.y) < 0.4) L += glm::dvec3(3.0);
-        return glm::vec3(L);
-    });
-}
+// The map of this test's own (testing::lobeTestEnvironment).
+ImageRGB32F testEnvironment(int width) { return testing::lobeTestEnvironment(width); }
 
 glm::dvec3 direction(double tiltDegrees, double azimuthDegrees)
 {
@@ -188,6 +178,39 @@ TEST(SpecularApproximations, WhiteFurnaceMatchesTheSplitSum)
             EXPECT_NEAR(split.x, 1.0, 1e-3);
         }
     std::printf("white furnace: largest relative difference from the split sum %.2g\n", largest);
+}
+
+TEST(SpecularApproximations, SpecularDirectionSettingReadsWhereTheStudysMethodsRead)
+{
+    // The shader's SpecularDirection (specularDirectionTowardsNormal) and the study's
+    // FrostbiteDominant / FilamentDominant reads: one direction each, R for Reflection.
+    const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, 0.9, -0.3));
+    const glm::dvec3 v = glm::normalize(glm::dvec3(0.9, 0.1, 0.4));
+    const glm::dvec3 R = 2.0 * glm::dot(n, v) * n - v;
+    for (double roughness : {0.1, 0.4, 0.7, 1.0}) {
+        glm::dvec3 studyFrostbite, studyFilament;
+        const PrefilteredLookup record = [&](glm::dvec3 d, double) { return d; };
+        SpecularShadingInputs in;
+        in.n = n;
+        in.v = v;
+        in.roughness = roughness;
+        in.lut = glm::dvec3(1.0, 0.0, 1.0);
+        in.F0 = glm::dvec3(1.0);
+        studyFrostbite = glm::normalize(shadeSpecularApproximation(SpecularMethod::FrostbiteDominant, in, record));
+        studyFilament = glm::normalize(shadeSpecularApproximation(SpecularMethod::FilamentDominant, in, record));
+        const float alpha = float(roughness * roughness);
+        const auto setting = [&](int direction) {
+            return glm::dvec3(shared::lobeTapDirection(glm::vec3(n), glm::vec3(R), shared::specularDirectionTowardsNormal(direction, alpha)));
+        };
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(setting(SPECULAR_DIRECTION_FROSTBITE)[c], studyFrostbite[c], 1e-5) << roughness;
+            EXPECT_NEAR(setting(SPECULAR_DIRECTION_FILAMENT)[c], studyFilament[c], 1e-5) << roughness;
+            EXPECT_NEAR(setting(SPECULAR_DIRECTION_REFLECTION)[c], R[c], 1e-5) << roughness;
+        }
+        // Both lean towards N, Frostbite's more (at roughness 1 it reads N itself).
+        EXPECT_GE(glm::dot(studyFilament, n), glm::dot(R, n) - 1e-9);
+        EXPECT_GE(glm::dot(studyFrostbite, n), glm::dot(studyFilament, n) - 1e-9);
+    }
 }
 
 TEST(SpecularApproximations, FittedTableIsWellFormed)

@@ -6,6 +6,7 @@
 #include "common/sampling.glsl"
 #include "common/prefilter_lod.glsl"
 #include "common/sh9.glsl"
+#include "common/specular_lobe.glsl"
 
 uniform samplerCube uEnvironmentCube; // radiance with a box-filtered mip chain (PDF mip filtering source)
 uniform samplerCube uPrefiltered;     // mip m = roughness prefilterRoughnessFromMip(m, levels, layout)
@@ -20,6 +21,13 @@ uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
 uniform int uDiffuseSource;  // 0: SH9, 1: irradiance cube
 uniform bool uMultiscatter;
 uniform bool uRoughFresnelOnLut; // LearnOpenGL's F_roughness * A + B (SamplingSettings::roughFresnelOnLut)
+uniform int uSpecularDirection;  // SPECULAR_DIRECTION_* of specular_lobe.glsl: where the split sum reads the cube
+// ShadingMethod::FittedLobe: the cube read per the fitted table (specular_approximations.hpp's
+// LobeFitTable, uploaded once from the CPU core's fittedLobeTable()): x = n.v, y = perceptual
+// roughness, texel centres (i + 0.5) / size, bilinear, clamp to edge; uLobeFitLayout its taps.
+uniform bool uFittedLobe;
+uniform sampler2D uLobeFit;
+uniform int uLobeFitLayout;
 uniform float uForcedMip;    // < 0: automatic
 uniform bool uPdfMipFiltering;
 uniform float uMipBias;
@@ -60,20 +68,50 @@ vec3 combineLobes(SurfacePoint s, float NdotV, vec3 irradianceOverPi, vec3 specu
     return (kD * s.baseColor * irradianceOverPi + specular) * s.occlusion;
 }
 
+// The prefiltered cube around `direction` (any length) for a lobe of perceptual `roughness`,
+// at the lod the bake's layout gives it (or the forced mip).
+vec3 prefilteredRadiance(vec3 direction, float roughness)
+{
+    float lod = uForcedMip >= 0.0 ? uForcedMip : prefilterMipFromRoughness(roughness, uPrefilteredLevels, uPrefilteredLayout);
+    return textureLod(uPrefiltered, toEnvironment(direction), lod).rgb * uEnvironmentIntensity;
+}
+
+// The fitted lobe (docs/accuracy-study.md): the table texel at (n.v, roughness) gives each
+// read its direction between R and N and its roughness (specular_lobe.glsl decodes it). The
+// Fresnel split (layout 3) reads once for F0 A and once for B; the other layouts mix their
+// reads with weights that sum to 1. scaledA is A times F0 (or LearnOpenGL's F_roughness).
+vec3 fittedLobeRadiance(SurfacePoint s, float NdotV, vec3 R, vec3 scaledA, float B)
+{
+    vec4 p = texture(uLobeFit, vec2(NdotV, s.roughness));
+    vec3 read0 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, uLobeFitLayout, 0)), lobeTapRoughness(p, uLobeFitLayout, 0));
+    if (uLobeFitLayout == 1) return read0 * (scaledA + B);
+    vec3 read1 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, uLobeFitLayout, 1)), lobeTapRoughness(p, uLobeFitLayout, 1));
+    if (uLobeFitLayout == 3) return scaledA * read0 + B * read1;
+    return (lobeTapWeight(p, uLobeFitLayout, 0) * read0 + lobeTapWeight(p, uLobeFitLayout, 1) * read1) * (scaledA + B);
+}
+
 // Split sum (Karis 2013): the specular integral as (prefiltered radiance at R) times
 // (F0 A + B), with A and B from the LUT. LearnOpenGL multiplies the LUT by the
 // roughness-aware Fresnel instead of F0; that counts Fresnel twice (it is already inside A
 // and B), so by default F_roughness only sets the diffuse weight kD = (1 - F)(1 - metallic),
 // and uRoughFresnelOnLut reproduces the tutorial for the convention presets.
+// uSpecularDirection moves the read from R towards N (a dominant direction); uFittedLobe
+// reads where the fitted table says instead.
 vec3 shadeSplitSum(SurfacePoint s)
 {
     float NdotV = max(dot(s.N, s.V), 1e-4);
     vec3 R = reflect(-s.V, s.N);
-    float lod = uForcedMip >= 0.0 ? uForcedMip : prefilterMipFromRoughness(s.roughness, uPrefilteredLevels, uPrefilteredLayout);
-    vec3 prefiltered = textureLod(uPrefiltered, toEnvironment(R), lod).rgb * uEnvironmentIntensity;
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
     vec3 scaleFresnel = uRoughFresnelOnLut ? fresnelSchlickRoughness(NdotV, s.F0, s.roughness) : s.F0;
-    vec3 specular = prefiltered * (scaleFresnel * lut.r + lut.g) * energyCompensation(s.F0, lut.b);
+    vec3 reflected;
+    if (uFittedLobe) {
+        reflected = fittedLobeRadiance(s, NdotV, R, scaleFresnel * lut.r, lut.g);
+    } else {
+        if (uSpecularDirection != SPECULAR_DIRECTION_REFLECTION)
+            R = lobeTapDirection(s.N, R, specularDirectionTowardsNormal(uSpecularDirection, s.roughness * s.roughness));
+        reflected = prefilteredRadiance(R, s.roughness) * (scaleFresnel * lut.r + lut.g);
+    }
+    vec3 specular = reflected * energyCompensation(s.F0, lut.b);
     return combineLobes(s, NdotV, diffuseIrradiance(s.N) * (1.0 / IBL_PI), specular);
 }
 

@@ -28,6 +28,21 @@ IBL_FN float filamentDominantTowardsNormal(float alpha)
     return alpha * alpha;
 }
 
+// The split sum's lookup direction as a setting (SamplingSettings::specularDirection; the
+// values are frame/settings.hpp's SpecularDirection): R itself, or one of the two dominant
+// directions above, as the fraction of the way from R towards N that lobeTapDirection takes.
+#define SPECULAR_DIRECTION_REFLECTION 0
+#define SPECULAR_DIRECTION_FROSTBITE 1
+#define SPECULAR_DIRECTION_FILAMENT 2
+
+IBL_FN float specularDirectionTowardsNormal(int specularDirection, float alpha)
+{
+    // Frostbite lerps from N to R by frostbiteDominantLerp: 1 minus that from R to N.
+    if (specularDirection == SPECULAR_DIRECTION_FROSTBITE) return 1.0f - frostbiteDominantLerp(alpha);
+    if (specularDirection == SPECULAR_DIRECTION_FILAMENT) return filamentDominantTowardsNormal(alpha);
+    return 0.0f;
+}
+
 // A read of the prefiltered cube between R (t = 0) and N (t = 1), unit length. t < 0 leans
 // past R, away from N. A cube lookup does not need the normalisation; the CPU does.
 IBL_FN vec3 lobeTapDirection(vec3 N, vec3 R, float towardsNormal)

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Where the split sum reads the prefiltered cube, measured on the GPU (issue #14): the bench's
+# specular-lobe family (split sum at R, Frostbite's and Filament's dominant directions, the
+# fitted lobe; all on the bench's default bake) on every bundled map, for the sphere (the
+# material sliders' copper at roughness 0.3) and the 7x7 grid, each against the reference
+# renderer's full integral over the pixels it resolves. Prints one Markdown table: relative
+# RMSE per map and scene, each read's ratio to the split sum's, and its frame time against
+# the split sum's (bench frames, 128 x 128, median of 5: a few milliseconds of shading among
+# tens of fixed cost, so noisy), then the frame time of a sphere filling a 1280 x 720 view
+# with each method (median of 10).
+#   scripts/measure-lobe.sh [OUT_DIR]     (the bench's files stay in OUT_DIR, default a temporary one)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+iblab=${IBLAB:-build/app/iblab}
+out=${1:-$(mktemp -d)}
+mkdir -p "$out"
+export IBLAB_CACHE_DIR="$out/cache"
+envs=()
+for f in assets/environments/*.exr; do envs+=(--env "$f"); done
+for scene in sphere grid; do
+  "$iblab" bench --family specular-lobe --scene "$scene" "${envs[@]}" --out "$out/$scene" >/dev/null
+done
+renderer=$("$iblab" render --scene none --width 64 --height 64 --json -o "$out/probe.png" |
+  python3 -c "import json,sys; print(json.load(sys.stdin)['renderer'].split(': ',1)[1].split(', OpenGL')[0])")
+python3 - "$out" "$renderer" <<'EOF'
+import csv, sys
+out, renderer = sys.argv[1], sys.argv[2]
+reads = ["split-sum", "split-sum, Frostbite direction", "split-sum, Filament direction", "fitted lobe"]
+print(f"Relative RMSE against the reference (ratio to the split sum's; frame time ratio in brackets), {renderer}:\n")
+print("| map | scene | " + " | ".join(reads) + " |")
+print("|---|---|" + "---|" * len(reads))
+worst = {r: 0.0 for r in reads}
+frames = {r: [] for r in reads}
+for scene in ["sphere", "grid"]:
+    rows = {}
+    for row in csv.DictReader(open(f"{out}/{scene}/bench.csv")):
+        rows.setdefault(row["environment"], {})[row["series"]] = row
+    for env, points in rows.items():
+        base = points["split-sum"]
+        e0, f0 = float(base["relative_rmse"]), float(base["frame_ms"])
+        cells = []
+        for r in reads:
+            e, f = float(points[r]["relative_rmse"]), float(points[r]["frame_ms"])
+            worst[r] = max(worst[r], e / e0)
+            frames[r].append(f / f0)
+            cells.append(f"{e:.3f}" if r == "split-sum" else f"{e:.3f} ({e / e0:.2f}; {f / f0:.2f}x)")
+        print(f"| {env} | {scene} | " + " | ".join(cells) + " |")
+median = lambda v: sorted(v)[len(v) // 2]
+print("| **worst error ratio** (median, largest frame ratio) | | " +
+      " | ".join("1" if r == "split-sum" else f"{worst[r]:.2f} (frame {median(frames[r]):.2f}x, {max(frames[r]):.2f}x)" for r in reads) + " |")
+EOF
+echo
+echo "Sphere filling a 1280 x 720 view, courtyard.exr, copper, roughness 0.3 (frame time, median of 10, shader cache warm):"
+echo
+echo "| method | frame ms |"
+echo "|---|---|"
+for args in "--method splitsum" "--method splitsum --specular-direction frostbite" "--method splitsum --specular-direction filament" "--method fitted-lobe"; do
+  # shellcheck disable=SC2086
+  ms=$("$iblab" render --scene sphere $args --width 1280 --height 720 --time 10 --json -o "$out/frame.png" |
+    python3 -c "import json,sys; print('%.1f' % json.load(sys.stdin)['timings_ms']['frame_median'])")
+  echo "| $args | $ms |"
+done
