@@ -96,8 +96,11 @@ OIIO::ImageSpec specFor(const ImageWrite& image)
     if (!image.channelNames.empty())
         spec.channelnames = image.channelNames;
     spec.alpha_channel = image.alphaChannel;
-    for (const auto& [name, value] : image.attributes)
-        std::visit([&spec, &name](const auto& v) { spec.attribute(name, v); }, value);
+    // A named pair, not a structured binding: clang 14 (the fuzz build) cannot capture those.
+    for (const auto& attribute : image.attributes) {
+        const std::string& name = attribute.first;
+        std::visit([&spec, &name](const auto& v) { spec.attribute(name, v); }, attribute.second);
+    }
     return spec;
 }
 
