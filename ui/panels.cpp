@@ -228,8 +228,11 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced, con
     fieldCombo(fields, "method", settings);
     if (settings.method == ShadingMethod::Reference) {
         if (reference.current) progressBar("Reference progress", reference.progress, referenceProgressText(reference).c_str());
-        ImGui::TextDisabled(reference.complete ? "The full integral over the map's texels (Compare: reference map)"
-                                               : "Tiles show the full integral as they finish, the split sum until then");
+        // Wrapped and greyed: the panel is narrower than the sentence.
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped("%s", reference.complete ? "The full integral over the map's texels (Compare: reference map)"
+                                                    : "Tiles show the full integral as they finish, the split sum until then");
+        ImGui::PopStyleColor();
     }
     if (settings.method == ShadingMethod::Sampled) {
         // N is counted in ones for the N = 1..k check: typed (Ctrl+click), stepped with the
