@@ -12,7 +12,7 @@ uniform samplerCube uEnvironmentCube; // radiance with a box-filtered mip chain 
 uniform samplerCube uPrefiltered;     // mip m = roughness prefilterRoughnessFromMip(m, levels, layout)
 uniform samplerCube uIrradianceCube;  // E (white environment -> pi)
 uniform sampler2D uBrdfLut;           // x = n.v, y = roughness; R = A, G = B, B = A + B
-uniform vec3 uShIrradiance[9];        // E_lm, windowed
+uniform vec3 uShIrradiance[9];        // E_lm as the Diffuse setting picks: windowed (sh9) or plain (sh9-plain)
 uniform float uPrefilteredLevels;
 uniform int uPrefilteredLayout;  // PREFILTER_LAYOUT_* of prefilter_lod.glsl, as the bake used
 uniform float uEnvironmentFaceSize;
