@@ -14,7 +14,7 @@
 #include "gl/shader_library.hpp"
 #include "ibl/brdf.hpp"
 #include "ibl/image.hpp"
-#include "frame/renderer.hpp"
+#include "frame/reference_types.hpp"
 
 namespace iblab {
 
