@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "asset_paths.hpp"
+#include "command_support.hpp"
 #include "io/builtin_environments.hpp"
 #include "io/error.hpp"
 #include "io/image_writer.hpp"
@@ -12,11 +13,6 @@
 
 namespace iblab::app {
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start)
-{
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::string shortName(const std::string& spec)
 {
@@ -67,7 +63,7 @@ ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& setting
     settings.environment.source = pendingSpec_.empty() ? loaded.source : pendingSpec_;
     currentSpec_ = settings.environment.source;
     job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), loaded, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
-    environment_ = std::move(loaded);
+    environment_ = std::make_shared<const Environment>(std::move(loaded));
     return {text, false, std::move(notes)};
 }
 
@@ -110,14 +106,14 @@ void LabSession::rememberCurrent()
 {
     if (!environment_ || !bake_ || currentSpec_.empty()) return;
     std::erase_if(recent_, [&](const RecentEnvironment& recent) { return recent.spec == currentSpec_; });
-    recent_.push_front({currentSpec_, modificationTime(currentSpec_), *environment_, bake_});
+    recent_.push_front({currentSpec_, modificationTime(currentSpec_), environment_, bake_});
     if (recent_.size() > kRecentEnvironments) recent_.pop_back();
 }
 
 ui::StatusLine LabSession::showRecent(const RecentEnvironment& recent, FrameSettings& settings)
 {
     job_.reset(); // a bake of the environment being left
-    renderer_.setEnvironment(recent.environment.image);
+    renderer_.setEnvironment(recent.environment->image);
     renderer_.setBake(recent.bake);
     environment_ = recent.environment;
     bake_ = recent.bake;
@@ -128,7 +124,7 @@ ui::StatusLine LabSession::showRecent(const RecentEnvironment& recent, FrameSett
         switchInProgress_->fromCache = true;
         switchAwaitsFrame_ = true;
     }
-    const Environment& env = recent.environment;
+    const Environment& env = *recent.environment;
     ui::StatusLine line{shortName(env.source) + ": " + std::to_string(env.image.width) + "x" + std::to_string(env.image.height) +
                             ", kept from earlier with its bake",
                         false, env.warnings};

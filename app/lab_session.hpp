@@ -85,7 +85,7 @@ public:
     const std::optional<SwitchTiming>& lastSwitch() const { return lastSwitch_; }
 
     ui::EnvironmentCatalog catalog() const;
-    const std::optional<Environment>& environment() const { return environment_; }
+    const Environment* environment() const { return environment_.get(); } // null before the first load
     const std::shared_ptr<const bake::BakeResult>& bake() const { return bake_; }
     const bake::BakeSettings& bakeSettings() const { return bakeSettings_; }
 
@@ -95,7 +95,7 @@ private:
     struct RecentEnvironment {
         std::string spec;
         std::optional<std::filesystem::file_time_type> modified; // a changed file loads again
-        Environment environment;
+        std::shared_ptr<const Environment> environment;
         std::shared_ptr<const bake::BakeResult> bake;
     };
     static constexpr std::size_t kRecentEnvironments = 4;
@@ -110,7 +110,7 @@ private:
     Renderer& renderer_;
     bake::BakeSettings bakeSettings_;
     bake::BakeCache cache_;
-    std::optional<Environment> environment_;
+    std::shared_ptr<const Environment> environment_; // shared with recent_: switching copies no pixels
     std::shared_ptr<const bake::BakeResult> bake_;
     std::unique_ptr<bake::BakeJob> job_;
     std::vector<PbrMaterial> modelMaterials_; // of the loaded model, for export
