@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "frame/conventions.hpp"
 #include "io/image_writer.hpp"
+#include "lab/harness.hpp"
 #include "lab_session.hpp"
 #include "view_overlays.hpp"
 
@@ -38,7 +39,7 @@ struct ConventionsOptions {
 
 struct Row {
     const ConventionPreset* convention = nullptr;
-    ErrorReport error;
+    ErrorMetrics error; // over the pixels the reference resolves (lab::Harness)
     double bakeMs = 0.0;
     double referenceMs = 0.0;
 };
@@ -71,7 +72,15 @@ int runConventions(const ConventionsOptions& o)
         Renderer renderer(shaderDirectory());
         FrameSettings settings = o.settings;
         if (settings.environment.source.empty()) settings.environment.source = defaultEnvironmentSpec();
-        LabSession session(renderer, conventionBakeSettings(*shown.front()));
+        // The lab's harness, as the bench and the stress suite use it: one environment, a bake
+        // per convention that reuses the LUTs the ones before it baked, and each frame
+        // measured against the reference over the pixels that reference resolves.
+        lab::Harness harness(renderer);
+        settings.environment.source = harness.loadEnvironment(settings.environment.source).source;
+        if (settings.camera.distance <= 0.0f) {
+            const SceneInfo scene = renderer.sceneInfo(settings);
+            frameBox(settings.camera, scene.centre, scene.halfExtents, float(o.width) / float(o.height));
+        }
         OffscreenOverlay overlay;
 
         const int width = o.width, height = o.height;
@@ -81,36 +90,20 @@ int runConventions(const ConventionsOptions& o)
             const ConventionPreset& convention = *shown[i];
             Row row{&convention};
             const auto bakeStart = Clock::now();
-            if (i == 0) {
-                const ui::StatusLine loaded = session.loadEnvironment(settings.environment.source, settings);
-                if (loaded.isError) return failCommand("conventions", loaded.text);
-                if (settings.camera.distance <= 0.0f) {
-                    const SceneInfo scene = renderer.sceneInfo(settings);
-                    frameBox(settings.camera, scene.centre, scene.halfExtents, float(width) / float(height));
-                }
-            } else {
-                session.setBakeSettings(conventionBakeSettings(convention));
-                while (session.busy()) {
-                    const LabSession::Finished finished = session.pump(settings, std::chrono::hours(1));
-                    if (finished.bake && finished.bake->isError) return failCommand("conventions", finished.bake->text);
-                }
-            }
+            harness.bake(conventionBakeSettings(convention));
             row.bakeMs = millisecondsSince(bakeStart);
             applyConvention(convention, settings.sampling);
 
             // The reference of this convention's BRDF (geometry term, energy compensation),
             // then the frame it is compared with, then the error view of that frame.
-            const auto referenceStart = Clock::now();
-            FrameSettings errorView = settings;
-            errorView.view.mode = ViewMode::Error;
-            if (!renderer.advanceReference(errorView, width, height, std::chrono::hours(24)).complete)
-                return failCommand("conventions", "the reference did not complete");
-            row.referenceMs = millisecondsSince(referenceStart);
-
             FrameSettings frame = settings;
             frame.view.mode = ViewMode::Final;
-            renderer.renderFrame(frame, width, height);
-            row.error = renderer.measureError(frame);
+            if (!harness.advanceReference(frame, width, height, std::chrono::hours(24)).complete)
+                return failCommand("conventions", "the reference did not complete");
+            row.referenceMs = harness.reference().milliseconds;
+
+            harness.render(frame, width, height);
+            row.error = harness.compareWithReference(renderer.readHdrFrame(), frame.toneMap).linear;
             // Title and the choices that change the picture most; the table has all of them.
             const auto choices = conventionChoices(convention);
             auto choice = [&](const char* aspect) {
@@ -123,12 +116,14 @@ int runConventions(const ConventionsOptions& o)
             overlay.drawOver(renderer, frame, width, height, caption);
             blit(renderer.readDisplayImage(), composite, 2 * width, 0, int(i) * height);
 
-            renderer.renderFrame(errorView, width, height);
+            FrameSettings errorView = frame;
+            errorView.view.mode = ViewMode::Error;
+            harness.render(errorView, width, height);
             overlay.drawOver(renderer, errorView, width, height,
                              {"error against the exact integral (" + std::string(enumName(convention.geometry)) +
                                   (convention.multiscatter ? ", energy compensated)" : ")"),
-                              "relative RMSE " + percent(row.error.left.relativeRmse) + ", p99 " + percent(row.error.left.p99Relative) +
-                                  ", max " + percent(row.error.left.maxRelative)});
+                              "relative RMSE " + percent(row.error.relativeRmse) + ", p99 " + percent(row.error.p99Relative) +
+                                  ", max " + percent(row.error.maxRelative)});
             blit(renderer.readDisplayImage(), composite, 2 * width, width, int(i) * height);
             rows.push_back(row);
         }
@@ -143,7 +138,7 @@ int runConventions(const ConventionsOptions& o)
             nlohmann::ordered_json entry;
             entry["name"] = row.convention->name;
             for (const auto& [aspect, choice] : conventionChoices(*row.convention)) entry["choices"][aspect] = choice;
-            entry["error"] = errorMetricsJson(row.error.left);
+            entry["error"] = errorMetricsJson(row.error);
             entry["timings_ms"] = {{"bake", row.bakeMs}, {"reference", row.referenceMs}};
             report["conventions"].push_back(entry);
         }
@@ -165,9 +160,9 @@ int runConventions(const ConventionsOptions& o)
             std::printf("\n");
         }
         std::printf("| relative RMSE vs exact |");
-        for (const Row& row : rows) std::printf(" %s |", percent(row.error.left.relativeRmse).c_str());
+        for (const Row& row : rows) std::printf(" %s |", percent(row.error.relativeRmse).c_str());
         std::printf("\n| p99 / max relative |");
-        for (const Row& row : rows) std::printf(" %s / %s |", percent(row.error.left.p99Relative).c_str(), percent(row.error.left.maxRelative).c_str());
+        for (const Row& row : rows) std::printf(" %s / %s |", percent(row.error.p99Relative).c_str(), percent(row.error.maxRelative).c_str());
         std::printf("\n\n%s\n", o.output.c_str());
         return 0;
     } catch (const std::exception& e) {

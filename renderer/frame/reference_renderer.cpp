@@ -73,6 +73,7 @@ ReferenceStatus ReferenceRenderer::status(const FrameSettings& settings, int wid
     status.current = key_ == keyFor(settings, width, height);
     if (!status.current) return status;
     status.complete = resolved_;
+    status.run = runs_;
     status.progress = integral_.progress();
     status.environmentWidth = integral_.environmentWidth();
     status.environmentHeight = integral_.environmentHeight();
@@ -97,6 +98,7 @@ void ReferenceRenderer::start(const FrameSettings& settings, int width, int heig
     for (std::size_t i = 0; i < coverage.size(); ++i) coverage[i] = normals.rgba[i * 4 + 3] != 0.0f;
     integral_.start(environmentOfWidth(settings.view.referenceWidth), width, height, coverage, slicing);
     key_ = std::move(key);
+    ++runs_;
     slicing_ = slicing;
     geometry_ = settings.sampling.geometry;
     resolved_ = false;

@@ -86,6 +86,7 @@ private:
     ReferenceSlicing slicing_;
     GeometryTerm geometry_ = GeometryTerm::HeightCorrelatedSmith;
     bool resolved_ = false;   // complete, and frame_ holds all of it
+    unsigned long long runs_ = 0; // references started (ReferenceStatus::run)
     int resolvedTiles_ = 0;   // the integral's finished tiles that frame_ holds
 };
 

@@ -27,6 +27,9 @@ struct ReferenceSlicing {
 
 struct ReferenceStatus {
     bool current = false;  // a reference of these settings and size is under way or done
+    // Which reference: a new number each time one starts (other settings, size or scene), so
+    // that whoever kept a read-back of it knows when that copy went stale.
+    unsigned long long run = 0;
     bool complete = false;
     float progress = 0.0f; // fraction of the slices done
     int environmentWidth = 0; // of the environment it sums over (after downsampling)

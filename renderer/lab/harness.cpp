@@ -230,6 +230,7 @@ ReferenceStatus Harness::advanceReference(const FrameSettings& settings, int wid
     State& s = *state_;
     const auto start = Clock::now();
     const ReferenceStatus status = s.renderer.advanceReference(settings, width, height, budget);
+    if (status.current && status.run != s.reference.run) s.reference = {.run = status.run};
     s.reference.milliseconds += millisecondsSince(start);
     if (status.complete && !s.reference.complete()) {
         s.reference.environmentWidth = status.environmentWidth;

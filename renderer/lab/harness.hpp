@@ -64,6 +64,7 @@ struct ReferenceFrame {
     int environmentWidth = 0;          // of the map it summed over
     double minResolvedRoughness = 0.0; // referenceMinResolvedRoughness of that width
     double milliseconds = 0.0;         // spent in its slices (read-backs not included)
+    unsigned long long run = 0;        // the renderer's ReferenceStatus::run it was read from
     bool complete() const { return !frame.rgba.empty(); }
 };
 
@@ -124,7 +125,9 @@ public:
     double medianFrameMilliseconds(const FrameSettings& settings, int width, int height, int repeats);
 
     // Runs the reference renderer on the frame of these settings for about `budget`; once it
-    // completes, it is read back into reference() (until the next environment).
+    // completes, it is read back into reference(). Settings the reference depends on (the
+    // BRDF's geometry term and energy compensation, the scene, the size) start another one,
+    // which replaces it, as does the next environment.
     ReferenceStatus advanceReference(const FrameSettings& settings, int width, int height, std::chrono::steady_clock::duration budget);
     const ReferenceFrame& reference() const;
     // `frame` against the reference over the pixels it resolves (minResolvedRoughness).
