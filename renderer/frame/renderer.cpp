@@ -300,6 +300,17 @@ TexelProbe Renderer::probe(const FrameSettings& settings, int width, int height,
 }
 
 gl::ShaderLibrary& Renderer::shaders() { return impl_->shaders; }
-std::vector<std::string> Renderer::reloadShaders() { return impl_->shaders.reloadChanged(); }
+std::vector<std::string> Renderer::reloadShaders()
+{
+    const std::uint64_t before = impl_->shaders.reloads();
+    std::vector<std::string> errors = impl_->shaders.reloadChanged();
+    if (impl_->shaders.reloads() != before) {
+        // An edited shader draws another image: no mean of the old one's frames, and the
+        // reference (its integral and resolve are shaders too) starts again.
+        ++impl_->contentRevision;
+        impl_->reference.sceneChanged();
+    }
+    return errors;
+}
 
 } // namespace iblab

@@ -133,7 +133,8 @@ public:
 
     // The shader library, for passes that run outside a frame (the bake).
     gl::ShaderLibrary& shaders();
-    // Recompiles shaders edited on disk; returns compile errors (the old shaders stay).
+    // Recompiles shaders edited on disk; returns compile errors (the old shaders stay). A
+    // shader that did change restarts the running mean and the reference.
     std::vector<std::string> reloadShaders();
 
 private:

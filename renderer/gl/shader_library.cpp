@@ -241,6 +241,7 @@ std::vector<std::string> ShaderLibrary::reloadChanged()
         entry.newestInput = newest; // do not retry a broken file every frame
         try {
             entry.program = build(entry.stages, entry.defines);
+            ++reloads_;
         } catch (const ShaderError& e) {
             errors.push_back(e.what());
         }

@@ -4,6 +4,7 @@
 // cycles reported), specialised with #defines, and cached per (files, defines).
 // A failed compile names the file and line, with the driver's log; on hot reload the last
 // good program stays in use and the error is kept for the UI to show.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -90,6 +91,9 @@ public:
     // Recompiles programs whose files changed on disk. Returns the errors of programs
     // that failed (those keep their last good version).
     std::vector<std::string> reloadChanged();
+    // Programs that reloadChanged linked again: when it moves, what was drawn or computed
+    // with the old programs (a running mean, a reference) is stale.
+    std::uint64_t reloads() const { return reloads_; }
 
 
 private:
@@ -105,6 +109,7 @@ private:
     ShaderSearchPath roots_;
     std::function<void(const ShaderProgram&)> initializer_;
     std::map<std::string, Entry> cache_;
+    std::uint64_t reloads_ = 0;
 };
 
 } // namespace iblab::gl

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,6 +80,44 @@ TEST_F(Frame, AccumulationRestartsWhenTheEnvironmentChanges)
     // would be 4/5 of their brightness).
     EXPECT_EQ(glm::length(glm::vec3(pixelOf(dark, kSize / 2, kSize / 2))), 0.0f) << "the sphere";
     EXPECT_EQ(glm::length(glm::vec3(pixelOf(dark, 0, 0))), 0.0f) << "the sky";
+}
+
+// A shader edited while the GUI runs (hot reload) draws another image: the frames of the
+// old one must leave the running mean, and the reference must start again. Reloading with
+// nothing changed must keep both, or every frame would restart them.
+TEST_F(Frame, AShaderReloadRestartsTheRunningMeanAndTheReference)
+{
+    const testing::TempDirectory shaders("frame-reload");
+    std::filesystem::copy(shaderDirectory(), shaders.path(), std::filesystem::copy_options::recursive);
+    Renderer renderer(shaders.path().string());
+    const Environment environment = loadEnvironment("builtin:sky?width=64");
+    renderer.setEnvironment(environment.image);
+    bake::BakeJob job(renderer.shaders(), environment, testing::smallBakeSettings());
+    renderer.setBake(std::make_shared<bake::BakeResult>(job.runToCompletion()));
+    FrameSettings s = sphere();
+    s.sampling.method = ShadingMethod::Sampled;
+    s.sampling.samples = 4;
+    auto accumulate = [&] { renderer.renderFrame(s, kSize, kSize, Renderer::Options{1.0f, true}); };
+    const ReferenceStatus reference = renderer.advanceReference(s, kSize, kSize, std::chrono::hours(1));
+    ASSERT_TRUE(reference.complete);
+    for (int i = 0; i < 3; ++i) accumulate();
+    ASSERT_EQ(renderer.accumulatedFrames(), 3);
+
+    EXPECT_TRUE(renderer.reloadShaders().empty());
+    accumulate();
+    EXPECT_EQ(renderer.accumulatedFrames(), 4) << "nothing was edited";
+    EXPECT_TRUE(renderer.referenceStatus(s, kSize, kSize).complete) << "nothing was edited";
+
+    // Every program that draws the sphere includes ibl_lighting.glsl.
+    const std::filesystem::path edited = shaders.path() / "common" / "ibl_lighting.glsl";
+    std::filesystem::last_write_time(edited, std::filesystem::last_write_time(edited) + std::chrono::seconds(2));
+    EXPECT_TRUE(renderer.reloadShaders().empty());
+    accumulate();
+    EXPECT_EQ(renderer.accumulatedFrames(), 1);
+    EXPECT_FALSE(renderer.referenceStatus(s, kSize, kSize).current) << "the old shaders' reference";
+    const ReferenceStatus again = renderer.advanceReference(s, kSize, kSize, std::chrono::hours(1));
+    EXPECT_TRUE(again.complete);
+    EXPECT_NE(again.run, reference.run);
 }
 
 TEST_F(Frame, EverySetterOfContentMovesTheRevision)
