@@ -179,6 +179,7 @@ int runCommandLine(int argc, char** argv)
     commands.push_back(addStressCommand(app, processStart));
     commands.push_back(addConventionsCommand(app, processStart));
     commands.push_back(addBenchCommand(app, processStart));
+    commands.push_back(addCompareCommand(app, processStart));
 
     try {
         app.parse(argc, argv);

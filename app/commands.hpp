@@ -30,5 +30,6 @@ Command addLutCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addStressCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addConventionsCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addBenchCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addCompareCommand(CLI::App& app, ProcessClock::time_point processStart);
 
 } // namespace iblab::app

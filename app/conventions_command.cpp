@@ -5,7 +5,6 @@
 // chose and the numbers. Prints a Markdown table (or JSON) of the choices and the errors.
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -18,9 +17,9 @@
 #include "command_support.hpp"
 #include "commands.hpp"
 #include "frame/conventions.hpp"
-#include "io/image_writer.hpp"
 #include "lab/harness.hpp"
 #include "lab_session.hpp"
+#include "panel_grid.hpp"
 #include "view_overlays.hpp"
 
 namespace iblab::app {
@@ -43,16 +42,6 @@ struct Row {
     double bakeMs = 0.0;
     double referenceMs = 0.0;
 };
-
-// Copies a bottom-up RGBA8 readback into the top-down composite at (x0, y0).
-void blit(const DisplayReadback& image, std::vector<std::uint8_t>& composite, int compositeWidth, int x0, int y0)
-{
-    for (int y = 0; y < image.height; ++y) {
-        const std::uint8_t* from = &image.rgba[std::size_t(image.height - 1 - y) * std::size_t(image.width) * 4];
-        std::uint8_t* to = &composite[(std::size_t(y0 + y) * std::size_t(compositeWidth) + std::size_t(x0)) * 4];
-        std::memcpy(to, from, std::size_t(image.width) * 4);
-    }
-}
 
 std::string percent(double fraction)
 {
@@ -84,7 +73,7 @@ int runConventions(const ConventionsOptions& o)
         OffscreenOverlay overlay;
 
         const int width = o.width, height = o.height;
-        std::vector<std::uint8_t> composite(std::size_t(2 * width) * std::size_t(height) * shown.size() * 4, 0);
+        PanelGrid grid(2, int(shown.size()), width, height);
         std::vector<Row> rows;
         for (std::size_t i = 0; i < shown.size(); ++i) {
             const ConventionPreset& convention = *shown[i];
@@ -114,7 +103,7 @@ int runConventions(const ConventionsOptions& o)
             const std::vector<std::string> caption{std::string(convention.title), choice("geometry term") + ", mip bias " + choice("source-mip bias"),
                                                    choice("roughness per mip"), "LUT: " + choice("Fresnel on LUT") + ", energy comp. " + choice("energy compensation")};
             overlay.drawOver(renderer, frame, width, height, caption);
-            blit(renderer.readDisplayImage(), composite, 2 * width, 0, int(i) * height);
+            grid.place(renderer.readDisplayImage(), 0, int(i));
 
             FrameSettings errorView = frame;
             errorView.view.mode = ViewMode::Error;
@@ -124,7 +113,7 @@ int runConventions(const ConventionsOptions& o)
                                   (convention.multiscatter ? ", energy compensated)" : ")"),
                               "relative RMSE " + percent(row.error.relativeRmse) + ", p99 " + percent(row.error.p99Relative) +
                                   ", max " + percent(row.error.maxRelative)});
-            blit(renderer.readDisplayImage(), composite, 2 * width, width, int(i) * height);
+            grid.place(renderer.readDisplayImage(), 1, int(i));
             rows.push_back(row);
         }
         if (gl.debug.errorCount() > 0) return failCommand("conventions", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.debug.firstError());
@@ -142,7 +131,7 @@ int runConventions(const ConventionsOptions& o)
             entry["timings_ms"] = {{"bake", row.bakeMs}, {"reference", row.referenceMs}};
             report["conventions"].push_back(entry);
         }
-        writePng8(o.output, 2 * width, height * int(rows.size()), 4, composite, {.settingsJson = report.dump()});
+        grid.writePng(o.output, report.dump());
 
         if (o.json) {
             std::printf("%s\n", report.dump(2).c_str());

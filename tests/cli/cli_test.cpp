@@ -483,4 +483,35 @@ TEST_F(Cli, ConventionsRendersEachPresetWithItsError)
     EXPECT_NE(unknown.err.find("unknown convention \"unreal\""), std::string::npos) << unknown.err;
 }
 
+// The reference beside two real-time methods on two maps: one row per map (reference, then
+// each method's frame and error view), each method measured against that row's reference.
+TEST_F(Cli, CompareShowsTheReferenceBesideEachMethodPerMap)
+{
+    const Result r = run("compare --env builtin:studio?width=128 --env builtin:sky?width=128 --reference-width 64 --roughness 0.5 --size 48 "
+                         "--methods splitsum,fitted-lobe --json -o compare.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto report = nlohmann::json::parse(r.out);
+    ASSERT_EQ(report["environments"].size(), 2u);
+    for (const auto& environment : report["environments"]) {
+        ASSERT_EQ(environment["methods"].size(), 2u);
+        EXPECT_EQ(environment["methods"][0]["method"], "splitsum");
+        EXPECT_EQ(environment["methods"][1]["method"], "fitted-lobe");
+        for (const auto& m : environment["methods"]) {
+            const double rmse = m["error"]["relative_rmse"].get<double>();
+            EXPECT_TRUE(std::isfinite(rmse) && rmse > 0.0) << environment["environment"] << " " << m["method"];
+            EXPECT_GT(m["error"]["pixels"].get<int>(), 50) << environment["environment"] << " " << m["method"];
+        }
+    }
+    EXPECT_NE(report["environments"][0]["methods"][0]["error"]["relative_rmse"], report["environments"][1]["methods"][0]["error"]["relative_rmse"])
+        << "each map is measured against its own reference";
+    auto input = OIIO::ImageInput::open((dir / "compare.png").string());
+    ASSERT_TRUE(input);
+    EXPECT_EQ(input->spec().width, 5 * 48);
+    EXPECT_EQ(input->spec().height, 2 * 48);
+
+    const Result truth = run("compare --methods reference -o x.png");
+    EXPECT_EQ(truth.exitCode, 2);
+    EXPECT_NE(truth.err.find("not a real-time method"), std::string::npos) << truth.err;
+}
+
 } // namespace
