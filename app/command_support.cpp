@@ -17,10 +17,17 @@ int failCommand(const char* command, const std::string& reason)
     return 1;
 }
 
+void echoOnStderr(gl::DebugOutput& debug)
+{
+    debug.onMessage = [](const gl::DebugMessage& m) {
+        if (!m.fromShaderCompiler) std::fprintf(stderr, "iblab: %s\n", m.text.c_str());
+    };
+}
+
 HeadlessGl::HeadlessGl(bool debugContext, bool echoMessages) : context(gl::HeadlessContextOptions{.debug = debugContext})
 {
     if (!debugContext || !gl::currentContextHasDebugOutput()) return;
-    if (echoMessages) debug.onMessage = [](const gl::DebugMessage& m) { std::fprintf(stderr, "iblab: %s\n", m.text.c_str()); };
+    if (echoMessages) echoOnStderr(debug);
     debug.install();
 }
 

@@ -18,6 +18,10 @@ double millisecondsSince(std::chrono::steady_clock::time_point start);
 // folded) and returns the exit status 1.
 int failCommand(const char* command, const std::string& reason);
 
+// Prints each GL debug message on stderr as it comes, but the shader compiler's: the shader
+// library reports those itself, naming the file and line.
+void echoOnStderr(gl::DebugOutput& debug);
+
 // A headless context whose GL errors are collected (and echoed on stderr when asked), so
 // that a command can fail on them.
 struct HeadlessGl {

@@ -19,6 +19,7 @@
 #include <imgui_internal.h>
 
 #include "asset_paths.hpp"
+#include "command_support.hpp"
 #include "frame/camera.hpp"
 #include "frame/conventions.hpp"
 #include "io/atomic_file.hpp"
@@ -217,7 +218,7 @@ struct GuiApp::Impl {
         : platform(p), options(o), imgui(p), renderer(shaderDirectory()), settings(o.settings), session(renderer, initialBake(o))
     {
         if (gl::currentContextHasDebugOutput()) {
-            debug.onMessage = [](const gl::DebugMessage& m) { std::fprintf(stderr, "iblab: %s\n", m.text.c_str()); };
+            echoOnStderr(debug);
             debug.install();
         }
         if (const ConventionPreset* convention = findConvention(options.convention)) {

@@ -46,6 +46,7 @@ void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint, GLenum severit
     auto* output = static_cast<DebugOutput*>(const_cast<void*>(user));
     DebugMessage m;
     m.isError = type == GL_DEBUG_TYPE_ERROR;
+    m.fromShaderCompiler = source == GL_DEBUG_SOURCE_SHADER_COMPILER;
     m.text = std::string("GL ") + typeName(type) + " [" + sourceName(source) + ", " + severityName(severity) +
              "]: " + std::string(message, length >= 0 ? std::size_t(length) : std::char_traits<char>::length(message));
     output->record(std::move(m));

@@ -9,6 +9,10 @@ namespace iblab::gl {
 
 struct DebugMessage {
     bool isError = false;
+    // The shader compiler's own diagnostics, which ShaderLibrary reports again as a
+    // ShaderError naming the file and line (the driver's lines count in the text it was
+    // given, the files concatenated): an echo of them would say the same thing wrongly.
+    bool fromShaderCompiler = false;
     std::string text; // "GL error [API, high]: GL_INVALID_ENUM in glTexParameteri(...)"
 };
 
