@@ -7,12 +7,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <Imath/half.h>
@@ -28,11 +28,8 @@
 
 #include "io/error.hpp"
 
-
 namespace iblab {
 namespace {
-
-namespace fs = std::filesystem;
 
 constexpr char kExrMagic[4] = {'\x76', '\x2f', '\x31', '\x01'};
 
