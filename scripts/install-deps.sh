@@ -10,6 +10,9 @@ packages=(
   libimgui-dev libglfw3-dev libepoxy-dev libglm-dev libcli11-dev nlohmann-json3-dev
   # Images: OpenImageIO reads/writes EXR, HDR, PNG; its headers include Imath's.
   libopenimageio-dev libimath-dev
+  # OpenEXR's own library, linked by the io layer: the bake's EXRs are read and written
+  # without loading OpenImageIO (renderer/io/image_codec_direct.hpp).
+  libopenexr-dev
   # glTF: tiny_gltf.h includes stb_image.h and stb_image_write.h from libstb-dev.
   libtinygltf-dev libstb-dev
   # Tests: GoogleTest; zlib for the CRCs of the malformed-PNG corpus the tests write.

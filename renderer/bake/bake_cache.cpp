@@ -155,6 +155,7 @@ void BakeCache::storeBake(const BakeResult& result)
         return;
     auto snapshot = std::make_shared<BakeSnapshot>(snapshotBake(result));
     snapshot->exrCompression = exrCompression_;
+    snapshot->durability = Durability::NoFlush;
     const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));
     writeInBackground(dir, [dir, snapshot] { writeBakeSnapshot(dir, *snapshot); });
 }
@@ -192,7 +193,7 @@ void BakeCache::storeLut(const BakedTexture& lut, int samples, GeometryTerm term
         fs::create_directories(path.parent_path(), ec);
         if (ec)
             throw Error(path.parent_path().string(), "cannot create the directory: " + ec.message());
-        writeLutExr(path, *image, samples, term, true, true, compression);
+        writeLutExr(path, *image, samples, term, true, true, compression, Durability::NoFlush);
     });
 }
 

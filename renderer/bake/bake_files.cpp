@@ -56,10 +56,12 @@ std::vector<float> dropAlpha(const std::vector<glm::vec4>& texels)
     return rgb;
 }
 
-void writeCubeExr(const fs::path& path, const CubeImage& image, bool halfPixels, const std::string& exrCompression)
+void writeCubeExr(const fs::path& path, const CubeImage& image, const BakeSnapshot& snapshot)
 {
     writeExr(path.string(), image.size, 6 * image.size, 3, dropAlpha(image.texels),
-             {.exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float, .exrCompression = exrCompression});
+             {.exrPixelType = snapshot.halfPixels ? ExrPixelType::Half : ExrPixelType::Float,
+              .exrCompression = snapshot.exrCompression,
+              .durability = snapshot.durability});
 }
 
 CubeImage readCubeExr(const fs::path& path, int expectedSize)
@@ -189,10 +191,10 @@ void writeBakeSnapshot(const fs::path& directory, const BakeSnapshot& snapshot)
     if (ec)
         throw Error(directory.string(), "cannot create the directory: " + ec.message());
     for (const auto& cube : snapshot.cubes)
-        writeCubeExr(directory / cube.name, cube.image, snapshot.halfPixels, snapshot.exrCompression);
-    writeTextFileAtomic((directory / "sh.json").string(), snapshot.shJson);
+        writeCubeExr(directory / cube.name, cube.image, snapshot);
+    writeTextFileAtomic((directory / "sh.json").string(), snapshot.shJson, snapshot.durability);
     // Last: an entry without bake.json is incomplete and reads as a miss.
-    writeTextFileAtomic((directory / "bake.json").string(), snapshot.metaJson);
+    writeTextFileAtomic((directory / "bake.json").string(), snapshot.metaJson, snapshot.durability);
 }
 
 void writeBakeDirectory(const fs::path& directory, const BakeResult& result, const std::string& extraJson)
@@ -239,7 +241,7 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
 }
 
 void writeLutExr(const fs::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel, bool halfPixels,
-                 const std::string& exrCompression)
+                 const std::string& exrCompression, Durability durability)
 {
     std::vector<float> rgb;
     rgb.reserve(lut.texels.size() * 3);
@@ -254,7 +256,8 @@ void writeLutExr(const fs::path& path, const Image2D& lut, int samples, Geometry
     writeExr(path.string(), lut.size, lut.size, 3, rgb,
              {.settingsJson = lutJsonText(lut.size, samples, term, multiscatterChannel),
               .exrPixelType = halfPixels ? ExrPixelType::Half : ExrPixelType::Float,
-              .exrCompression = exrCompression});
+              .exrCompression = exrCompression,
+              .durability = durability});
 }
 
 Image2D readLutExr(const fs::path& path, int expectedSize)

@@ -23,6 +23,7 @@
 
 #include "bake/bake_result.hpp"
 #include "bake/baked_texture.hpp"
+#include "io/atomic_file.hpp"
 
 namespace iblab::bake {
 
@@ -38,8 +39,8 @@ struct BakeFileError : std::runtime_error {
     std::filesystem::path path;
 };
 
-// A bake's files in CPU memory: what the GL read-back gives, so that writing them (encoding
-// and fsyncs, 100-200 ms for a 256 cube) can happen off the GL thread.
+// A bake's files in CPU memory: what the GL read-back gives, so that writing them (encoding,
+// and fsyncs unless durability says not) can happen off the GL thread.
 struct BakeSnapshot {
     struct CubeFile {
         std::string name; // "prefiltered_mip2.exr"
@@ -48,6 +49,7 @@ struct BakeSnapshot {
     std::vector<CubeFile> cubes;
     bool halfPixels = true;
     std::string exrCompression = "zip"; // ImageWriteOptions::exrCompression
+    Durability durability = Durability::Flush; // the cache's need no fsync (atomic_file.hpp)
     std::string shJson;
     std::string metaJson; // bake.json
 };
@@ -71,7 +73,7 @@ void readBakeDirectory(const std::filesystem::path& directory, BakeResult& resul
 
 // LUT files. multiscatterChannel false writes 0 in B (the `iblab lut` default).
 void writeLutExr(const std::filesystem::path& path, const Image2D& lut, int samples, GeometryTerm term, bool multiscatterChannel,
-                 bool halfPixels, const std::string& exrCompression = "zip");
+                 bool halfPixels, const std::string& exrCompression = "zip", Durability durability = Durability::Flush);
 // Throws BakeFileError unless the file is an RGB EXR of expectedSize^2.
 Image2D readLutExr(const std::filesystem::path& path, int expectedSize);
 

@@ -73,7 +73,7 @@ void syncDirectoryBestEffort(const fs::path& dir)
 
 } // namespace
 
-void writeFileAtomic(const std::string& path, const std::function<void(const std::string& tempPath)>& writeTemp)
+void writeFileAtomic(const std::string& path, const std::function<void(const std::string& tempPath)>& writeTemp, Durability durability)
 {
     const fs::path target(path);
     if (!target.has_filename())
@@ -82,7 +82,8 @@ void writeFileAtomic(const std::string& path, const std::function<void(const std
     const std::string temp = reserveTempPath(path, dir, target.filename().string());
     try {
         writeTemp(temp);
-        syncFile(temp, path);
+        if (durability == Durability::Flush)
+            syncFile(temp, path);
         if (std::rename(temp.c_str(), path.c_str()) != 0)
             throw Error(path, "cannot replace the file: " + errnoText(errno));
     } catch (...) {
@@ -90,10 +91,11 @@ void writeFileAtomic(const std::string& path, const std::function<void(const std
         fs::remove(temp, ec);
         throw;
     }
-    syncDirectoryBestEffort(dir);
+    if (durability == Durability::Flush)
+        syncDirectoryBestEffort(dir);
 }
 
-void writeTextFileAtomic(const std::string& path, std::string_view contents)
+void writeTextFileAtomic(const std::string& path, std::string_view contents, Durability durability)
 {
     writeFileAtomic(path, [&](const std::string& temp) {
         const int fd = ::open(temp.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
@@ -113,7 +115,7 @@ void writeTextFileAtomic(const std::string& path, std::string_view contents)
         }
         if (::close(fd) != 0)
             throw Error(path, "write failed on close: " + errnoText(errno));
-    });
+    }, durability);
 }
 
 std::string readTextFile(const std::string& path)

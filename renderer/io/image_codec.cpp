@@ -8,6 +8,7 @@
 #include <dlfcn.h>
 
 #include "io/error.hpp"
+#include "io/image_codec_direct.hpp"
 
 namespace iblab {
 namespace {
@@ -56,12 +57,51 @@ const ImageCodec* loadCodec()
     throw Error(kModuleFileName, "cannot load the image module, needed to read and write image files; tried " + tried);
 }
 
+// OpenEXR and Radiance files that image_codec_direct.hpp takes are read and written
+// without OpenImageIO; everything else, and whatever those readers leave, goes to the module.
+class DispatchingCodec final : public ImageCodec {
+public:
+    std::unique_ptr<ImageReader> openFile(const std::string& path, std::string& error) const override
+    {
+        std::unique_ptr<ImageReader> direct;
+        switch (sniffImageFile(path)) {
+        case ImageFileKind::OpenExr: direct = openExrDirect(path); break;
+        case ImageFileKind::RadianceHdr: direct = openHdrDirect(path); break;
+        case ImageFileKind::Other: break;
+        }
+        return direct ? std::move(direct) : openImageIoCodec().openFile(path, error);
+    }
+
+    std::unique_ptr<ImageReader> openMemory(std::span<const std::uint8_t> bytes, const std::string& nameHint,
+                                            std::string& error) const override
+    {
+        return openImageIoCodec().openMemory(bytes, nameHint, error);
+    }
+
+    void writeFile(const std::string& subject, const std::string& file, const ImageWrite& image) const override
+    {
+        if (!writeExrDirect(subject, file, image))
+            openImageIoCodec().writeFile(subject, file, image);
+    }
+
+    std::vector<std::uint8_t> encode(const std::string& subject, const ImageWrite& image) const override
+    {
+        return openImageIoCodec().encode(subject, image);
+    }
+};
+
 } // namespace
 
-const ImageCodec& imageCodec()
+const ImageCodec& openImageIoCodec()
 {
     // A failed load throws out of the initialiser, so the next call tries again.
     static const ImageCodec& codec = *loadCodec();
+    return codec;
+}
+
+const ImageCodec& imageCodec()
+{
+    static const DispatchingCodec codec;
     return codec;
 }
 
@@ -71,7 +111,7 @@ void preloadImageCodec()
     // statics could be torn down under a thread still loading it.
     static std::jthread loader([] {
         try {
-            imageCodec();
+            openImageIoCodec();
         } catch (const Error&) {
         }
     });

@@ -1,7 +1,8 @@
 #pragma once
-// Image file reading and writing (OpenImageIO) behind an interface, so that the executable
-// does not link OpenImageIO: the implementation, image_codec_oiio.cpp, is the shared module
-// libiblab_oiio.so, loaded with dlopen the first time an image is read or written.
+// Image file reading and writing behind an interface, so that the executable does not link
+// OpenImageIO: its implementation, image_codec_oiio.cpp, is the shared module
+// libiblab_oiio.so, loaded with dlopen the first time it is needed. OpenEXR and Radiance
+// files are read and written directly where they can be (image_codec_direct.hpp).
 // OpenImageIO pulls in about 200 shared libraries (OpenEXR, libraw, ffmpeg, TBB, ...) and
 // starts thread pools; loading them cost `iblab --help` about 0.3 s, while commands that
 // never touch an image file (help, version, a parse error) need none of it.
@@ -84,9 +85,14 @@ public:
     virtual std::vector<std::uint8_t> encode(const std::string& subject, const ImageWrite& image) const = 0;
 };
 
-// Loads the module on first use (thread-safe); throws iblab::Error naming the module and
-// dlopen's reason when it cannot be loaded.
+// The codec to use: OpenEXR and Radiance .hdr files without OpenImageIO where
+// image_codec_direct.hpp can (the bake's formats: it then never loads the module), the
+// module for everything else. Throws as openImageIoCodec() when a call needs the module.
 const ImageCodec& imageCodec();
+
+// The module's codec, loaded on first use (thread-safe); throws iblab::Error naming the
+// module and dlopen's reason when it cannot be loaded. Tests compare the two with it.
+const ImageCodec& openImageIoCodec();
 
 // Starts loading the module on a thread of its own, so that a caller which will soon read
 // an image (the GUI, while it opens its window) does not wait for all of it. Joined at exit;

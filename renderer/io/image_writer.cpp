@@ -65,9 +65,9 @@ void writeImage(const std::string& path, ImageWrite image, std::size_t bytesPerV
     }
 
     const ImageCodec& codec = imageCodec();
-    writeFileAtomic(path, [&](const std::string& temp) { codec.writeFile(path, temp, image); });
+    writeFileAtomic(path, [&](const std::string& temp) { codec.writeFile(path, temp, image); }, options.durability);
     if (!settings.pretty.empty())
-        writeTextFileAtomic(settingsSidecarPath(path), settings.pretty);
+        writeTextFileAtomic(settingsSidecarPath(path), settings.pretty, options.durability);
 }
 
 } // namespace

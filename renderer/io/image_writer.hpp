@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ibl/image.hpp"
+#include "io/atomic_file.hpp"
 
 namespace iblab {
 
@@ -25,6 +26,7 @@ struct ImageWriteOptions {
     ExrPixelType exrPixelType = ExrPixelType::Float; // EXR only
     // EXR only: OpenEXR's compression by OpenImageIO's name ("zip", "none", "piz", "dwaa", ...).
     std::string exrCompression = "zip";
+    Durability durability = Durability::Flush; // the image's and the sidecar's
 };
 
 // 8-bit PNG (sRGB-encoded values, as a display shows them). channels: 1 (grey), 2 (grey +

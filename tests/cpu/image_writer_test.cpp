@@ -209,6 +209,22 @@ TEST(AtomicFile, TextWriteReplacesContents)
     EXPECT_THROW(readTextFile(dir.file("absent.json")), Error);
 }
 
+TEST(AtomicFile, UnflushedWritesStillReplaceWholeFiles)
+{
+    // Durability::NoFlush (the bake cache's) skips only the fsyncs: the file is still
+    // written to a temporary and renamed over the target, images and sidecars alike.
+    TempDir dir;
+    const std::string path = dir.file("entry.json");
+    writeTextFileAtomic(path, "first", Durability::NoFlush);
+    writeTextFileAtomic(path, "second", Durability::NoFlush);
+    EXPECT_EQ(slurp(path), "second");
+    const std::string image = dir.file("cube.exr");
+    const std::vector<float> pixels(8 * 4 * 3, 0.5f);
+    writeExr(image, 8, 4, 3, pixels, {.settingsJson = "{}", .durability = Durability::NoFlush});
+    EXPECT_EQ(readBack(image).pixels, pixels);
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"cube.exr", "cube.exr.json", "entry.json"}));
+}
+
 TEST(AtomicFile, FailingWriterLeavesTheOldFileIntact)
 {
     // Failure injected in the middle of writing: the temporary file already holds a

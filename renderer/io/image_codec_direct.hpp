@@ -1,0 +1,39 @@
+#pragma once
+// The image formats the bake needs, read and written without OpenImageIO: OpenEXR through
+// its own library, and Radiance .hdr decoded here (image_codec_direct.cpp says why not by
+// stb_image). Loading the OpenImageIO module
+// (about 250 shared libraries and its thread pools) took ~250 ms of a ~0.5 s `iblab bake`,
+// while decoding a 1024x512 map takes a few ms; these readers and the writer are linked
+// into the io layer, which costs ~7 ms of start-up (the OpenEXR libraries), measured by
+// scripts/measure-startup.sh.
+//
+// They take only what they are sure to decode exactly as OpenImageIO does: a file is
+// chosen by its magic bytes, and every other case returns nullptr (or false), so that the
+// caller (image_codec.cpp) hands it to OpenImageIO with its behaviour and messages as
+// before: multi-part, deep or non-image EXRs, channels other than R, G, B (+ any) or a lone
+// Y, a header OpenEXR refuses, and Radiance headers with a GAMMA line or an orientation
+// other than -Y +X.
+#include <memory>
+#include <string>
+
+#include "io/image_codec.hpp"
+
+namespace iblab {
+
+enum class ImageFileKind { OpenExr, RadianceHdr, Other };
+
+// By the first bytes: OpenEXR's magic number, or Radiance's "#?RADIANCE\n" / "#?RGBE\n".
+ImageFileKind sniffImageFile(const std::string& path);
+
+// A reader for the file, or nullptr when OpenImageIO should read it (see above). Rows are
+// read as Float or UInt8 (clamped to [0, 1] and rounded, as OpenImageIO converts).
+std::unique_ptr<ImageReader> openExrDirect(const std::string& path);
+std::unique_ptr<ImageReader> openHdrDirect(const std::string& path);
+
+// Writes an "openexr" image: 1 (Y), 3 (RGB) or 4 (RGBA) float channels stored as Half or
+// Float, with a compression OpenEXR names and string attributes ("ImageDescription" is
+// stored as OpenEXR's "comments", as OpenImageIO does). False, with nothing written, for
+// anything else; failures throw iblab::Error naming `subject`.
+bool writeExrDirect(const std::string& subject, const std::string& file, const ImageWrite& image);
+
+} // namespace iblab

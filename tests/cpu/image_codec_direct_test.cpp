@@ -1,0 +1,267 @@
+// The direct OpenEXR and Radiance codec (image_codec_direct.hpp) against OpenImageIO's
+// module on the same files: the same header and bit-identical pixels, the files it must
+// leave to OpenImageIO, and a bake's formats read and written without loading the module.
+// This executable does not link OpenImageIO: its test files are written through the module.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "io/environment.hpp"
+#include "io/error.hpp"
+#include "io/image_codec.hpp"
+#include "io/image_codec_direct.hpp"
+#include "io/image_writer.hpp"
+#include "temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using namespace iblab;
+using iblab::testing::TempDir;
+
+namespace {
+
+const fs::path kSourceDir = IBLAB_SOURCE_DIR;
+
+struct Decoded {
+    ImageHeader header;
+    std::vector<float> pixels;
+};
+
+// The header and every texel's first `channels` channels as float, read as the
+// environment loader reads them (by bands of rows: whole tile rows for tiled files).
+Decoded decode(ImageReader& reader, int channels)
+{
+    Decoded d{reader.header(), {}};
+    const ImageHeader& h = d.header;
+    d.pixels.resize(std::size_t(h.width) * std::size_t(h.height) * std::size_t(channels));
+    const int band = h.tileHeight > 0 ? h.tileHeight : 16;
+    for (int y0 = 0; y0 < h.height; y0 += band) {
+        const int y1 = std::min(h.height, y0 + band);
+        EXPECT_TRUE(reader.readRows(h.y + y0, h.y + y1, channels, PixelType::Float,
+                                    &d.pixels[std::size_t(y0) * std::size_t(h.width) * std::size_t(channels)]))
+            << reader.takeError();
+    }
+    EXPECT_FALSE(reader.hasError());
+    return d;
+}
+
+// The direct reader must take the file, and decode exactly what OpenImageIO decodes.
+void expectSameAsOpenImageIo(const std::string& path, int channels)
+{
+    SCOPED_TRACE(path);
+    std::unique_ptr<ImageReader> direct =
+        sniffImageFile(path) == ImageFileKind::OpenExr ? openExrDirect(path) : openHdrDirect(path);
+    ASSERT_TRUE(direct) << "left to OpenImageIO";
+    std::string error;
+    std::unique_ptr<ImageReader> oiio = openImageIoCodec().openFile(path, error);
+    ASSERT_TRUE(oiio) << error;
+    const Decoded a = decode(*direct, channels);
+    const Decoded b = decode(*oiio, channels);
+    EXPECT_EQ(a.header.width, b.header.width);
+    EXPECT_EQ(a.header.height, b.header.height);
+    EXPECT_EQ(a.header.x, b.header.x);
+    EXPECT_EQ(a.header.y, b.header.y);
+    EXPECT_EQ(a.header.channels, b.header.channels);
+    EXPECT_EQ(a.header.tileWidth, b.header.tileWidth);
+    EXPECT_EQ(a.header.tileHeight, b.header.tileHeight);
+    EXPECT_EQ(a.header.storedType, b.header.storedType);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0) << "pixels differ";
+}
+
+// Writes through the module, so that the file is OpenImageIO's own.
+void writeWithOpenImageIo(const std::string& path, const char* format, int w, int h, int channels, PixelType stored,
+                          const std::vector<float>& pixels, std::vector<std::pair<std::string, std::variant<std::string, int>>> attributes = {})
+{
+    ImageWrite image{.format = format,
+                     .width = w,
+                     .height = h,
+                     .channels = channels,
+                     .storedType = stored,
+                     .dataType = PixelType::Float,
+                     .firstRow = pixels.data(),
+                     .rowStride = std::ptrdiff_t(w) * channels * std::ptrdiff_t(sizeof(float)),
+                     .attributes = std::move(attributes)};
+    if (channels == 1) image.channelNames = {"Y"};
+    openImageIoCodec().writeFile(path, path, image);
+}
+
+std::vector<float> ramp(std::size_t count, float scale)
+{
+    std::vector<float> v(count);
+    for (std::size_t i = 0; i < count; ++i)
+        v[i] = 0.001f + scale * float((i * 7919) % 1009) / 97.0f;
+    return v;
+}
+
+// The files of tests/fuzz/corpus/environment/ are the fuzzer's inputs: the first byte picks
+// the extension, the rest is the file.
+std::string corpusFile(const TempDir& dir, const std::string& name)
+{
+    std::ifstream in(kSourceDir / "tests" / "fuzz" / "corpus" / "environment" / name, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_GT(bytes.size(), 1u) << name;
+    const std::string path = dir.file(name);
+    std::ofstream(path, std::ios::binary).write(bytes.data() + 1, std::streamsize(bytes.size() - 1));
+    return path;
+}
+
+} // namespace
+
+TEST(DirectCodec, BundledMapsDecodeAsOpenImageIoDecodesThem)
+{
+    for (const auto& entry : fs::directory_iterator(kSourceDir / "assets" / "environments"))
+        if (entry.path().extension() == ".exr") expectSameAsOpenImageIo(entry.path().string(), 3);
+}
+
+TEST(DirectCodec, FuzzSeedsOfEveryCompressionDecodeAsOpenImageIoDecodesThem)
+{
+    TempDir dir;
+    for (const char* name : {"valid-exr", "valid-exr-b44", "valid-exr-dwab", "valid-exr-piz", "valid-exr-rle", "valid-exr-tiled",
+                             "valid-exr-zip", "valid-hdr"})
+        expectSameAsOpenImageIo(corpusFile(dir, name), 3);
+}
+
+TEST(DirectCodec, HalfTiledGreyAndRadianceFilesDecodeAsOpenImageIoDecodesThem)
+{
+    TempDir dir;
+    const int w = 96, h = 48;
+    const std::string half = dir.file("half-rgba.exr");
+    writeWithOpenImageIo(half, "openexr", w, h, 4, PixelType::Half, ramp(std::size_t(w) * h * 4, 3.0f), {{"compression", "piz"}});
+    expectSameAsOpenImageIo(half, 3);
+    const std::string grey = dir.file("grey.exr");
+    writeWithOpenImageIo(grey, "openexr", w, h, 1, PixelType::Float, ramp(std::size_t(w) * h, 5.0f));
+    expectSameAsOpenImageIo(grey, 1); // the environment loader reads grey as one channel
+    const std::string hdr = dir.file("map.hdr");
+    writeWithOpenImageIo(hdr, "hdr", w, h, 3, PixelType::Float, ramp(std::size_t(w) * h * 3, 40.0f));
+    expectSameAsOpenImageIo(hdr, 3);
+}
+
+TEST(DirectCodec, WhatItCannotReadExactlyIsLeftToOpenImageIo)
+{
+    TempDir dir;
+    const std::string path = dir.file("gamma.hdr");
+    std::ofstream(path, std::ios::binary) << "#?RADIANCE\nGAMMA=2.2\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n" << std::string(128, '\x80');
+    EXPECT_EQ(sniffImageFile(path), ImageFileKind::RadianceHdr);
+    EXPECT_FALSE(openHdrDirect(path)) << "GAMMA is OpenImageIO's to interpret";
+    const std::string flipped = dir.file("flipped.hdr");
+    std::ofstream(flipped, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 4 +X 8\n" << std::string(128, '\x80');
+    EXPECT_FALSE(openHdrDirect(flipped));
+    const std::string named = dir.file("layers.exr");
+    ImageWrite image{.format = "openexr", .width = 8, .height = 4, .channels = 2, .storedType = PixelType::Float};
+    const std::vector<float> pixels(64, 1.0f);
+    image.firstRow = pixels.data();
+    image.rowStride = 8 * 2 * sizeof(float);
+    image.dataType = PixelType::Float;
+    image.channelNames = {"diffuse.R", "diffuse.G"};
+    openImageIoCodec().writeFile(named, named, image);
+    EXPECT_EQ(sniffImageFile(named), ImageFileKind::OpenExr);
+    EXPECT_FALSE(openExrDirect(named));
+    EXPECT_EQ(sniffImageFile(dir.file("missing.exr")), ImageFileKind::Other);
+}
+
+TEST(DirectCodec, ChosenByContentNotByName)
+{
+    TempDir dir;
+    const std::string exr = dir.file("really-an-exr.hdr");
+    writeExr(exr, 64, 32, 3, ramp(64 * 32 * 3, 2.0f));
+    EXPECT_EQ(sniffImageFile(exr), ImageFileKind::OpenExr);
+    EXPECT_NO_THROW(loadEnvironment(exr));
+}
+
+TEST(DirectCodec, TruncatedRadianceFileIsAnErrorNamingIt)
+{
+    TempDir dir;
+    const std::string good = dir.file("good.hdr");
+    writeWithOpenImageIo(good, "hdr", 256, 128, 3, PixelType::Float, ramp(256 * 128 * 3, 30.0f));
+    std::ifstream in(good, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (std::size_t keep : {bytes.size() / 2, bytes.size() - 1}) {
+        const std::string cut = dir.file("cut-" + std::to_string(keep) + ".hdr");
+        std::ofstream(cut, std::ios::binary).write(bytes.data(), std::streamsize(keep));
+        ASSERT_TRUE(openHdrDirect(cut)) << "the header is intact: the direct reader takes it";
+        try {
+            loadEnvironment(cut);
+            ADD_FAILURE() << "a file cut to " << keep << " of " << bytes.size() << " bytes loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(cut), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(DirectCodec, RunOfLengthZeroIsAnErrorNotAHang)
+{
+    // stb_image's decoder loops forever on this (a run-length scanline whose first code is
+    // a dump of 0 bytes); the fuzz corpus's truncated-hdr ends the same way.
+    TempDir dir;
+    const std::string path = dir.file("zero-run.hdr");
+    std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n";
+    bytes += std::string("\x02\x02\x00\x08", 4) + std::string(64, '\0');
+    std::ofstream(path, std::ios::binary) << bytes;
+    ASSERT_TRUE(openHdrDirect(path));
+    try {
+        loadEnvironment(path);
+        ADD_FAILURE() << "loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad run-length data"), std::string::npos) << e.what();
+    }
+}
+
+// What OpenImageIO reads from `path`, as float.
+std::vector<float> readWithOpenImageIo(const std::string& path, int channels)
+{
+    std::string error;
+    std::unique_ptr<ImageReader> oiio = openImageIoCodec().openFile(path, error);
+    EXPECT_TRUE(oiio) << error;
+    if (!oiio) return {};
+    std::vector<float> read(std::size_t(oiio->header().width) * std::size_t(oiio->header().height) * std::size_t(channels));
+    EXPECT_TRUE(oiio->readImage(channels, PixelType::Float, read.data())) << oiio->takeError();
+    return read;
+}
+
+TEST(DirectCodec, WritesWhatOpenImageIoWrites)
+{
+    TempDir dir;
+    const int w = 40, h = 20;
+    const std::vector<float> pixels = ramp(std::size_t(w) * h * 4, 9.0f);
+    for (ExrPixelType type : {ExrPixelType::Float, ExrPixelType::Half}) {
+        const bool isHalf = type == ExrPixelType::Half;
+        SCOPED_TRACE(isHalf ? "half" : "float");
+        const std::string path = dir.file(isHalf ? "half.exr" : "float.exr");
+        writeExr(path, w, h, 4, pixels, {.bottomUp = true, .settingsJson = R"({"a": 1})", .exrPixelType = type, .exrCompression = "rle"});
+        // The same rows, top-down, written by OpenImageIO: the direct writer must round to
+        // half exactly as it does.
+        std::vector<float> topDown(pixels.size());
+        for (int y = 0; y < h; ++y)
+            std::memcpy(&topDown[std::size_t(y) * w * 4], &pixels[std::size_t(h - 1 - y) * w * 4], std::size_t(w) * 4 * sizeof(float));
+        const std::string reference = dir.file(isHalf ? "half-oiio.exr" : "float-oiio.exr");
+        writeWithOpenImageIo(reference, "openexr", w, h, 4, isHalf ? PixelType::Half : PixelType::Float, topDown);
+        const std::vector<float> direct = readWithOpenImageIo(path, 4);
+        const std::vector<float> oiio = readWithOpenImageIo(reference, 4);
+        ASSERT_EQ(direct.size(), oiio.size());
+        EXPECT_EQ(std::memcmp(direct.data(), oiio.data(), direct.size() * sizeof(float)), 0) << "pixels differ";
+        if (!isHalf) {
+            EXPECT_EQ(std::memcmp(direct.data(), topDown.data(), direct.size() * sizeof(float)), 0) << "float is lossless";
+        }
+    }
+}
+
+TEST(DirectCodec, BakeFormatsNeverLoadOpenImageIo)
+{
+    // Each test runs in a process of its own (gtest_discover_tests), so the module is
+    // loaded here only if this test loads it.
+    TempDir dir;
+    const Environment env = loadEnvironment((kSourceDir / "assets" / "environments" / "courtyard.exr").string());
+    const std::string path = dir.file("cube.exr");
+    writeExr(path, env.image, {.exrPixelType = ExrPixelType::Half, .exrCompression = "rle"});
+    EXPECT_NO_THROW(loadEnvironment(path));
+    std::ifstream maps("/proc/self/maps");
+    const std::string text((std::istreambuf_iterator<char>(maps)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("libOpenImageIO"), std::string::npos);
+    EXPECT_EQ(text.find("libiblab_oiio"), std::string::npos);
+}
