@@ -77,6 +77,7 @@ std::vector<double> nelderMead(const std::function<double(const std::vector<doub
 
 struct FitSample {
     const EnvCase* env;
+    std::size_t envIndex;
     glm::dvec3 n, v;
     glm::dvec3 refCopper, refDielectric; // specular; the dielectric's with its diffuse added
     glm::dvec3 diffuseDielectric;
@@ -88,13 +89,14 @@ int fitCommand(const StudyOptions& a)
 {
     const auto t0 = Clock::now();
     std::vector<EnvCase> envs;
-    for (const auto& [spec, set] : environmentList("bundled", {})) envs.push_back(loadCase(spec, set, a.width, true));
+    for (const auto& [spec, set] : environmentList("bundled", {})) envs.push_back(loadCase(spec, set, a.width, true, a.bakes));
     std::fprintf(stderr, "fit on %zu bundled maps at %d wide (%.1f s to load and prefilter)\n", envs.size(), a.width, secondsSince(t0));
 
     LobeFitTable initTable;
     if (!a.init.empty()) {
         initTable = readLobeTable(a.init);
-        if (initTable.taps != 1) throw std::runtime_error("--init needs a one-tap table");
+        if (initTable.taps != 1 && !(a.taps == 3 && initTable.taps == 3))
+            throw std::runtime_error("--init needs a one-tap table (or, for --taps 3, a Fresnel-split one to refine)");
     }
     LobeFitTable table;
     table.taps = a.taps;
@@ -115,7 +117,8 @@ int fitCommand(const StudyOptions& a)
         std::mt19937 rng(a.seed * 7919u + unsigned(idx));
         std::uniform_real_distribution<double> u(0.0, 1.0);
         std::vector<FitSample> samples;
-        for (const EnvCase& env : envs) {
+        for (std::size_t envIndex = 0; envIndex < envs.size(); ++envIndex) {
+            const EnvCase& env = envs[envIndex];
             std::vector<Query> queries;
             for (int k = 0; k < a.frames; ++k) {
                 const double z = 2.0 * u(rng) - 1.0, phi = 2.0 * kPi * u(rng);
@@ -130,19 +133,24 @@ int fitCommand(const StudyOptions& a)
                 // The dielectric as combineLobes shades it (metallic 0, copper base colour).
                 const Pixel p{queries[k].n, queries[k].v, roughness, 0.0};
                 const glm::dvec3 diffuse = combine(p, glm::dvec3(0.0), refs[k].irradiance, glm::dvec3(kDielectricF0)).total;
-                samples.push_back({&env, queries[k].n, queries[k].v, refs[k].specular(kCopper), refs[k].specular(glm::dvec3(kDielectricF0)) + diffuse, diffuse});
+                samples.push_back({&env, envIndex, queries[k].n, queries[k].v, refs[k].specular(kCopper), refs[k].specular(glm::dvec3(kDielectricF0)) + diffuse, diffuse});
             }
         }
         const glm::dvec3 ab = lut().sample(NdotV, roughness);
         const glm::dvec3 albedoCopper = kCopper * ab.x + ab.y, albedoDielectric = glm::dvec3(kDielectricF0 * ab.x + ab.y);
-        auto objective = [&](const glm::vec4& p) {
-            double e = 0.0;
+        // The squared errors summed per map; the objective is their total over the samples,
+        // or (--per-map-ratio) the mean over the maps of each map's sum relative to the split
+        // sum's in this cell: the bar is a ratio per map, so a map where the split sum is
+        // already close (city, night) weighs as much as one where it is far off (sunrise).
+        auto perMapErrors = [&](const glm::vec4& p) {
+            std::vector<double> perMap(envs.size(), 0.0);
             for (const FitSample& s : samples) {
+                double& e = perMap[s.envIndex];
                 const glm::dvec3 R = 2.0 * glm::dot(s.n, s.v) * s.n - s.v;
                 if (table.taps == 3) {
                     // Fresnel split: F0 A read_A + B read_B.
-                    const glm::dvec3 preA = s.env->chain->lookup(glm::mix(R, s.n, double(p.x)), p.y);
-                    const glm::dvec3 preB = s.env->chain->lookup(glm::mix(R, s.n, double(p.z)), p.w);
+                    const glm::dvec3 preA = s.env->prefiltered(glm::mix(R, s.n, double(p.x)), p.y);
+                    const glm::dvec3 preB = s.env->prefiltered(glm::mix(R, s.n, double(p.z)), p.w);
                     const double ec = pixelError(kCopper * ab.x * preA + ab.y * preB, s.refCopper);
                     const glm::dvec3 specD = kDielectricF0 * ab.x * preA + ab.y * preB;
                     const double ed = pixelError(specD + s.diffuseDielectric, s.refDielectric);
@@ -153,14 +161,26 @@ int fitCommand(const StudyOptions& a)
                 glm::dvec3 pre(0.0);
                 for (int k = 0; k < table.taps; ++k) {
                     const glm::dvec3 d = glm::mix(R, s.n, double(shared::lobeTapTowardsNormal(p, table.taps, k)));
-                    pre += double(shared::lobeTapWeight(p, table.taps, k)) * s.env->chain->lookup(d, shared::lobeTapRoughness(p, table.taps, k));
+                    pre += double(shared::lobeTapWeight(p, table.taps, k)) * s.env->prefiltered(d, shared::lobeTapRoughness(p, table.taps, k));
                 }
                 const double ec = pixelError(pre * albedoCopper, s.refCopper);
                 const double ed = pixelError(pre * albedoDielectric + s.diffuseDielectric, s.refDielectric);
                 const double es = a.mixedObjective ? pixelError(pre * albedoDielectric, s.refDielectric - s.diffuseDielectric) : 0.0;
                 e += ec * ec + ed * ed + es * es;
             }
-            return e / double(samples.size());
+            return perMap;
+        };
+        const glm::vec4 identity = table.at(col, row);
+        const std::vector<double> splitSumPerMap = perMapErrors(identity);
+        auto objective = [&](const glm::vec4& p) {
+            const std::vector<double> perMap = perMapErrors(p);
+            double e = 0.0;
+            if (!a.perMapRatio) {
+                for (double x : perMap) e += x;
+                return e / double(samples.size());
+            }
+            for (std::size_t m = 0; m < perMap.size(); ++m) e += perMap[m] / std::max(splitSumPerMap[m], 1e-12);
+            return e / double(perMap.size());
         };
         auto clampParams = [&](const std::vector<double>& x) {
             if (table.taps == 1) return glm::vec4(float(std::clamp(x[0], -0.5, 1.0)), float(std::clamp(x[1], 0.0, 1.0)), 0.0f, 0.0f);
@@ -171,14 +191,15 @@ int fitCommand(const StudyOptions& a)
                              float(std::clamp(x[3], 0.0, 1.0)));
         };
         auto f = [&](const std::vector<double>& x) { return objective(clampParams(x)); };
-        const glm::vec4 identity = table.at(col, row);
         const double base = objective(identity);
         glm::vec4 best = identity;
         double bestValue = base;
         if (table.taps == 3) {
             // Start from the one-tap table of --init (both reads where it reads) and from the split sum.
             const glm::dvec4 one = initTable.empty() ? glm::dvec4(0.0, roughness, 0.0, 0.0) : initTable.sample(NdotV, roughness);
-            for (const std::vector<double>& x0 : {std::vector<double>{one.x, one.y, one.x, one.y}, std::vector<double>{0.0, roughness, 0.0, roughness}}) {
+            const std::vector<double> fromInit = initTable.taps == 3 ? std::vector<double>{one.x, one.y, one.z, one.w}
+                                                                     : std::vector<double>{one.x, one.y, one.x, one.y};
+            for (const std::vector<double>& x0 : {fromInit, std::vector<double>{0.0, roughness, 0.0, roughness}}) {
                 const std::vector<double> x = nelderMead(f, x0, {0.15, 0.1, 0.15, 0.1}, 200);
                 const double v = f(x);
                 if (v < bestValue) bestValue = v, best = clampParams(x);
