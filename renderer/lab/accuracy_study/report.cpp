@@ -80,7 +80,7 @@ LobeFitTable readLobeTable(const std::string& path)
     float x;
     while (in >> x) v.push_back(x);
     for (std::size_t i = 0; i + 3 < v.size(); i += 4) t.cells.emplace_back(v[i], v[i + 1], v[i + 2], v[i + 3]);
-    if (t.cells.size() != std::size_t(t.nvSize) * std::size_t(t.roughnessSize)) throw std::runtime_error(path + ": wrong cell count");
+    if (t.cells.size() != std::size_t(t.nvSize) * std::size_t(t.roughnessSize) * std::size_t(t.planes())) throw std::runtime_error(path + ": wrong cell count");
     return t;
 }
 
@@ -97,23 +97,26 @@ std::string lobeTableInclude(const LobeFitTable& table, const StudyOptions& a)
       << (a.perMapRatio ? ", each map's sum over the split sum's (--per-map-ratio)" : "")
       << (a.bakes.empty() ? "" : "; the prefiltered reads from the default bake's own mips (--bakes, scripts/accuracy-bakes.sh)")
       << ". Do not edit: refit.\n"
-      << "// Layout: specular_approximations.hpp, LobeFitTable; rows = roughness (i + 0.5) / size, columns = n.v.\n"
+      << "// Layout: specular_approximations.hpp, LobeFitTable; rows = roughness (i + 0.5) / size, columns = n.v"
+      << (table.planes() > 1 ? "; the second plane's rows after the first's" : "") << ".\n"
       << "constexpr int kLobeFitTaps = " << a.taps << ";\n"
       << "constexpr int kLobeFitNvSize = " << a.size << ";\n"
       << "constexpr int kLobeFitRoughnessSize = " << a.size << ";\n"
       << "constexpr float kLobeFitCells[] = {\n";
     char buf[64];
-    for (int row = 0; row < a.size; ++row) {
-        o << "    ";
-        for (int col = 0; col < a.size; ++col) {
-            const glm::vec4 p = table.at(col, row);
-            for (int k = 0; k < 4; ++k) {
-                std::snprintf(buf, sizeof buf, "%.4ff,%s", double(p[k]), (col == a.size - 1 && k == 3) ? "" : " ");
-                o << buf;
+    for (int plane = 0; plane < table.planes(); ++plane)
+        for (int row = 0; row < a.size; ++row) {
+            o << "    ";
+            for (int col = 0; col < a.size; ++col) {
+                const glm::vec4 p = table.at(col, row, plane);
+                for (int k = 0; k < 4; ++k) {
+                    const bool last = plane == table.planes() - 1 && row == a.size - 1 && col == a.size - 1 && k == 3;
+                    std::snprintf(buf, sizeof buf, "%.4ff,%s", double(p[k]), last ? "" : " ");
+                    o << buf;
+                }
             }
+            o << "\n";
         }
-        o << "\n";
-    }
     o << "};\n";
     return o.str();
 }
