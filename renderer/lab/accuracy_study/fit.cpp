@@ -207,10 +207,18 @@ int fitCommand(const StudyOptions& a)
         if (table.taps == 4) {
             // From --init's Fresnel split (its A read kept, the second A read at weight 1/4):
             // once beside it along the plane of N and V at the same width (a stretched lobe),
-            // once at its direction and wider (a peak with tails).
+            // once at its direction and wider (a peak with tails). A layout 4 --init is
+            // refined from where it is.
             const glm::dvec4 p = initTable.empty() ? glm::dvec4(0.0, roughness, 0.0, roughness) : initTable.sample(NdotV, roughness);
-            for (const std::vector<double>& x0 : {std::vector<double>{p.x, p.y, p.z, p.w, p.x + 0.2, p.y, 0.25},
-                                                  std::vector<double>{p.x, p.y, p.z, p.w, p.x, std::min(1.0, p.y + 0.2), 0.25}}) {
+            std::vector<std::vector<double>> starts;
+            if (initTable.taps == 4) {
+                const glm::dvec4 q = initTable.sample(NdotV, roughness, 1);
+                starts.push_back({p.x, p.y, p.z, p.w, q.x, q.y, q.z});
+            } else {
+                starts.push_back({p.x, p.y, p.z, p.w, p.x + 0.2, p.y, 0.25});
+                starts.push_back({p.x, p.y, p.z, p.w, p.x, std::min(1.0, p.y + 0.2), 0.25});
+            }
+            for (const std::vector<double>& x0 : starts) {
                 const std::vector<double> x = nelderMead(f, x0, {0.1, 0.08, 0.1, 0.08, 0.15, 0.1, 0.15}, 250);
                 const double v = f(x);
                 if (v < bestValue) bestValue = v, best = clampParams(x);
