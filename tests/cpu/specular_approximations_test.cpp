@@ -237,5 +237,30 @@ TEST(SpecularApproximations, FittedTableIsWellFormed)
         }
 }
 
+// Layout 4's table has two planes stacked along y in one texture (mesh_pass.cpp): the GPU reads
+// plane k at lobeFitPlaneY, which must land on the texel rows the CPU's LobeFitTable::sample
+// blends for that plane, and never between the planes.
+TEST(SpecularApproximations, TablePlanesAreReadApart)
+{
+    const int rows = 16, planes = 2;
+    for (int plane = 0; plane < planes; ++plane)
+        for (double roughness : {0.0, 0.01, 0.03125, 0.3, 0.5, 0.96875, 0.99, 1.0}) {
+            // The texel-space row the GPU's bilinear filter centres on (texel centres at i + 0.5).
+            const double row = double(shared::lobeFitPlaneY(float(roughness), plane, planes, float(rows))) * planes * rows - 0.5;
+            EXPECT_GE(row, plane * rows - 1e-4) << "plane " << plane << " roughness " << roughness;
+            EXPECT_LE(row, plane * rows + rows - 1 + 1e-4) << "plane " << plane << " roughness " << roughness;
+            EXPECT_NEAR(row - plane * rows, std::clamp(roughness * rows - 0.5, 0.0, rows - 1.0), 1e-4);
+        }
+    LobeFitTable t;
+    t.taps = 4;
+    t.nvSize = 2;
+    t.roughnessSize = rows;
+    t.cells.assign(std::size_t(t.nvSize * rows * planes), glm::vec4(0.0f));
+    for (int row = 0; row < rows; ++row)
+        for (int col = 0; col < t.nvSize; ++col) t.at(col, row, 1) = glm::vec4(1.0f);
+    EXPECT_EQ(t.sample(0.5, 1.0, 0), glm::dvec4(0.0));
+    EXPECT_EQ(t.sample(0.5, 0.0, 1), glm::dvec4(1.0));
+}
+
 } // namespace
 } // namespace iblab
