@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ struct BenchCommandOptions {
     std::vector<std::string> environments;
     std::vector<std::string> families; // empty: every family of the sweep
     SceneSettings scene{.kind = SceneKind::Grid};
+    std::optional<float> roughness; // the material's, for the sphere (the grid has its own)
     std::string out = "bench";
     bool json = false;
     bool quick = false;
@@ -100,6 +102,7 @@ int runBench(const BenchCommandOptions& o)
                 return std::find(o.families.begin(), o.families.end(), bench::sweepFamilyName(p.family)) == o.families.end();
             });
         options.frame.scene = o.scene;
+        if (o.roughness) options.frame.material.roughness = *o.roughness;
         if (o.width > 0) options.width = o.width;
         if (o.height > 0) options.height = o.height;
         if (o.repeats > 0) options.repeats = o.repeats;
@@ -180,6 +183,9 @@ Command addBenchCommand(CLI::App& app, ProcessClock::time_point)
          },
          "Scene: sphere|grid|counting|sweep|FILE.gltf|FILE.glb")
         ->default_str("grid");
+    c->add_option_function<float>(
+         "--roughness", [o](float value) { o->roughness = value; }, "Perceptual roughness of the material (the sphere; default the sliders' 0.3)")
+        ->check(CLI::Range(0.0, 1.0));
     c->add_option("--family", o->families, "Only the sweep points of this family; repeat for several (default: every family)")
         ->check(CLI::IsMember(std::vector<std::string>(bench::kSweepFamilyNames.begin(), bench::kSweepFamilyNames.end())));
     c->add_option("--out", o->out, "Directory for bench.csv, bench.json, bench.md and pareto.png")->capture_default_str();

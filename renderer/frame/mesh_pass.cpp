@@ -95,12 +95,13 @@ void bindMaterial(const MeshUniforms& u, const GpuScene& scene, const SceneDraw&
 }
 
 // The table as the CPU core samples it (LobeFitTable::sample): bilinear between texel
-// centres, clamped to the edge texels.
+// centres, clamped to the edge texels; its planes stacked along y (lobeFitPlaneY).
 gl::Texture uploadLobeFit(const LobeFitTable& table)
 {
     gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture.id(), 1, GL_RGBA32F, table.nvSize, table.roughnessSize);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, table.nvSize, table.roughnessSize, GL_RGBA, GL_FLOAT, table.cells.data());
+    const int rows = table.roughnessSize * table.planes();
+    glTextureStorage2D(texture.id(), 1, GL_RGBA32F, table.nvSize, rows);
+    glTextureSubImage2D(texture.id(), 0, 0, 0, table.nvSize, rows, GL_RGBA, GL_FLOAT, table.cells.data());
     glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

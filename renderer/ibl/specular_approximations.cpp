@@ -39,12 +39,10 @@ glm::dvec3 reflectView(glm::dvec3 n, glm::dvec3 v)
 
 // ---- LobeFitTable ----------------------------------------------------------------------
 
-glm::dvec4 LobeFitTable::sample(double NdotV, double roughness) const
+glm::dvec4 LobeFitTable::sample(double NdotV, double roughness, int plane) const
 {
     if (cells.empty()) throw std::logic_error("LobeFitTable::sample on an empty table");
-    return sampleTableBilinear(NdotV, roughness, nvSize, roughnessSize, [&](int col, int row) {
-        return glm::dvec4(cells[std::size_t(row) * std::size_t(nvSize) + std::size_t(col)]);
-    });
+    return sampleTableBilinear(NdotV, roughness, nvSize, roughnessSize, [&](int col, int row) { return glm::dvec4(at(col, row, plane)); });
 }
 
 const LobeFitTable& fittedLobeTable()
@@ -54,8 +52,8 @@ const LobeFitTable& fittedLobeTable()
         t.taps = kLobeFitTaps;
         t.nvSize = kLobeFitNvSize;
         t.roughnessSize = kLobeFitRoughnessSize;
-        const std::size_t n = std::size_t(t.nvSize) * std::size_t(t.roughnessSize);
-        static_assert(sizeof(kLobeFitCells) / sizeof(float) == std::size_t(kLobeFitNvSize) * kLobeFitRoughnessSize * 4);
+        const std::size_t n = std::size_t(t.nvSize) * std::size_t(t.roughnessSize) * std::size_t(t.planes());
+        if (sizeof(kLobeFitCells) / sizeof(float) != 4 * n) throw std::logic_error("specular_lobe_fit.inc: the cell count does not match its layout");
         for (std::size_t i = 0; i < n; ++i)
             t.cells.emplace_back(kLobeFitCells[4 * i], kLobeFitCells[4 * i + 1], kLobeFitCells[4 * i + 2], kLobeFitCells[4 * i + 3]);
         return t;
@@ -89,7 +87,14 @@ std::vector<LobeTap> fittedLobeTaps(const LobeFitTable& fit, glm::dvec3 n, glm::
         tap.direction = glm::dvec3(shared::lobeTapDirection(N, R, shared::lobeTapTowardsNormal(p, fit.taps, k)));
         tap.roughness = shared::lobeTapRoughness(p, fit.taps, k);
         tap.weight = shared::lobeTapWeight(p, fit.taps, k);
+        tap.multipliesB = fit.taps >= 3 && k == 1;
         taps.push_back(tap);
+    }
+    if (fit.taps == 4) {
+        const glm::vec4 q(fit.sample(NdotV, roughness, 1));
+        const double w = shared::lobeSecondAWeight(q);
+        taps[0].weight = 1.0 - w;
+        taps.push_back({glm::dvec3(shared::lobeTapDirection(N, R, shared::lobeSecondATowardsNormal(q))), shared::lobeSecondARoughness(q), w, false});
     }
     return taps;
 }
@@ -112,8 +117,12 @@ glm::dvec3 shadeSpecularApproximation(SpecularMethod method, const SpecularShadi
     case SpecularMethod::FittedLobe: {
         const LobeFitTable& table = fit ? *fit : fittedLobeTable();
         const std::vector<LobeTap> taps = fittedLobeTaps(table, in.n, in.v, in.roughness);
-        if (table.taps == 3)
-            return in.F0 * in.lut.x * prefiltered(taps[0].direction, taps[0].roughness) + in.lut.y * prefiltered(taps[1].direction, taps[1].roughness);
+        if (table.taps >= 3) {
+            glm::dvec3 a(0.0), b(0.0);
+            for (const LobeTap& tap : taps)
+                if (tap.weight != 0.0) (tap.multipliesB ? b : a) += tap.weight * prefiltered(tap.direction, tap.roughness);
+            return in.F0 * in.lut.x * a + in.lut.y * b;
+        }
         glm::dvec3 sum(0.0);
         for (const LobeTap& tap : taps)
             if (tap.weight != 0.0) sum += tap.weight * prefiltered(tap.direction, tap.roughness);

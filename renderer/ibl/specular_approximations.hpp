@@ -54,17 +54,25 @@ using PrefilteredLookup = std::function<glm::dvec3(glm::dvec3 direction, double 
 //   1: (t, r_eff, -, -)                 one read
 //   2: (t_0, t_1, r_eff, w_1)           sum_k w_k read_k, w_0 = 1 - w_1
 //   3: (t_A, r_A, t_B, r_B)             Fresnel split: F0 A read_A + B read_B
+//   4: layout 3's texel, and in a second plane (t_A2, r_A2, w_A2, -): F0 A ((1 - w_A2) read_A
+//      + w_A2 read_A2) + B read_B (specular_lobe.glsl)
 // Axes as the split-sum LUT's (brdf_lut.hpp): x = n.v, y = perceptual roughness, texel
-// centres at (i + 0.5) / size, bilinear with clamp to edge.
+// centres at (i + 0.5) / size, bilinear with clamp to edge; the planes stacked along y, each
+// clamped to its own edge (lobeFitPlaneY).
 struct LobeFitTable {
-    int taps = 1;
+    int taps = 1; // the layout
     int nvSize = 0;
     int roughnessSize = 0;
-    std::vector<glm::vec4> cells; // [row * nvSize + col], row = roughness
+    std::vector<glm::vec4> cells; // [(plane * roughnessSize + row) * nvSize + col], row = roughness
+    int planes() const { return shared::lobeFitPlanes(taps); }
     bool empty() const { return cells.empty(); }
-    glm::dvec4 sample(double NdotV, double roughness) const; // bilinear, clamp to edge
-    glm::vec4& at(int col, int row) { return cells[std::size_t(row) * std::size_t(nvSize) + std::size_t(col)]; }
-    const glm::vec4& at(int col, int row) const { return cells[std::size_t(row) * std::size_t(nvSize) + std::size_t(col)]; }
+    glm::dvec4 sample(double NdotV, double roughness, int plane = 0) const; // bilinear, clamp to edge
+    std::size_t index(int col, int row, int plane) const
+    {
+        return (std::size_t(plane) * std::size_t(roughnessSize) + std::size_t(row)) * std::size_t(nvSize) + std::size_t(col);
+    }
+    glm::vec4& at(int col, int row, int plane = 0) { return cells[index(col, row, plane)]; }
+    const glm::vec4& at(int col, int row, int plane = 0) const { return cells[index(col, row, plane)]; }
 };
 
 // The table refitted by `accuracy_study fit` on the 8 bundled maps (specular_lobe_fit.inc).
@@ -86,11 +94,13 @@ glm::dvec3 shadeSpecularApproximation(SpecularMethod method, const SpecularShadi
                                       const LobeFitTable* fit = nullptr);
 
 // The fitted lobe's taps for one pixel (directions unit length), from a table texel. For the
-// Fresnel split, tap 0 multiplies F0 A and tap 1 multiplies B, both with weight 1.
+// Fresnel split, tap 0 multiplies F0 A and tap 1 multiplies B, both with weight 1; layout 4
+// adds tap 2, a second F0 A read, the two A weights summing to 1.
 struct LobeTap {
     glm::dvec3 direction{0.0};
     double roughness = 0.0;
     double weight = 0.0;
+    bool multipliesB = false; // Fresnel split: this read is B's, not F0 A's
 };
 std::vector<LobeTap> fittedLobeTaps(const LobeFitTable& fit, glm::dvec3 n, glm::dvec3 v, double roughness);
 

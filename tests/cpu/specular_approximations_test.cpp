@@ -217,23 +217,49 @@ TEST(SpecularApproximations, FittedTableIsWellFormed)
 {
     const LobeFitTable& t = fittedLobeTable();
     ASSERT_FALSE(t.empty());
-    EXPECT_TRUE(t.taps == 1 || t.taps == 2 || t.taps == 3);
+    EXPECT_TRUE(t.taps >= 1 && t.taps <= 4);
     const glm::dvec3 n(0.0, 0.0, 1.0);
     for (double NdotV : {0.01, 0.25, 0.5, 1.0})
         for (double roughness : {0.0, 0.2, 0.5, 1.0}) {
             const glm::dvec3 v(std::sqrt(1.0 - NdotV * NdotV), 0.0, NdotV);
-            double weights = 0.0;
+            double weights = 0.0, weightsOfB = 0.0;
             for (const LobeTap& tap : fittedLobeTaps(t, n, v, roughness)) {
-                weights += tap.weight;
+                (tap.multipliesB ? weightsOfB : weights) += tap.weight;
                 EXPECT_GE(tap.weight, 0.0);
                 EXPECT_GE(tap.roughness, 0.0);
                 EXPECT_LE(tap.roughness, 1.0);
                 EXPECT_NEAR(glm::length(tap.direction), 1.0, 1e-6);
                 EXPECT_GE(tap.direction.z, -1e-6) << "a tap below the surface";
             }
-            // Mixed reads sum to 1; the Fresnel split's two reads each carry one LUT term.
-            EXPECT_NEAR(weights, t.taps == 3 ? 2.0 : 1.0, 1e-6);
+            // Mixed reads sum to 1; the Fresnel split's reads of each LUT term sum to 1 each.
+            EXPECT_NEAR(weights, 1.0, 1e-6);
+            EXPECT_NEAR(weightsOfB, t.taps >= 3 ? 1.0 : 0.0, 1e-6);
         }
+}
+
+// Layout 4's table has two planes stacked along y in one texture (mesh_pass.cpp): the GPU reads
+// plane k at lobeFitPlaneY, which must land on the texel rows the CPU's LobeFitTable::sample
+// blends for that plane, and never between the planes.
+TEST(SpecularApproximations, TablePlanesAreReadApart)
+{
+    const int rows = 16, planes = 2;
+    for (int plane = 0; plane < planes; ++plane)
+        for (double roughness : {0.0, 0.01, 0.03125, 0.3, 0.5, 0.96875, 0.99, 1.0}) {
+            // The texel-space row the GPU's bilinear filter centres on (texel centres at i + 0.5).
+            const double row = double(shared::lobeFitPlaneY(float(roughness), plane, planes, float(rows))) * planes * rows - 0.5;
+            EXPECT_GE(row, plane * rows - 1e-4) << "plane " << plane << " roughness " << roughness;
+            EXPECT_LE(row, plane * rows + rows - 1 + 1e-4) << "plane " << plane << " roughness " << roughness;
+            EXPECT_NEAR(row - plane * rows, std::clamp(roughness * rows - 0.5, 0.0, rows - 1.0), 1e-4);
+        }
+    LobeFitTable t;
+    t.taps = 4;
+    t.nvSize = 2;
+    t.roughnessSize = rows;
+    t.cells.assign(std::size_t(t.nvSize * rows * planes), glm::vec4(0.0f));
+    for (int row = 0; row < rows; ++row)
+        for (int col = 0; col < t.nvSize; ++col) t.at(col, row, 1) = glm::vec4(1.0f);
+    EXPECT_EQ(t.sample(0.5, 1.0, 0), glm::dvec4(0.0));
+    EXPECT_EQ(t.sample(0.5, 0.0, 1), glm::dvec4(1.0));
 }
 
 } // namespace

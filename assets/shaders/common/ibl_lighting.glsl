@@ -80,13 +80,25 @@ vec3 prefilteredRadiance(vec3 direction, float roughness)
 // read its direction between R and N and its roughness (specular_lobe.glsl decodes it). The
 // Fresnel split (layout 3) reads once for F0 A and once for B; the other layouts mix their
 // reads with weights that sum to 1. scaledA is A times F0 (or LearnOpenGL's F_roughness).
+vec4 lobeFitTexel(float NdotV, float roughness, int plane)
+{
+    int planes = lobeFitPlanes(uLobeFitLayout);
+    float rows = float(textureSize(uLobeFit, 0).y / planes);
+    return texture(uLobeFit, vec2(NdotV, lobeFitPlaneY(roughness, plane, planes, rows)));
+}
+
 vec3 fittedLobeRadiance(SurfacePoint s, float NdotV, vec3 R, vec3 scaledA, float B)
 {
-    vec4 p = texture(uLobeFit, vec2(NdotV, s.roughness));
+    vec4 p = lobeFitTexel(NdotV, s.roughness, 0);
     vec3 read0 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, uLobeFitLayout, 0)), lobeTapRoughness(p, uLobeFitLayout, 0));
     if (uLobeFitLayout == 1) return read0 * (scaledA + B);
     vec3 read1 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, uLobeFitLayout, 1)), lobeTapRoughness(p, uLobeFitLayout, 1));
-    if (uLobeFitLayout == 3) return scaledA * read0 + B * read1;
+    if (uLobeFitLayout == 4) {
+        vec4 q = lobeFitTexel(NdotV, s.roughness, 1);
+        vec3 read2 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeSecondATowardsNormal(q)), lobeSecondARoughness(q));
+        read0 = mix(read0, read2, lobeSecondAWeight(q));
+    }
+    if (uLobeFitLayout >= 3) return scaledA * read0 + B * read1;
     return (lobeTapWeight(p, uLobeFitLayout, 0) * read0 + lobeTapWeight(p, uLobeFitLayout, 1) * read1) * (scaledA + B);
 }
 

@@ -56,17 +56,24 @@ IBL_FN vec3 lobeTapDirection(vec3 N, vec3 R, float towardsNormal)
 //  2, two taps:      p = (t_0, t_1, r_eff, w_1), w_0 = 1 - w_1, radiance sum_k w_k read_k;
 //  3, Fresnel split: p = (t_A, r_A, t_B, r_B): tap 0 is the read that multiplies F0 A, tap 1
 //     the one that multiplies B (the LUT's two terms get lobes of their own); weights 1.
+//  4, Fresnel split with a two-read A: p as layout 3, and a second texel (the table's second
+//     plane) q = (t_A2, r_A2, w_A2, -): the F0 A radiance is (1 - w_A2) read_0 + w_A2 read_2,
+//     read_2 at lobeTapDirection(N, R, t_A2) and roughness r_A2. Two reads of different
+//     width mixed with weights that sum to 1 shape the lobe's profile (a sharper peak with
+//     wider tails, or the reverse) and, apart, stretch it along the plane of N and V,
+//     which one isotropic read cannot; still none changes the white furnace.
+// Taps 0 and 1 below; tap 2 of layout 4 is q's (lobeSecondATowardsNormal and its kin).
 IBL_FN float lobeTapTowardsNormal(vec4 p, int fitLayout, int k)
 {
     if (fitLayout == 1) return p.x;
-    if (fitLayout == 3) return k == 0 ? p.x : p.z;
+    if (fitLayout >= 3) return k == 0 ? p.x : p.z;
     return k == 0 ? p.x : p.y;
 }
 
 IBL_FN float lobeTapRoughness(vec4 p, int fitLayout, int k)
 {
     if (fitLayout == 1) return p.y;
-    if (fitLayout == 3) return k == 0 ? p.y : p.w;
+    if (fitLayout >= 3) return k == 0 ? p.y : p.w;
     return p.z;
 }
 
@@ -76,7 +83,24 @@ IBL_FN float lobeTapWeight(vec4 p, int fitLayout, int k)
     return k == 0 ? 1.0f - p.w : p.w;
 }
 
-// The recommended method (docs/accuracy-study.md) is layout 3, the Fresnel split: with p the
+// Layout 4's second A read, from the second plane's texel q.
+IBL_FN float lobeSecondATowardsNormal(vec4 q) { return q.x; }
+IBL_FN float lobeSecondARoughness(vec4 q) { return q.y; }
+IBL_FN float lobeSecondAWeight(vec4 q) { return clamp(q.z, 0.0f, 1.0f); }
+
+// How many planes (texels per cell) a layout's table has.
+IBL_FN int lobeFitPlanes(int fitLayout) { return fitLayout == 4 ? 2 : 1; }
+
+// Where plane `plane` of a table of `planes` planes stacked along y (each `rows` rows of
+// roughness, texel centres at (i + 0.5) / rows) is read for `roughness`: clamped to its own
+// edge texels, so that bilinear filtering never mixes two planes. With one plane this is
+// the plain clamp to edge.
+IBL_FN float lobeFitPlaneY(float roughness, int plane, int planes, float rows)
+{
+    return (float(plane) * rows + clamp(roughness * rows, 0.5f, rows - 0.5f)) / (float(planes) * rows);
+}
+
+// The recommended method (docs/accuracy-study.md) is layout 3 (or its refinement, 4), the Fresnel split: with p the
 // table texel at (n.v, roughness) (bilinear, clamp to edge; x = n.v, y = perceptual
 // roughness, texel centres (i + 0.5) / 16),
 //   specular = F0 A read(lobeTapDirection(N, R, p.x), p.y) + B read(lobeTapDirection(N, R, p.z), p.w)

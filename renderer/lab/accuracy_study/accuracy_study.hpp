@@ -10,6 +10,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -48,6 +49,15 @@ struct StudyOptions {
     // instead of the emulated mip chain, to separate the chain's discrete levels from the lobe.
     bool exactPrefilter = false;
     bool bins = false; // the copper spheres' errors by n.v band too
+    // The GPU measure's configuration (scripts/measure-lobe.sh, the bench's specular-lobe
+    // family): copper spheres 128 x 128 framed as the bench frames them, one measure per
+    // roughness of `roughnesses` (not pooled, no dielectric), and the grid. Diffuse stays the
+    // exact irradiance: the family shades with the moment cube, within 0.3% of it.
+    bool benchScenes = false;
+    // eval and fit: read the prefiltered cube the GPU reads, from DIR/<map name>/ as written
+    // by `iblab bake --env MAP --out DIR/<map name>` (scripts/accuracy-bakes.sh), instead of
+    // the exact-prefilter emulation.
+    std::string bakes;
     // fit
     int taps = 1;
     int frames = 96;
@@ -59,6 +69,9 @@ struct StudyOptions {
     // Also the dielectric's specular alone, so that a read that only the dielectric's
     // diffuse hides (a dark dielectric would show it) is not rewarded.
     bool mixedObjective = false;
+    // Weigh every map alike: per cell, each map's squared error over the split sum's there
+    // (the bar is a ratio per map), instead of the sum over all samples.
+    bool perMapRatio = false;
 };
 
 int evalCommand(const StudyOptions& options);
@@ -91,13 +104,38 @@ struct Lut {
 };
 const Lut& lut();
 
+// ---- gpu_chain.cpp -------------------------------------------------------------------
+// A bake's prefiltered cube as textureLod reads it (seamless bilinear per mip, linear
+// between mips at the layout's lod).
+class CubeChain {
+public:
+    static CubeChain fromBake(const std::filesystem::path& directory, int layout);
+    glm::dvec3 lookup(glm::dvec3 direction, double roughness) const;
+    int levels() const { return int(mips_.size()); }
+
+private:
+    struct Mip {
+        int size = 0;
+        std::vector<glm::vec3> texels; // [(face * size + row) * size + x], bake_files.hpp
+        const glm::vec3& at(int face, int x, int row) const { return texels[(std::size_t(face) * std::size_t(size) + std::size_t(row)) * std::size_t(size) + std::size_t(x)]; }
+        glm::dvec3 bilinear(glm::dvec3 direction) const;
+    };
+    std::vector<Mip> mips_;
+    int layout_ = PREFILTER_LAYOUT_QUADRATIC;
+};
+
 struct EnvCase {
     std::string name;
     std::string set; // bundled, unseen, procedural
     ImageRGB32F image;
-    std::shared_ptr<PrefilteredChain> chain;
+    std::shared_ptr<PrefilteredChain> chain; // the exact-prefilter emulation
+    std::shared_ptr<CubeChain> bake;         // the GPU's own mips (--bakes), read instead
     std::shared_ptr<ReferenceSums> sums;
     std::uint64_t hash = 0;
+    glm::dvec3 prefiltered(glm::dvec3 direction, double roughness) const
+    {
+        return bake ? bake->lookup(direction, roughness) : chain->lookup(direction, roughness);
+    }
 };
 
 // (spec, set) of every environment in `sets` (a list naming bundled, unseen, procedural),
@@ -105,8 +143,9 @@ struct EnvCase {
 std::vector<std::pair<std::string, std::string>> environmentList(const std::string& sets, const std::vector<std::string>& extra);
 
 // The environment downsampled to `width`, with its full-integral sums and (withChain) its
-// emulated prefiltered chain.
-EnvCase loadCase(const std::string& spec, const std::string& set, int width, bool withChain);
+// prefiltered chain: the bake's from bakes/<name> when `bakes` is given, else the emulated
+// one.
+EnvCase loadCase(const std::string& spec, const std::string& set, int width, bool withChain, const std::string& bakes = {});
 
 struct Query {
     glm::dvec3 n, v;
@@ -122,10 +161,15 @@ struct Pixel {
     double metallic = 0.0;
 };
 
-// A unit sphere at the origin from the default orbit camera, size x size pixels.
-std::vector<Pixel> spherePixels(int size);
+// A unit sphere at the origin, size x size pixels, from the default orbit camera (distance
+// 3.5, `iblab render`'s view) or framed as the bench frames it (frameBox: 1.08 x the distance
+// at which the unit box's half height fills half the fov, plus its half depth). With
+// msaaCoverage, only the pixels the bench measures: those its 4x MSAA covers wholly.
+inline constexpr double kDefaultCameraDistance = 3.5;
+inline const double kBenchSphereDistance = 1.08 / std::tan(0.5 * 45.0 * 3.14159265358979323846 / 180.0) + 1.0;
+std::vector<Pixel> spherePixels(int size, double distance, bool msaaCoverage);
 // The 7 x 7 metallic x roughness grid framed as the bench frames it, size x size pixels.
-std::vector<Pixel> gridPixels(int size);
+std::vector<Pixel> gridPixels(int size, bool msaaCoverage);
 
 struct Shaded {
     glm::dvec3 total, specular;
@@ -139,11 +183,11 @@ double pixelError(glm::dvec3 value, glm::dvec3 reference);
 
 // ---- report.cpp --------------------------------------------------------------------------
 
-// One environment's results: per method, relative RMSE of spheres total, spheres specular,
-// grid total, grid specular.
+// One environment's results: per method, the relative RMSE of each measure (eval's list:
+// spheres total, spheres specular, grid total, grid specular; or --bench-scenes' list).
 struct EnvironmentRow {
     std::string env, set;
-    std::vector<std::array<double, 4>> values;
+    std::vector<std::vector<double>> values; // [method][measure]
 };
 
 // The copper spheres' total relative error by n.v band (--bins): per band, the sum of
@@ -154,7 +198,7 @@ using BinsByEnvironment = std::map<std::string, std::vector<Bins>>;
 
 // The markdown tables on stdout: one per measure, rows = environments, columns = methods
 // (value and ratio to the first, the split sum), then the n.v bands when `bins` is given.
-void printEvaluation(const std::vector<std::string>& methodNames, const std::vector<EnvironmentRow>& rows,
+void printEvaluation(const std::vector<std::string>& methodNames, const std::vector<std::string>& measures, const std::vector<EnvironmentRow>& rows,
                      BinsByEnvironment* bins);
 
 // A table in the .inc format fit writes (renderer/ibl/specular_lobe_fit.inc).

@@ -51,6 +51,13 @@ struct Errors {
     std::vector<double> NdotV; // per pixel, for --bins
 };
 
+std::string formatRoughness(double r)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", r);
+    return text;
+}
+
 double rmse(const std::vector<double>& e)
 {
     double s = 0.0;
@@ -59,11 +66,10 @@ double rmse(const std::vector<double>& e)
 }
 
 // Evaluates `pixels` (roughness and metallic set) for every method; appends errors per method.
-void evaluatePixels(const EnvCase& env, const std::vector<Pixel>& pixels, const std::vector<Method>& ms, bool exactPrefilter,
-                    std::vector<Errors>& out)
+void evaluatePixels(const EnvCase& env, const std::vector<Pixel>& pixels, const std::vector<Method>& ms, bool exactPrefilter, std::vector<Errors>& out)
 {
     const PrefilteredLookup lookup = [&](glm::dvec3 d, double r) {
-        return exactPrefilter ? referencePrefilteredRadiance(env.image, glm::normalize(d), r) : env.chain->lookup(d, r);
+        return exactPrefilter ? referencePrefilteredRadiance(env.image, glm::normalize(d), r) : env.prefiltered(d, r);
     };
     std::vector<Query> queries;
     for (const Pixel& p : pixels) queries.push_back({p.n, p.v, p.roughness});
@@ -116,12 +122,12 @@ int evalCommand(const StudyOptions& a)
     for (const auto& path : a.tables) tables.emplace_back(std::filesystem::path(path).stem().string(), readLobeTable(path));
     const std::vector<Method> ms = methods(tables);
     const double minResolved = referenceMinResolvedRoughness(a.width);
-    const std::vector<Pixel> sphere = spherePixels(a.sphere);
+    const std::vector<Pixel> sphere = spherePixels(a.sphere, a.benchScenes ? kBenchSphereDistance : kDefaultCameraDistance, a.benchScenes);
     std::vector<Pixel> grid;
-    for (const Pixel& p : gridPixels(a.grid))
+    for (const Pixel& p : gridPixels(a.grid, a.benchScenes))
         if (p.roughness >= minResolved) grid.push_back(p);
-    std::fprintf(stderr, "reference %d wide, resolved roughness >= %.3f; sphere %zu pixels, grid %zu pixels\n", a.width, minResolved,
-                 sphere.size(), grid.size());
+    std::fprintf(stderr, "reference %d wide, resolved roughness >= %.3f; sphere %zu pixels, grid %zu pixels; prefiltered cube: %s\n", a.width,
+                 minResolved, sphere.size(), grid.size(), a.bakes.empty() ? "exact-prefilter emulation" : ("the bakes in " + a.bakes).c_str());
 
     std::ofstream csv;
     if (!a.csv.empty()) {
@@ -129,33 +135,44 @@ int evalCommand(const StudyOptions& a)
         csv << "environment,set,scene,material,roughness,method,relative_rmse,specular_relative_rmse,pixels\n";
     }
     const std::vector<double> roughnesses = a.roughnesses;
-    // Summary: per environment, per method: spheres total, spheres specular, grid total, grid specular.
+    // The measures, each one table: pooled spheres (copper and the dielectric) and the grid,
+    // total and specular alone; or (--bench-scenes) the GPU measure's: one copper sphere per
+    // roughness, and the grid.
+    std::vector<std::string> measures;
+    if (a.benchScenes) {
+        for (double r : roughnesses) measures.push_back("copper sphere, roughness " + formatRoughness(r));
+        measures.push_back("grid (roughness >= resolved), specular + diffuse");
+    } else {
+        measures = {"spheres, specular + diffuse", "spheres, specular only", "grid (roughness >= resolved), specular + diffuse", "grid, specular only"};
+    }
+    const std::vector<double> metals = a.benchScenes ? std::vector<double>{1.0} : std::vector<double>{1.0, 0.0};
     std::vector<EnvironmentRow> rows;
     BinsByEnvironment bins;
     for (const auto& [spec, set] : environmentList(a.sets, a.envs)) {
         const auto te = Clock::now();
-        const EnvCase env = loadCase(spec, set, a.width, true);
-        std::vector<Errors> spheres, gridErr;
-        for (double metallic : {1.0, 0.0})
+        const EnvCase env = loadCase(spec, set, a.width, true, a.bakes);
+        EnvironmentRow row{env.name, set, std::vector<std::vector<double>>(ms.size())};
+        std::vector<Errors> spheres(ms.size()), gridErr;
+        for (double metallic : metals)
             for (double r : roughnesses) {
                 std::vector<Pixel> px = sphere;
                 for (Pixel& p : px) p.roughness = r, p.metallic = metallic;
                 std::vector<Errors> one;
                 evaluatePixels(env, px, ms, a.exactPrefilter, one);
-                if (spheres.size() < ms.size()) spheres.resize(ms.size());
                 for (std::size_t m = 0; m < ms.size(); ++m) {
                     spheres[m].total.insert(spheres[m].total.end(), one[m].total.begin(), one[m].total.end());
                     spheres[m].specular.insert(spheres[m].specular.end(), one[m].specular.begin(), one[m].specular.end());
                     if (metallic > 0.5) addBins(bins[env.name], ms.size(), m, one[m]);
+                    if (a.benchScenes) row.values[m].push_back(rmse(one[m].total));
                     if (csv)
                         csv << env.name << ',' << set << ",sphere," << (metallic > 0.5 ? "copper" : "dielectric") << ',' << r << ',' << ms[m].name
                             << ',' << rmse(one[m].total) << ',' << rmse(one[m].specular) << ',' << one[m].total.size() << '\n';
                 }
             }
         evaluatePixels(env, grid, ms, a.exactPrefilter, gridErr);
-        EnvironmentRow row{env.name, set, {}};
         for (std::size_t m = 0; m < ms.size(); ++m) {
-            row.values.push_back({rmse(spheres[m].total), rmse(spheres[m].specular), rmse(gridErr[m].total), rmse(gridErr[m].specular)});
+            if (a.benchScenes) row.values[m].push_back(rmse(gridErr[m].total));
+            else row.values[m] = {rmse(spheres[m].total), rmse(spheres[m].specular), rmse(gridErr[m].total), rmse(gridErr[m].specular)};
             if (csv)
                 csv << env.name << ',' << set << ",grid,all,all," << ms[m].name << ',' << rmse(gridErr[m].total) << ',' << rmse(gridErr[m].specular)
                     << ',' << gridErr[m].total.size() << '\n';
@@ -166,7 +183,7 @@ int evalCommand(const StudyOptions& a)
 
     std::vector<std::string> names;
     for (const Method& m : ms) names.push_back(m.name);
-    printEvaluation(names, rows, a.bins ? &bins : nullptr);
+    printEvaluation(names, measures, rows, a.bins ? &bins : nullptr);
     std::fprintf(stderr, "eval took %.1f s\n", secondsSince(t0));
     return 0;
 }

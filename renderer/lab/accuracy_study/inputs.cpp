@@ -4,6 +4,7 @@
 // bench's scenes, and how a pixel's specular and diffuse combine as combineLobes does.
 #include "accuracy_study.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -143,14 +144,15 @@ std::vector<std::pair<std::string, std::string>> environmentList(const std::stri
     return out;
 }
 
-EnvCase loadCase(const std::string& spec, const std::string& set, int width, bool withChain)
+EnvCase loadCase(const std::string& spec, const std::string& set, int width, bool withChain, const std::string& bakes)
 {
     EnvCase c;
     c.name = shortName(spec, set);
     c.set = set;
     c.image = downsampleEquirectToWidth(loadEnvironment(spec).image, width);
     c.hash = imageHash(c.image);
-    if (withChain) c.chain = cachedChain(c.image, c.hash);
+    if (withChain && !bakes.empty()) c.bake = std::make_shared<CubeChain>(CubeChain::fromBake(fs::path(bakes) / c.name, PREFILTER_LAYOUT_QUADRATIC));
+    else if (withChain) c.chain = cachedChain(c.image, c.hash);
     c.sums = std::make_shared<ReferenceSums>(c.image);
     return c;
 }
@@ -176,39 +178,132 @@ std::vector<FullIntegral> fullIntegrals(const EnvCase& env, const std::vector<Qu
     return out;
 }
 
-// A unit sphere at the origin from the default orbit camera: position (0, 0, 3.5), looking
-// down -Z, vertical fov 45, square frame. Analytic normals.
-std::vector<Pixel> spherePixels(int size)
+// ---- Scenes: unit spheres, ray-traced per pixel --------------------------------------------
+namespace {
+
+// 4x MSAA's standard sample positions within a pixel (the D3D / GL pattern llvmpipe uses).
+constexpr std::array<glm::dvec2, 4> kMsaaSamples{{{0.375, 0.125}, {0.875, 0.375}, {0.125, 0.625}, {0.625, 0.875}}};
+
+// The view ray through (x, y) in pixels of a size x size frame, vertical fov 45, looking down -Z.
+glm::dvec3 viewRay(int size, double x, double y)
+{
+    const double t = std::tan(glm::radians(22.5));
+    return glm::normalize(glm::dvec3((2.0 * x / size - 1.0) * t, (2.0 * y / size - 1.0) * t, -1.0));
+}
+
+// The GPU's spheres are scene/sphere.cpp's makeUvSphere(1, segments, rings), 64 x 32 for the
+// sphere scene and 32 x 16 for the grid's (gpu_scene.cpp): flat triangles between vertices
+// at (sin t sin p, cos t, sin t cos p), t = pi j / rings, p = 2 pi i / segments, each
+// vertex's normal its position. At a point of a triangle the interpolated normal is then the
+// normalised point itself. Where a sphere is a few pixels wide (the grid), the grazing
+// pixels' n.v and which edge pixels are covered at all follow the mesh, not the sphere, and
+// the split sum's error lives in those pixels.
+struct UvSphereMesh {
+    int segments, rings;
+    glm::dvec3 vertex(int ring, int segment) const
+    {
+        const double t = kPi * ring / rings, p = 2.0 * kPi * segment / segments;
+        return {std::sin(t) * std::sin(p), std::cos(t), std::sin(t) * std::cos(p)};
+    }
+};
+constexpr UvSphereMesh kSphereSceneMesh{64, 32}, kGridMesh{32, 16};
+
+// Ray (origin o, direction d) against triangle (a, b, c), Moller-Trumbore: the distance, or
+// a negative value on a miss.
+double rayTriangle(glm::dvec3 o, glm::dvec3 d, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c)
+{
+    const glm::dvec3 e1 = b - a, e2 = c - a, q = glm::cross(d, e2);
+    const double det = glm::dot(e1, q);
+    if (std::abs(det) < 1e-14) return -1.0;
+    const glm::dvec3 s = o - a;
+    const double u = glm::dot(s, q) / det;
+    const glm::dvec3 r = glm::cross(s, e1);
+    const double v = glm::dot(d, r) / det;
+    if (u < 0.0 || v < 0.0 || u + v > 1.0) return -1.0;
+    return glm::dot(e2, r) / det;
+}
+
+// The nearest hit of the ray with the mesh of a unit sphere at the origin (o relative to its
+// centre): the distance, negative on a miss. The mesh lies inside the sphere, so only rays
+// that hit the sphere are tried, against the quads around the sphere's hit point.
+double rayUvSphere(const UvSphereMesh& mesh, glm::dvec3 o, glm::dvec3 d)
+{
+    const double b = glm::dot(o, d);
+    const double disc = b * b - (glm::dot(o, o) - 1.0);
+    if (disc < 0.0) return -1.0;
+    const glm::dvec3 p = o + (-b - std::sqrt(disc)) * d;
+    const int ring = std::clamp(int(std::acos(std::clamp(p.y, -1.0, 1.0)) / kPi * mesh.rings), 0, mesh.rings - 1);
+    double phi = std::atan2(p.x, p.z);
+    if (phi < 0.0) phi += 2.0 * kPi;
+    const int segment = int(phi / (2.0 * kPi) * mesh.segments);
+    double best = -1.0;
+    for (int j = std::max(ring - 1, 0); j <= std::min(ring + 1, mesh.rings - 1); ++j)
+        for (int i = segment - 1; i <= segment + 1; ++i) {
+            const glm::dvec3 v00 = mesh.vertex(j, i), v01 = mesh.vertex(j, i + 1), v10 = mesh.vertex(j + 1, i), v11 = mesh.vertex(j + 1, i + 1);
+            for (const double t : {rayTriangle(o, d, v00, v10, v11), rayTriangle(o, d, v00, v11, v01)})
+                if (t > 0.0 && (best < 0.0 || t < best)) best = t;
+        }
+    return best;
+}
+
+// The nearest sphere mesh hit by the ray from eye along d: (index into centres, distance),
+// index -1 when none.
+std::pair<int, double> nearestSphere(const UvSphereMesh& mesh, glm::dvec3 eye, glm::dvec3 d, const std::vector<glm::dvec3>& centres)
+{
+    std::pair<int, double> best{-1, 1e30};
+    for (std::size_t k = 0; k < centres.size(); ++k) {
+        const double dist = rayUvSphere(mesh, eye - centres[k], d);
+        if (dist > 0.0 && dist < best.second) best = {int(k), dist};
+    }
+    return best;
+}
+
+// The surface pixels of the unit sphere meshes at `centres` seen from `eye`, shaded at the
+// pixel centre; with msaaCoverage only those whose four MSAA samples all hit a sphere, as the
+// bench measures (isMeasuredPixel: an edge pixel mixes in the sky). `material(k)` gives
+// sphere k's (roughness, metallic).
+template <typename Material>
+std::vector<Pixel> tracePixels(const UvSphereMesh& mesh, int size, glm::dvec3 eye, const std::vector<glm::dvec3>& centres, bool msaaCoverage,
+                               const Material& material)
 {
     std::vector<Pixel> px;
-    const double t = std::tan(glm::radians(22.5));
-    const glm::dvec3 eye(0.0, 0.0, 3.5);
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
-            const glm::dvec3 d = glm::normalize(glm::dvec3((2.0 * (i + 0.5) / size - 1.0) * t, (2.0 * (j + 0.5) / size - 1.0) * t, -1.0));
-            const double b = glm::dot(eye, d);
-            const double disc = b * b - (glm::dot(eye, eye) - 1.0);
-            if (disc < 0.0) continue;
-            const double dist = -b - std::sqrt(disc);
-            const glm::dvec3 p = eye + dist * d;
-            px.push_back({glm::normalize(p), -d, 0.0, 0.0});
+            const glm::dvec3 d = viewRay(size, i + 0.5, j + 0.5);
+            const auto [k, dist] = nearestSphere(mesh, eye, d, centres);
+            if (k < 0) continue;
+            if (msaaCoverage && std::any_of(kMsaaSamples.begin(), kMsaaSamples.end(), [&](glm::dvec2 s) {
+                    return nearestSphere(mesh, eye, viewRay(size, i + s.x, j + s.y), centres).first < 0;
+                }))
+                continue;
+            const auto [roughness, metallic] = material(k);
+            px.push_back({glm::normalize(eye + dist * d - centres[std::size_t(k)]), -d, roughness, metallic});
         }
     return px;
+}
+
+} // namespace
+
+std::vector<Pixel> spherePixels(int size, double distance, bool msaaCoverage)
+{
+    return tracePixels(kSphereSceneMesh, size, glm::dvec3(0.0, 0.0, distance), {glm::dvec3(0.0)}, msaaCoverage, [](int) { return std::pair{0.0, 0.0}; });
 }
 
 // The 7 x 7 grid (scene/sphere.cpp: metallic = row / 6 upwards, roughness = column / 6 to the
 // right, spacing 2.5) with its labels' bounds, framed by frameBox (camera.cpp) at yaw = pitch
 // = 0 and aspect 1, as gpu_scene.cpp and the bench do.
-std::vector<Pixel> gridPixels(int size)
+std::vector<Pixel> gridPixels(int size, bool msaaCoverage)
 {
     const double spacing = 2.5;
     auto offset = [&](int i) { return (i - 3) * spacing; };
     glm::dvec3 lo(1e9), hi(-1e9);
     auto extend = [&](glm::dvec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); };
+    std::vector<glm::dvec3> centres;
     for (int r = 0; r < 7; ++r)
         for (int c = 0; c < 7; ++c) {
-            extend(glm::dvec3(offset(c), offset(r), 0.0) - 1.0);
-            extend(glm::dvec3(offset(c), offset(r), 0.0) + 1.0);
+            centres.emplace_back(offset(c), offset(r), 0.0);
+            extend(centres.back() - 1.0);
+            extend(centres.back() + 1.0);
         }
     const double left = offset(0), bottom = offset(0);
     // Labels: axis titles at 1.5 spacings (the metallic title one unit further left, half
@@ -225,29 +320,7 @@ std::vector<Pixel> gridPixels(int size)
     const double t = std::tan(glm::radians(22.5));
     const double distance = 1.08 * std::max(half.x / t, half.y / t) + half.z;
     const glm::dvec3 eye = centre + glm::dvec3(0.0, 0.0, distance);
-
-    std::vector<Pixel> px;
-    for (int j = 0; j < size; ++j)
-        for (int i = 0; i < size; ++i) {
-            const glm::dvec3 d = glm::normalize(glm::dvec3((2.0 * (i + 0.5) / size - 1.0) * t, (2.0 * (j + 0.5) / size - 1.0) * t, -1.0));
-            double best = 1e30;
-            Pixel hit{};
-            bool any = false;
-            for (int r = 0; r < 7; ++r)
-                for (int c = 0; c < 7; ++c) {
-                    const glm::dvec3 o = eye - glm::dvec3(offset(c), offset(r), 0.0);
-                    const double b = glm::dot(o, d);
-                    const double disc = b * b - (glm::dot(o, o) - 1.0);
-                    if (disc < 0.0) continue;
-                    const double dist = -b - std::sqrt(disc);
-                    if (dist <= 0.0 || dist >= best) continue;
-                    best = dist;
-                    any = true;
-                    hit = {glm::normalize(o + dist * d), -d, c / 6.0, r / 6.0};
-                }
-            if (any) px.push_back(hit);
-        }
-    return px;
+    return tracePixels(kGridMesh, size, eye, centres, msaaCoverage, [](int k) { return std::pair{(k % 7) / 6.0, (k / 7) / 6.0}; });
 }
 
 double pixelError(glm::dvec3 value, glm::dvec3 reference)

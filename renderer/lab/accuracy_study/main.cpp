@@ -17,10 +17,14 @@ const char* const kUsage =
     "usage: accuracy_study eval [--width 256] [--sphere 64] [--grid 128] [--set bundled,unseen,procedural]\n"
     "                           [--env PATH|builtin:SPEC ...] [--csv FILE] [--table FILE.inc ...]\n"
     "                           [--bins] [--exact-prefilter] [--roughness 0.2,0.3,...]\n"
+    "                           [--bench-scenes] [--bakes DIR]\n"
     "       accuracy_study fit  [--width 256] [--taps 1|2|3] [--frames 96] [--size 16] [--out FILE.inc]\n"
-    "                           [--min-roughness 0.15] [--mixed-objective] [--init ONE_TAP.inc] [--seed 14]\n"
+    "                           [--min-roughness 0.15] [--mixed-objective] [--init ONE_TAP.inc] [--seed 14] [--bakes DIR]\n"
+    "                           [--per-map-ratio]\n"
     "eval measures every method against the full integral on the bench's scenes (markdown on stdout);\n"
     "fit refits the lobe table on the 8 bundled maps (renderer/ibl/specular_lobe_fit.inc by default).\n"
+    "--bench-scenes: the GPU measure's scenes (scripts/measure-lobe.sh): a copper sphere per --roughness, the grid.\n"
+    "--bakes DIR: read each map's prefiltered cube from DIR/<map>/ (scripts/accuracy-bakes.sh writes them).\n"
     "See docs/accuracy-study.md. Caches: <build>/accuracy_cache (delete it to recompute).\n";
 
 std::vector<double> parseList(const std::string& text)
@@ -47,6 +51,7 @@ int main(int argc, char** argv)
         return 0;
     }
     try {
+        bool sphereGiven = false, roughnessGiven = false;
         for (int i = 2; i < argc; ++i) {
             const std::string k = argv[i];
             auto next = [&]() -> std::string {
@@ -54,7 +59,7 @@ int main(int argc, char** argv)
                 return argv[++i];
             };
             if (k == "--width") a.width = std::stoi(next());
-            else if (k == "--sphere") a.sphere = std::stoi(next());
+            else if (k == "--sphere") a.sphere = std::stoi(next()), sphereGiven = true;
             else if (k == "--grid") a.grid = std::stoi(next());
             else if (k == "--set") a.sets = next();
             else if (k == "--env") a.envs.push_back(next());
@@ -68,14 +73,20 @@ int main(int argc, char** argv)
             else if (k == "--init") a.init = next();
             else if (k == "--exact-prefilter") a.exactPrefilter = true;
             else if (k == "--bins") a.bins = true;
+            else if (k == "--bench-scenes") a.benchScenes = true;
+            else if (k == "--bakes") a.bakes = next();
             else if (k == "--mixed-objective") a.mixedObjective = true;
-            else if (k == "--roughness") a.roughnesses = parseList(next());
+            else if (k == "--per-map-ratio") a.perMapRatio = true;
+            else if (k == "--roughness") a.roughnesses = parseList(next()), roughnessGiven = true;
             else if (k == "--seed") a.seed = unsigned(std::stoul(next()));
             else {
                 std::fprintf(stderr, "unknown option %s\n%s", k.c_str(), kUsage);
                 return 2;
             }
         }
+        // The GPU measure's frames are 128 x 128, its spheres the two roughnesses.
+        if (a.benchScenes && !sphereGiven) a.sphere = 128;
+        if (a.benchScenes && !roughnessGiven) a.roughnesses = {0.3, 0.6};
         if (a.command == "eval") return evalCommand(a);
         if (a.command == "fit") return fitCommand(a);
     } catch (const std::exception& e) {
