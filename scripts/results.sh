@@ -33,6 +33,7 @@ bake_s=$(( $(date +%s) - start ))
 # their error views on a sphere (grazing views at its rim), on two maps.
 start=$(date +%s)
 "$iblab" compare --size "${COMPARE_SIZE:-224}" --methods splitsum,fitted-lobe -o "$out/compare.png" > "$scratch/compare.md"
+rm -f "$out/compare.png.json" # its settings sidecar names this checkout's paths
 compare_s=$(( $(date +%s) - start ))
 # Auto quality on two maps (the Study panel's Auto quality, headless).
 start=$(date +%s)
@@ -86,4 +87,5 @@ echo "\$ build/app/iblab ${auto_cmd[*]}"
 grep -v 'bench\.csv$' "$scratch/auto.txt"
 echo '```'
 echo
-awk '/^\|/ { inside = 1; print; next } inside { exit }' "$scratch/auto/bench.md"
+# Its report's auto section: per map the table and the reasons (the sweep's tables follow it).
+awk 'NR > 2 && /^Per environment/ { exit } NR > 2 { print }' "$scratch/auto/bench.md"

@@ -175,7 +175,8 @@ struct Shaded {
     glm::dvec3 total, specular;
 };
 
-// Shades a pixel's diffuse and specular as combineLobes does, given the specular radiance.
+// Shades a pixel with the core's combineLobes (ibl/brdf.hpp, the GLSL's twin), given the
+// specular radiance; the base colour is copper's.
 Shaded combine(const Pixel& p, glm::dvec3 specular, glm::dvec3 irradiance, glm::dvec3 F0);
 
 // The bench's per-pixel measure (common/error_metrics.glsl).

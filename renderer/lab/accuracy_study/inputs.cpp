@@ -332,9 +332,8 @@ double pixelError(glm::dvec3 value, glm::dvec3 reference)
 Shaded combine(const Pixel& p, glm::dvec3 specular, glm::dvec3 irradiance, glm::dvec3 F0)
 {
     const double NdotV = std::max(glm::dot(p.n, p.v), 1e-4);
-    const glm::dvec3 F = fresnelSchlickRoughness(NdotV, F0, p.roughness);
-    const glm::dvec3 kD = (glm::dvec3(1.0) - F) * (1.0 - p.metallic);
-    return {kD * kCopper * irradiance / kPi + specular, specular};
+    const SurfaceMaterial material{.baseColor = kCopper, .metallic = p.metallic, .roughness = p.roughness, .F0 = F0};
+    return {combineLobes(material, NdotV, irradiance, specular), specular};
 }
 
 } // namespace iblab::accuracy
