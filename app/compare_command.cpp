@@ -17,6 +17,7 @@
 #include "command_support.hpp"
 #include "commands.hpp"
 #include "frame/camera.hpp"
+#include "lab/bench_sweep.hpp"
 #include "lab/harness.hpp"
 #include "lab_session.hpp"
 #include "panel_grid.hpp"
@@ -34,15 +35,12 @@ struct CompareOptions {
     bool json = false;
 };
 
-std::string methodTitle(ShadingMethod method)
+// The bench's name for what a frame reads (so the figure and the bench's tables agree, and a
+// split sum read at a dominant direction says so), or the method's own name.
+std::string methodTitle(const SamplingSettings& sampling)
 {
-    switch (method) {
-    case ShadingMethod::SplitSum: return "split sum";
-    case ShadingMethod::Sampled: return "sampled";
-    case ShadingMethod::FittedLobe: return "fitted lobe";
-    case ShadingMethod::Reference: return "reference";
-    }
-    return std::string(enumName(method));
+    const std::string read = bench::specularReadName(sampling);
+    return read.empty() ? std::string(enumName(sampling.method)) : read;
 }
 
 int runCompare(const CompareOptions& o)
@@ -95,13 +93,13 @@ int runCompare(const CompareOptions& o)
                 char rmse[96];
                 if (error.linear.pixels > 0) std::snprintf(rmse, sizeof rmse, "relative RMSE %.3f", error.linear.relativeRmse);
                 else std::snprintf(rmse, sizeof rmse, "not measured: reference resolves r >= %.2f", harness.reference().minResolvedRoughness);
-                overlay.drawOver(renderer, frame, size, size, {methodTitle(o.methods[m]), rmse});
+                overlay.drawOver(renderer, frame, size, size, {methodTitle(frame.sampling), rmse});
                 grid.place(renderer.readDisplayImage(), 1 + 2 * int(m), int(row));
 
                 FrameSettings errorView = frame;
                 errorView.view.mode = ViewMode::Error;
                 harness.render(errorView, size, size);
-                overlay.drawOver(renderer, errorView, size, size, {"error of " + methodTitle(o.methods[m])});
+                overlay.drawOver(renderer, errorView, size, size, {"error of " + methodTitle(frame.sampling)});
                 grid.place(renderer.readDisplayImage(), 2 + 2 * int(m), int(row));
 
                 nlohmann::ordered_json method;
@@ -121,7 +119,11 @@ int runCompare(const CompareOptions& o)
         }
         // Relative RMSE against the reference, and each method's ratio to the first one's.
         std::printf("| map |");
-        for (ShadingMethod m : o.methods) std::printf(" %s |", methodTitle(m).c_str());
+        for (ShadingMethod m : o.methods) {
+            SamplingSettings sampling = o.settings.sampling;
+            sampling.method = m;
+            std::printf(" %s |", methodTitle(sampling).c_str());
+        }
         std::printf("\n|---|");
         for (std::size_t i = 0; i < o.methods.size(); ++i) std::printf("---|");
         std::printf("\n");
