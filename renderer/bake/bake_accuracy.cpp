@@ -85,16 +85,21 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     const auto start = std::chrono::steady_clock::now();
     BakeErrors errors;
     const ImageRGB32F reduced = reduceTo(environment, options.maxReferenceWidthForWideLobes);
+    const ZonalReference fullSums(environment);
+    const ZonalReference reducedSums(reduced);
 
     // Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
-    auto referenceMap = [&](float roughness) -> const ImageRGB32F& { return roughness >= 0.5f ? reduced : environment; };
+    auto referenceMap = [&](float roughness) -> const ZonalReference& { return roughness >= 0.5f ? reducedSums : fullSums; };
     // sqrt(sum |baked - ref|^2 / sum |ref|^2) of baked values against the prefiltered reference
     // at `roughness` in the given directions.
     auto prefilterRelativeRmse = [&](const std::vector<glm::dvec3>& baked, const std::vector<glm::dvec3>& directions, float roughness) {
+        std::vector<ZonalReference::PrefilterQuery> queries;
+        for (const glm::dvec3& d : directions) queries.push_back({d, double(roughness)});
+        const std::vector<glm::dvec3> references = referenceMap(roughness).prefilteredRadiance(queries);
         double sumErr2 = 0.0;
         double sumRef2 = 0.0;
         for (std::size_t i = 0; i < directions.size(); ++i) {
-            const glm::dvec3 ref = referencePrefilteredRadiance(referenceMap(roughness), directions[i], roughness);
+            const glm::dvec3& ref = references[i];
             const glm::dvec3 d = baked[i] - ref;
             sumErr2 += glm::dot(d, d);
             sumRef2 += glm::dot(ref, ref);
@@ -113,7 +118,7 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
             baked.emplace_back(image.rgb(t.face, t.x, t.row));
         }
         errors.prefilter.push_back(
-            {level, roughness, prefilterRelativeRmse(baked, directions, roughness), int(directions.size()), referenceMap(roughness).width});
+            {level, roughness, prefilterRelativeRmse(baked, directions, roughness), int(directions.size()), referenceMap(roughness).width()});
     }
 
     const std::vector<glm::dvec3> shadedDirections = fibonacciSphere(options.shadedDirections);
@@ -132,7 +137,7 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
         const std::vector<glm::dvec3> baked(first, first + std::ptrdiff_t(shadedDirections.size()));
         const double rmse = prefilterRelativeRmse(baked, shadedDirections, roughness);
         errors.prefilterShaded.push_back({roughness, prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout)),
-                                          rmse, int(shadedDirections.size()), referenceMap(roughness).width});
+                                          rmse, int(shadedDirections.size()), referenceMap(roughness).width()});
         sumSquares += rmse * rmse;
     }
     if (!errors.prefilterShaded.empty())
@@ -144,11 +149,9 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
         const auto texels = cubeTexelGrid(size, options.texelsPerFaceEdge);
         const CubeImage directions(size);
         std::vector<glm::dvec3> normals;
-        std::vector<glm::dvec3> reference;
-        for (const CubeTexelRef& t : texels) {
+        for (const CubeTexelRef& t : texels)
             normals.push_back(glm::normalize(glm::dvec3(directions.texelDirection(t.face, t.x, t.row))));
-            reference.push_back(referenceIrradiance(reduced, normals.back()));
-        }
+        const std::vector<glm::dvec3> reference = reducedSums.irradiance(normals);
         if (!cube) {
             std::vector<glm::dvec3> sh;
             std::vector<glm::dvec3> shWindowed;
@@ -172,11 +175,8 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     // texel-centre numbers above leave out, and compares cubes of different sizes on the
     // same directions. A one-level cube read at roughness 0 is read at lod 0.
     std::vector<glm::vec4> irradianceQueries;
-    std::vector<glm::dvec3> shadedReference;
-    for (const glm::dvec3& d : shadedDirections) {
-        irradianceQueries.emplace_back(glm::vec3(d), 0.0f);
-        shadedReference.push_back(referenceIrradiance(reduced, d));
-    }
+    for (const glm::dvec3& d : shadedDirections) irradianceQueries.emplace_back(glm::vec3(d), 0.0f);
+    const std::vector<glm::dvec3> shadedReference = reducedSums.irradiance(shadedDirections);
     auto shadedIrradianceErrors = [&](const BakedTexture& cube) {
         const std::vector<glm::vec3> read = BakePasses(shaders).samplePrefiltered(cube, RoughnessLayout::Linear, irradianceQueries);
         return relativeErrors(std::vector<glm::dvec3>(read.begin(), read.end()), shadedReference);
