@@ -458,21 +458,28 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     dispatchCube(program, out, slice);
 }
 
-bool BakePasses::copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
-                                 const PrefilterSettings& settings)
+std::optional<int> BakePasses::mirrorSourceLevel(const BakedTexture& environment, const BakedTexture& prefiltered, int level,
+                                                 const PrefilterSettings& settings)
 {
     // The mirror level reads the source mip with its own texel size at texel centres, which
     // is that mip's texels themselves: a copy, when the formats and sizes match.
-    if (!settings.mirrorCopy || prefilterMipRoughness(settings, slice.level) > 0.0f || environment.internalFormat != out.internalFormat)
-        return false;
+    if (!settings.mirrorCopy || prefilterMipRoughness(settings, level) > 0.0f || environment.internalFormat != prefiltered.internalFormat)
+        return std::nullopt;
     int sourceLevel = 0;
-    while (sourceLevel + 1 < environment.levels && environment.levelSize(sourceLevel) > out.levelSize(slice.level))
+    while (sourceLevel + 1 < environment.levels && environment.levelSize(sourceLevel) > prefiltered.levelSize(level))
         ++sourceLevel;
-    if (environment.levelSize(sourceLevel) != out.levelSize(slice.level))
+    if (environment.levelSize(sourceLevel) != prefiltered.levelSize(level))
+        return std::nullopt;
+    return sourceLevel;
+}
+
+bool BakePasses::copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
+                                 const PrefilterSettings& settings)
+{
+    const std::optional<int> sourceLevel = mirrorSourceLevel(environment, out, slice.level, settings);
+    if (!sourceLevel)
         return false;
-    glCopyImageSubData(environment.id(), GL_TEXTURE_CUBE_MAP, sourceLevel, 0, slice.firstRow, slice.firstFace, out.id(),
-                       GL_TEXTURE_CUBE_MAP, slice.level, 0, slice.firstRow, slice.firstFace, out.levelSize(slice.level),
-                       slice.rowCount, slice.faceCount);
+    copyCubeRows(environment, *sourceLevel, out, slice.level, slice.firstFace, slice.faceCount, slice.firstRow, slice.rowCount);
     return true;
 }
 
