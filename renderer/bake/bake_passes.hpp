@@ -53,8 +53,8 @@ public:
     // row's pi/H, so its lod is at most log2(2H / (pi f)); levels are built up to that lod
     // rounded to the nearest (a footprint of under 1.5 texels is read bilinearly at lod 0).
     static int equirectLevelsForCube(int width, int height, int faceSize);
-    // The equirect as an RGBA32F 2D texture (REPEAT in s, CLAMP_TO_EDGE in t) with `levels`
-    // mips (0: the full chain).
+    // The equirect as an RGBA32F 2D texture (RGB32F when it has one level; REPEAT in s,
+    // CLAMP_TO_EDGE in t) with `levels` mips (0: the full chain).
     gl::Texture uploadEquirect(const ImageRGB32F& image, int levels = 0);
     void equirectToCube(GLuint equirect, const BakedTexture& cube, const CubeSlice& slice);
     // Levels 1.. from level 0 by 2x2 box averages (downsample.comp), per face for cubes.
