@@ -230,9 +230,13 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
         uploadCubeLevel(result.irradianceCube, 0, readCubeExr(directory / irradianceFileName(s.irradiance), irradianceFace));
     }
     result.prefiltered = createCubeTexture(format, s.prefilter.faceSize, s.prefilter.levels);
-    const int mirrorSource = meta.contains("prefiltered") && meta["prefiltered"].is_object()
-                                 ? meta["prefiltered"].value(kMirrorOfEnvironmentLevel, -1)
-                                 : -1;
+    int mirrorSource = -1;
+    if (meta.contains("prefiltered") && meta["prefiltered"].is_object() && meta["prefiltered"].contains(kMirrorOfEnvironmentLevel)) {
+        const nlohmann::json& level = meta["prefiltered"][kMirrorOfEnvironmentLevel];
+        if (!level.is_number_integer())
+            throw BakeFileError(metaPath, std::string("prefiltered.") + kMirrorOfEnvironmentLevel + " is not a level");
+        mirrorSource = level.get<int>();
+    }
     for (int level = 0; level < s.prefilter.levels; ++level) {
         // Stored once, as the environment's level (snapshotBake): the same texels again. (A
         // bake.json that names a level the settings would not copy: the file is missing.)

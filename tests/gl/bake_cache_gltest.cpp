@@ -194,6 +194,17 @@ TEST_F(GlTest, AnEntryOfAnotherFormatVersionIsReportedAndRebuilt)
     });
 }
 
+TEST_F(GlTest, ABadMirrorLevelIsReportedAndRebuilt)
+{
+    expectDetectedAndRebuilt("bake.json", [](const fs::path& p) {
+        std::string text = readTextFile(p.string());
+        const std::string level = "\"mirror_of_environment_level\": 0";
+        ASSERT_NE(text.find(level), std::string::npos) << text;
+        text.replace(text.find(level), level.size(), "\"mirror_of_environment_level\": \"zero\"");
+        std::ofstream(p, std::ios::trunc) << text;
+    });
+}
+
 TEST_F(GlTest, ACorruptLutIsReportedAndRebuilt)
 {
     auto shaders = library();
