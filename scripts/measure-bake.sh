@@ -6,6 +6,7 @@
 #       each against the exact references (deterministic: one run)
 #   scripts/measure-bake.sh batch           # 4 maps in one process against one map per process
 #   scripts/measure-bake.sh cmgen           # iblab against Filament's cmgen, process to process
+#                                           # (IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors)
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
 # Every time is the minimum of 3 interleaved runs; process times are wall clock around the
 # whole process (start, context, load, bake, errors, cache writes, exit).
@@ -89,8 +90,10 @@ PY
 
 # iblab against Filament's cmgen on courtyard at 1024x512 as .hdr (oiiotool converts it; without
 # it both read the .exr): cmgen --size=128 --ibl-samples=64 --ibl-ld (Filament's own defaults
-# for a prefiltered cube), iblab bake at its default preset (prefilter 128, more samples, the
-# moment irradiance cube, SH9), LUTs cached, errors against the exact references on.
+# for a prefiltered cube), iblab bake at its default preset (prefilter 256, more samples, the
+# moment irradiance cube, SH9), LUTs cached, with and without the errors against the exact
+# references. The one-run line's "programs compiled meanwhile": while the map decoded, so
+# outside the bake's own total (0 for builds before that overlap).
 measure_cmgen() {
   local map=assets/environments/courtyard.exr
   if command -v oiiotool > /dev/null; then
@@ -102,7 +105,10 @@ measure_cmgen() {
   "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors > /dev/null # the LUTs, once
   local have_cmgen=1
   command -v cmgen > /dev/null || { have_cmgen=0; echo "measure-bake: cmgen is not installed (Debian: libfilament-tools): iblab alone"; }
-  local ours=() ours_no_errors=() theirs=()
+  local baseline=${IBLAB_BASELINE:-}
+  # Its own cache directory: an older build may key and lay out its entries differently.
+  [ -n "$baseline" ] && "$baseline" bake --env "$map" --cache-dir "$cache/baseline" --no-errors > /dev/null
+  local ours=() ours_no_errors=() theirs=() older=()
   for _ in 1 2 3; do
     if [ $have_cmgen = 1 ]; then
       rm -rf "$cache/cmgen"
@@ -112,27 +118,39 @@ measure_cmgen() {
     ours+=("$(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --json)")
     rm -rf "$cache/bake"
     ours_no_errors+=("$(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json)")
+    if [ -n "$baseline" ]; then
+      rm -rf "$cache/baseline/bake"
+      older+=("$(wall_ms "$baseline" bake --env "$map" --cache-dir "$cache/baseline" --no-errors --json)")
+    fi
   done
   local with without reference=""
   with=$(echo "${ours[*]}" | minimum)
   without=$(echo "${ours_no_errors[*]}" | minimum)
   [ $have_cmgen = 1 ] && reference=$(echo "${theirs[*]}" | minimum)
-  python3 - "$with" "$without" "$reference" <<'PY'
+  local older_min=""
+  [ -n "$baseline" ] && older_min=$(echo "${older[*]}" | minimum)
+  python3 - "$with" "$without" "$reference" "$older_min" "$baseline" <<'PY'
 import sys
-with_errors, without, cmgen = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+with_errors, without, cmgen, older, baseline = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5]
 line = f"courtyard 1024x512: iblab bake {with_errors:.0f} ms with the errors against the exact references, {without:.0f} ms with --no-errors"
 if cmgen:
     cmgen = float(cmgen)
     line += f"; cmgen {cmgen:.0f} ms: iblab takes {with_errors / cmgen:.2f}x cmgen's time with errors, {without / cmgen:.2f}x without"
 print(line)
+if older:
+    line = f"  baseline {baseline}: {float(older):.0f} ms with --no-errors"
+    if cmgen:
+        line += f", {float(older) / cmgen:.2f}x cmgen's time"
+    print(line)
 PY
   rm -rf "$cache/bake"
   "$iblab" bake --env "$map" --cache-dir "$cache" --json | python3 -c '
 import json, sys
 j = json.load(sys.stdin)
 t, o = j["timings_ms"], j["other_ms"]
-print("  iblab, one run: bake %.0f ms (of which shaders %.0f), environment load %.0f, context %.0f, cache write wait %.0f, "
-      "process until the report %.0f" % (t["total"], t["shaders"], o["environment_load"], o["context"], o["cache_write_wait"], o["process"]))'
+print("  iblab, one run: bake %.0f ms (of which shaders %.0f), environment load %.0f, context %.0f, programs compiled meanwhile %.0f, "
+      "cache write wait %.0f, process until the report %.0f" % (t["total"], t["shaders"], o["environment_load"], o["context"],
+      o.get("programs_while_loading", 0), o["cache_write_wait"], o["process"]))'
   echo "  iblab errors against the exact references:"
   "$iblab" bake --env "$map" --no-cache --json | errors
 }

@@ -121,7 +121,7 @@ std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& se
 std::string BakeCache::lutKey(int size, int samples, GeometryTerm term)
 {
     return "brdf_lut_" + std::string(enumName(term)) + "_" + std::to_string(size) + "_" + std::to_string(samples) + "_v" +
-           std::to_string(kBakeFormatVersion);
+           std::to_string(kLutFormatVersion);
 }
 
 fs::path BakeCache::bakeDirectory(const std::string& key) const { return root_ / "bake" / key; }
@@ -153,7 +153,7 @@ void BakeCache::storeBake(const BakeResult& result)
 {
     if (!enabled())
         return;
-    auto snapshot = std::make_shared<BakeSnapshot>(snapshotBake(result));
+    auto snapshot = std::make_shared<BakeSnapshot>(snapshotBake(result, {}, MirrorFile::FromEnvironment));
     snapshot->exrCompression = exrCompression_;
     snapshot->durability = Durability::NoFlush;
     const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));

@@ -39,7 +39,7 @@ namespace iblab::bake {
 // Empty when none of the variables is set.
 std::filesystem::path defaultCacheDirectory();
 
-inline constexpr const char* kCacheExrCompression = "rle";
+inline constexpr const char* kCacheExrCompression = "none";
 
 class BakeCache {
 public:

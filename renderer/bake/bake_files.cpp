@@ -3,10 +3,12 @@
 #include <bit>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "bake/bake_passes.hpp"
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
 #include "io/image_codec.hpp"
@@ -44,24 +46,17 @@ RgbImage readExrRgb(const fs::path& path)
     return image;
 }
 
-std::vector<float> dropAlpha(const std::vector<glm::vec4>& texels)
+// RGB of the RGBA texels read back, a tile per face.
+void writeCubeExr(const fs::path& path, const StoredCubeLevel& image, const BakeSnapshot& snapshot)
 {
-    std::vector<float> rgb;
-    rgb.reserve(texels.size() * 3);
-    for (const glm::vec4& t : texels) {
-        rgb.push_back(t.r);
-        rgb.push_back(t.g);
-        rgb.push_back(t.b);
-    }
-    return rgb;
-}
-
-void writeCubeExr(const fs::path& path, const CubeImage& image, const BakeSnapshot& snapshot)
-{
-    writeExr(path.string(), image.size, 6 * image.size, 3, dropAlpha(image.texels),
-             {.exrPixelType = snapshot.halfPixels ? ExrPixelType::Half : ExrPixelType::Float,
-              .exrCompression = snapshot.exrCompression,
-              .durability = snapshot.durability});
+    writeExr(path.string(),
+             ExrPixels{.width = image.size,
+                       .height = 6 * image.size,
+                       .channels = 3,
+                       .pixelValues = 4,
+                       .type = image.internalFormat == GL_RGBA16F ? ExrPixelType::Half : ExrPixelType::Float,
+                       .data = image.bytes.get()},
+             {.exrCompression = snapshot.exrCompression, .exrTileSize = image.size, .durability = snapshot.durability});
 }
 
 CubeImage readCubeExr(const fs::path& path, int expectedSize)
@@ -122,6 +117,8 @@ ordered_json textureJson(const BakedTexture& t)
 
 std::string prefilterFile(int level) { return "prefiltered_mip" + std::to_string(level) + ".exr"; }
 
+constexpr const char* kMirrorOfEnvironmentLevel = "mirror_of_environment_level";
+
 } // namespace
 
 std::string shJsonText(const ShResult& sh, int indent)
@@ -136,15 +133,21 @@ std::string shJsonText(const ShResult& sh, int indent)
     return j.dump(indent);
 }
 
-BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson)
+BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson, MirrorFile mirror)
 {
     BakeSnapshot snapshot;
-    snapshot.halfPixels = result.environmentCube.internalFormat == GL_RGBA16F;
-    snapshot.cubes.push_back({"environment.exr", readCubeLevel(result.environmentCube, 0)});
+    snapshot.cubes.push_back({"environment.exr", readStoredCubeLevel(result.environmentCube, 0)});
     if (result.irradianceCube)
-        snapshot.cubes.push_back({irradianceFileName(result.settings.irradiance), readCubeLevel(result.irradianceCube, 0)});
-    for (int level = 0; level < result.prefiltered.levels; ++level)
-        snapshot.cubes.push_back({prefilterFile(level), readCubeLevel(result.prefiltered, level)});
+        snapshot.cubes.push_back({irradianceFileName(result.settings.irradiance), readStoredCubeLevel(result.irradianceCube, 0)});
+    std::optional<int> mirrorSource;
+    for (int level = 0; level < result.prefiltered.levels; ++level) {
+        const std::optional<int> source =
+            BakePasses::mirrorSourceLevel(result.environmentCube, result.prefiltered, level, result.settings.prefilter);
+        if (mirror == MirrorFile::FromEnvironment && source)
+            mirrorSource = source;
+        else
+            snapshot.cubes.push_back({prefilterFile(level), readStoredCubeLevel(result.prefiltered, level)});
+    }
     snapshot.shJson = shJsonText(result.sh) + "\n";
 
     ordered_json files = ordered_json::array();
@@ -167,6 +170,8 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
     for (int level = 0; level < result.prefiltered.levels; ++level)
         roughness.push_back(prefilterMipRoughness(result.settings.prefilter, level));
     meta["prefiltered"]["roughness_per_mip"] = roughness;
+    if (mirrorSource)
+        meta["prefiltered"][kMirrorOfEnvironmentLevel] = *mirrorSource;
     meta["cube_layout"] = "one EXR per level: width = face size, height = 6 x face size, faces +X,-X,+Y,-Y,+Z,-Z top to "
                           "bottom, each face's t = 0 row first";
     meta["files"] = files;
@@ -225,9 +230,23 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
         uploadCubeLevel(result.irradianceCube, 0, readCubeExr(directory / irradianceFileName(s.irradiance), irradianceFace));
     }
     result.prefiltered = createCubeTexture(format, s.prefilter.faceSize, s.prefilter.levels);
-    for (int level = 0; level < s.prefilter.levels; ++level)
+    int mirrorSource = -1;
+    if (meta.contains("prefiltered") && meta["prefiltered"].is_object() && meta["prefiltered"].contains(kMirrorOfEnvironmentLevel)) {
+        const nlohmann::json& level = meta["prefiltered"][kMirrorOfEnvironmentLevel];
+        if (!level.is_number_integer())
+            throw BakeFileError(metaPath, std::string("prefiltered.") + kMirrorOfEnvironmentLevel + " is not a level");
+        mirrorSource = level.get<int>();
+    }
+    for (int level = 0; level < s.prefilter.levels; ++level) {
+        // Stored once, as the environment's level (snapshotBake): the same texels again. (A
+        // bake.json that names a level the settings would not copy: the file is missing.)
+        if (mirrorSource >= 0 && BakePasses::mirrorSourceLevel(result.environmentCube, result.prefiltered, level, s.prefilter) == mirrorSource) {
+            copyCubeRows(result.environmentCube, mirrorSource, result.prefiltered, level, 0, 6, 0, result.prefiltered.levelSize(level));
+            continue;
+        }
         uploadCubeLevel(result.prefiltered, level,
                         readCubeExr(directory / prefilterFile(level), result.prefiltered.levelSize(level)));
+    }
 
     const fs::path shPath = directory / "sh.json";
     const nlohmann::json sh = readJson(shPath);

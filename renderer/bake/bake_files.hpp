@@ -5,7 +5,9 @@
 //   irradiance_riemann.exr     when baked
 //   irradiance_importance.exr  when baked
 //   irradiance_moments.exr     when baked
-//   prefiltered_mip<k>.exr     one file per mip, k = 0 .. levels - 1
+//   prefiltered_mip<k>.exr     one file per mip, k = 0 .. levels - 1; in the cache, not the
+//                              mirror mip when it is a copy of an environment level
+//                              (bake.json: prefiltered.mirror_of_environment_level)
 //   sh.json                    kSh9Convention, radiance / irradiance / windowed irradiance
 //   bake.json                  written last: format, source, content hash, settings, sizes,
 //                              formats, the list of files, the timings of the bake
@@ -27,7 +29,16 @@
 
 namespace iblab::bake {
 
-inline constexpr int kBakeFormatVersion = 1;
+// 2: the mirror mip is not stored twice in the cache. Older entries have other keys
+// (BakeCache::bakeKey hashes this) and a bake.json that readBakeDirectory refuses.
+inline constexpr int kBakeFormatVersion = 2;
+// The LUT files' own, unchanged since version 1 of the bakes.
+inline constexpr int kLutFormatVersion = 1;
+
+// Whether a prefiltered level that is a texel copy of an environment level (the mirror,
+// BakePasses::mirrorSourceLevel) gets a file of its own (`--out`: every mip a file, for
+// other tools) or is copied from the environment's when read (the cache: stored once).
+enum class MirrorFile { Written, FromEnvironment };
 
 // A file of a stored bake that cannot be used: missing where listed, unreadable,
 // truncated, the wrong size, or bad JSON. what() is one line naming the file.
@@ -44,10 +55,9 @@ struct BakeFileError : std::runtime_error {
 struct BakeSnapshot {
     struct CubeFile {
         std::string name; // "prefiltered_mip2.exr"
-        CubeImage image;
+        StoredCubeLevel image; // written as stored: half textures as half EXRs, lossless
     };
     std::vector<CubeFile> cubes;
-    bool halfPixels = true;
     std::string exrCompression = "zip"; // ImageWriteOptions::exrCompression
     Durability durability = Durability::Flush; // the cache's need no fsync (atomic_file.hpp)
     std::string shJson;
@@ -56,7 +66,7 @@ struct BakeSnapshot {
 
 // Reads the textures back (GL). extraJson: an object whose members are added to bake.json
 // (e.g. the CLI's error report); may be empty.
-BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson = {});
+BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson = {}, MirrorFile mirror = MirrorFile::Written);
 // Writes the snapshot's files, bake.json last. No GL: may run on any thread.
 void writeBakeSnapshot(const std::filesystem::path& directory, const BakeSnapshot& snapshot);
 // Both, in turn.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <stdexcept>
+#include <utility>
 
 #include "io/error.hpp"
 
@@ -44,13 +45,13 @@ double BakeResult::phaseMilliseconds(BakePhase phase) const
     return 0.0;
 }
 
-BakeJob::BakeJob(gl::ShaderLibrary& shaders, const Environment& environment, const BakeSettings& settings, BakeCache* cache)
+BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const BakeSettings& settings, BakeCache* cache)
     : passes_(shaders), cache_(cache && cache->enabled() ? cache : nullptr)
 {
     validate(settings);
     if (environment.image.empty())
         throw Error(environment.source, "cannot bake an empty environment");
-    image_ = environment.image;
+    image_ = std::move(environment.image);
     result_.settings = settings;
     result_.source = environment.source;
     result_.contentHash = environment.contentHash;
@@ -60,6 +61,16 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, const Environment& environment, con
 }
 
 BakeJob::~BakeJob() = default;
+
+bool BakeJob::compilesLut(const BakeSettings& settings, const BakeCache* cache)
+{
+    return (cache == nullptr || !cache->enabled()) && (settings.lut.schlickGgx || settings.lut.heightCorrelatedSmith);
+}
+
+void BakeJob::compilePrograms(gl::ShaderLibrary& shaders, const BakeSettings& settings, const BakeCache* cache)
+{
+    BakePasses(shaders).compileFor(settings, 1, compilesLut(settings, cache));
+}
 
 BakeJob::StepGroup BakeJob::lutGroup(GeometryTerm term)
 {
@@ -96,9 +107,7 @@ void BakeJob::plan()
 
     const int equirectLevels = BakePasses::equirectLevelsForCube(image_.width, image_.height, envFace);
     steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost, [this, equirectLevels] {
-                          // The LUTs' program only when no cache could have them.
-                          const LutSettings& lut = result_.settings.lut;
-                          passes_.compileFor(result_.settings, equirectLevels, cache_ == nullptr && (lut.schlickGgx || lut.heightCorrelatedSmith));
+                          passes_.compileFor(result_.settings, equirectLevels, compilesLut(result_.settings, cache_));
                       }});
     if (cache_)
         steps_.push_back({BakePhase::CacheLookup, StepGroup::None, sourceTexels, [this] {

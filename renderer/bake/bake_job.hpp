@@ -35,12 +35,19 @@ namespace iblab::bake {
 
 class BakeJob {
 public:
-    // Copies the environment's pixels (the caller may load another one meanwhile). cache may
-    // be null (no cache); it must outlive the job. Throws iblab::Error for invalid settings.
-    BakeJob(gl::ShaderLibrary& shaders, const Environment& environment, const BakeSettings& settings, BakeCache* cache = nullptr);
+    // Keeps the environment's pixels: a copy (the caller may load another one meanwhile), or
+    // moved in by a caller that needs them no longer. cache may be null (no cache); it must
+    // outlive the job. Throws iblab::Error for invalid settings.
+    BakeJob(gl::ShaderLibrary& shaders, Environment environment, const BakeSettings& settings, BakeCache* cache = nullptr);
     ~BakeJob();
     BakeJob(const BakeJob&) = delete;
     BakeJob& operator=(const BakeJob&) = delete;
+
+    // Compiles the programs a bake with these settings runs, before its environment is
+    // known, so that a caller can do it while the map loads (the job's Shaders step then
+    // finds them built). The equirect's downsample program, which only some map sizes need,
+    // is left to the step. cache as for the constructor.
+    static void compilePrograms(gl::ShaderLibrary& shaders, const BakeSettings& settings, const BakeCache* cache);
 
     // Runs the next step; returns true while steps remain.
     bool step();
@@ -63,6 +70,8 @@ private:
     // A cache hit skips the rest of its group: the environment's results, or one LUT.
     enum class StepGroup { None, Environment, LutSchlickGgx, LutHeightCorrelatedSmith };
     static StepGroup lutGroup(GeometryTerm term);
+    // The LUTs' program only when no cache could have them.
+    static bool compilesLut(const BakeSettings& settings, const BakeCache* cache);
     struct Step {
         BakePhase phase;
         StepGroup group;

@@ -4,6 +4,7 @@
 // sets the GL state it needs (program, texture and image units, seamless cube filtering)
 // and leaves those bindings as it found them (seamless filtering) or cleared (units).
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -52,8 +53,8 @@ public:
     // row's pi/H, so its lod is at most log2(2H / (pi f)); levels are built up to that lod
     // rounded to the nearest (a footprint of under 1.5 texels is read bilinearly at lod 0).
     static int equirectLevelsForCube(int width, int height, int faceSize);
-    // The equirect as an RGBA32F 2D texture (REPEAT in s, CLAMP_TO_EDGE in t) with `levels`
-    // mips (0: the full chain).
+    // The equirect as an RGBA32F 2D texture (RGB32F when it has one level; REPEAT in s,
+    // CLAMP_TO_EDGE in t) with `levels` mips (0: the full chain).
     gl::Texture uploadEquirect(const ImageRGB32F& image, int levels = 0);
     void equirectToCube(GLuint equirect, const BakedTexture& cube, const CubeSlice& slice);
     // Levels 1.. from level 0 by 2x2 box averages (downsample.comp), per face for cubes.
@@ -84,6 +85,12 @@ public:
     // Rows [firstRow, firstRow + rowCount) of the LUT.
     void brdfLut(const BakedTexture& out, int firstRow, int rowCount, int samples, GeometryTerm term);
 
+    // The environment level that the prefilter's `level` is a texel copy of: the mirror
+    // level (roughness 0 with mirrorCopy), where the environment has a level of its size and
+    // format. nullopt: the level is filtered.
+    static std::optional<int> mirrorSourceLevel(const BakedTexture& environment, const BakedTexture& prefiltered, int level,
+                                                const PrefilterSettings& settings);
+
     // Riemann grid steps for a sample delta (LearnOpenGL's loops, rounded to whole cells).
     static int riemannPhiSteps(float sampleDelta);
     static int riemannThetaSteps(float sampleDelta);
@@ -91,8 +98,7 @@ public:
 private:
     const gl::ShaderProgram& cubeProgram(const char* file);
     const gl::ShaderProgram& momentsProgram(int groupsPerEdge);
-    // The prefilter's mirror level (roughness 0 with mirrorCopy) as a texel copy of the
-    // environment's mip of the same size, where there is one; false: nothing done.
+    // The prefilter's mirror level as a texel copy (mirrorSourceLevel); false: nothing done.
     bool copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                          const PrefilterSettings& settings);
     void downsampleChain(GLuint texture, GLenum target, GLenum internalFormat, int width, int height, int levels);

@@ -86,6 +86,17 @@ CubeImage readCubeLevel(const BakedTexture& texture, int level)
     return image;
 }
 
+StoredCubeLevel readStoredCubeLevel(const BakedTexture& texture, int level)
+{
+    makeShaderWritesVisible();
+    StoredCubeLevel stored{texture.levelSize(level), texture.internalFormat, nullptr};
+    stored.bytes = std::make_unique_for_overwrite<std::byte[]>(stored.byteCount());
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(texture.id(), level, GL_RGBA, texture.internalFormat == GL_RGBA16F ? GL_HALF_FLOAT : GL_FLOAT,
+                      GLsizei(stored.byteCount()), stored.bytes.get());
+    return stored;
+}
+
 Image2D read2D(const BakedTexture& texture)
 {
     makeShaderWritesVisible();
@@ -105,6 +116,13 @@ void upload2D(const BakedTexture& texture, const Image2D& image)
 {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureSubImage2D(texture.id(), 0, 0, 0, image.size, image.size, GL_RGBA, GL_FLOAT, image.texels.data());
+}
+
+void copyCubeRows(const BakedTexture& from, int fromLevel, const BakedTexture& to, int toLevel, int firstFace, int faceCount,
+                  int firstRow, int rowCount)
+{
+    glCopyImageSubData(from.id(), GL_TEXTURE_CUBE_MAP, fromLevel, 0, firstRow, firstFace, to.id(), GL_TEXTURE_CUBE_MAP, toLevel, 0,
+                       firstRow, firstFace, to.levelSize(toLevel), rowCount, faceCount);
 }
 
 } // namespace iblab::bake

@@ -3,6 +3,7 @@
 // the CPU images it reads back into and uploads from. Internal layer: includes GL handles.
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -62,10 +63,26 @@ struct Image2D {
     const glm::vec4& at(int x, int row) const { return texels[std::size_t(row) * std::size_t(size) + std::size_t(x)]; }
 };
 
+// One level of a cube map as the texture stores it: RGBA, half floats (RGBA16F) or floats
+// (RGBA32F), in CubeImage's order. The cache's files are written from it with no
+// conversion (a float read-back of a half texture, converted back to half for the file,
+// cost more than the rest of the write).
+struct StoredCubeLevel {
+    int size = 0;
+    GLenum internalFormat = 0;
+    std::unique_ptr<std::byte[]> bytes; // 6 size^2 texels of bytesPerTexel(internalFormat)
+    std::size_t byteCount() const { return std::size_t(6) * std::size_t(size) * std::size_t(size) * bytesPerTexel(internalFormat); }
+};
+
 // Read-backs make earlier shader image stores visible first (glMemoryBarrier).
 CubeImage readCubeLevel(const BakedTexture& texture, int level);
+StoredCubeLevel readStoredCubeLevel(const BakedTexture& texture, int level);
 Image2D read2D(const BakedTexture& texture);
 void uploadCubeLevel(const BakedTexture& texture, int level, const CubeImage& image);
 void upload2D(const BakedTexture& texture, const Image2D& image);
+// Rows [firstRow, firstRow + rowCount) of faces [firstFace, firstFace + faceCount) of a
+// level of `from` into the same texels of a level of `to`, of the same size and format.
+void copyCubeRows(const BakedTexture& from, int fromLevel, const BakedTexture& to, int toLevel, int firstFace, int faceCount,
+                  int firstRow, int rowCount);
 
 } // namespace iblab::bake

@@ -95,27 +95,30 @@ void writeFileAtomic(const std::string& path, const std::function<void(const std
         syncDirectoryBestEffort(dir);
 }
 
+void writeWholeFile(const std::string& path, std::string_view contents)
+{
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0)
+        throw Error(path, "cannot open for writing: " + errnoText(errno));
+    std::size_t done = 0;
+    while (done < contents.size()) {
+        const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            const int err = n < 0 ? errno : EIO;
+            ::close(fd);
+            throw Error(path, "write failed: " + errnoText(err));
+        }
+        done += std::size_t(n);
+    }
+    if (::close(fd) != 0)
+        throw Error(path, "write failed on close: " + errnoText(errno));
+}
+
 void writeTextFileAtomic(const std::string& path, std::string_view contents, Durability durability)
 {
-    writeFileAtomic(path, [&](const std::string& temp) {
-        const int fd = ::open(temp.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-        if (fd < 0)
-            throw Error(path, "cannot open the temporary file: " + errnoText(errno));
-        std::size_t done = 0;
-        while (done < contents.size()) {
-            const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
-            if (n < 0 && errno == EINTR)
-                continue;
-            if (n <= 0) {
-                const int err = n < 0 ? errno : EIO;
-                ::close(fd);
-                throw Error(path, "write failed: " + errnoText(err));
-            }
-            done += std::size_t(n);
-        }
-        if (::close(fd) != 0)
-            throw Error(path, "write failed on close: " + errnoText(errno));
-    }, durability);
+    writeFileAtomic(path, [&](const std::string& temp) { writeWholeFile(temp, contents); }, durability);
 }
 
 std::string readTextFile(const std::string& path)

@@ -26,6 +26,10 @@ enum class Durability { Flush, NoFlush };
 void writeFileAtomic(const std::string& path, const std::function<void(const std::string& tempPath)>& writeTemp,
                      Durability durability = Durability::Flush);
 
+// Creates or truncates `path` and writes `contents` to it, not atomically (a writeTemp
+// callback's last step); throws iblab::Error naming the path.
+void writeWholeFile(const std::string& path, std::string_view contents);
+
 // writeFileAtomic for a whole text (or binary) payload.
 void writeTextFileAtomic(const std::string& path, std::string_view contents, Durability durability = Durability::Flush);
 

@@ -54,8 +54,10 @@ public:
     virtual std::string takeError() = 0;
 };
 
-// One image to store: the rows of `pixels` (of `dataType`, UInt8 or Float) from `firstRow`,
-// rowStride bytes apart (negative: bottom-up buffer written top-down without a copy).
+// One image to store: the rows of `pixels` (of `dataType`, UInt8, Half or Float) from
+// `firstRow`, rowStride bytes apart (negative: bottom-up buffer written top-down without a
+// copy), each pixel's `channels` values pixelStride bytes after the last pixel's (0: packed;
+// more skips values between pixels, such as the A of an RGBA read-back stored as RGB).
 struct ImageWrite {
     const char* format = "png"; // OpenImageIO's plugin name: "png", "openexr"
     int width = 0, height = 0, channels = 0;
@@ -63,6 +65,8 @@ struct ImageWrite {
     PixelType dataType = PixelType::UInt8;
     const void* firstRow = nullptr;
     std::ptrdiff_t rowStride = 0;
+    std::ptrdiff_t pixelStride = 0;
+    int tileSize = 0; // "openexr": square tiles of this edge, one level (0: scanlines)
     std::vector<std::string> channelNames; // empty: the format's defaults
     int alphaChannel = -1;
     // Metadata, in the order set (OpenImageIO's spec.attribute: "compression", "Software").

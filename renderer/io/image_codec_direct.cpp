@@ -21,11 +21,13 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfTiledInputFile.h>
 #include <OpenEXR/ImfVersion.h>
 
+#include "io/atomic_file.hpp"
 #include "io/error.hpp"
 
 namespace iblab {
@@ -432,6 +434,30 @@ private:
 
 // ---- OpenEXR writing ----
 
+// An OpenEXR output stream into memory, for one write of the whole file: OpenEXR hands each
+// block to its stream as it is done, a scanline for the uncompressed and RLE files, and a
+// file stream passes writes of 1 KB or more straight to the system (libstdc++'s filebuf):
+// a system call per 1.5 KB scanline, about 3000 for a bake's files and most of their time.
+class MemoryOStream final : public Imf::OStream {
+public:
+    MemoryOStream(const char* name, std::size_t expectedBytes) : Imf::OStream(name) { bytes_.reserve(expectedBytes + 16 * 1024); }
+    void write(const char c[], int n) override
+    {
+        const std::size_t end = position_ + std::size_t(n);
+        if (end > bytes_.size())
+            bytes_.resize(end);
+        std::memcpy(bytes_.data() + position_, c, std::size_t(n));
+        position_ = end;
+    }
+    std::uint64_t tellp() override { return position_; }
+    void seekp(std::uint64_t position) override { position_ = std::size_t(position); }
+    std::string_view bytes() const { return {bytes_.data(), bytes_.size()}; }
+
+private:
+    std::vector<char> bytes_;
+    std::size_t position_ = 0;
+};
+
 std::optional<Imf::Compression> exrCompression(const std::string& name)
 {
     static const std::map<std::string, Imf::Compression> byName = {
@@ -491,8 +517,8 @@ bool writeExrDirect(const std::string& subject, const std::string& file, const I
             return false;
     }
     if (std::string(image.format) != "openexr" || !compression || int(names.size()) != image.channels || image.width <= 0 ||
-        image.height <= 0 || image.dataType != PixelType::Float ||
-        (image.storedType != PixelType::Half && image.storedType != PixelType::Float))
+        image.height <= 0 || (image.storedType != PixelType::Half && image.storedType != PixelType::Float) ||
+        (image.dataType != PixelType::Float && image.dataType != image.storedType))
         return false;
 
     Imf::Header header(image.width, image.height);
@@ -503,31 +529,60 @@ bool writeExrDirect(const std::string& subject, const std::string& file, const I
     for (const auto& [name, value] : strings)
         header.insert(name, Imf::StringAttribute(value));
 
-    // OpenEXR neither converts on output nor takes negative (bottom-up) strides: the rows
-    // are copied top-down in the stored type, half as Imath rounds it, as OpenImageIO does.
-    const std::size_t rowValues = std::size_t(image.width) * std::size_t(image.channels);
     const std::size_t valueBytes = stored == Imf::HALF ? sizeof(half) : sizeof(float);
-    std::vector<char> pixels(rowValues * std::size_t(image.height) * valueBytes);
-    for (int y = 0; y < image.height; ++y) {
-        const auto* row = reinterpret_cast<const float*>(static_cast<const char*>(image.firstRow) + image.rowStride * y);
-        char* out = &pixels[rowValues * valueBytes * std::size_t(y)];
-        if (stored == Imf::FLOAT)
-            std::memcpy(out, row, rowValues * sizeof(float));
-        else
-            for (std::size_t i = 0; i < rowValues; ++i) {
-                const half value(row[i]);
-                std::memcpy(out + i * sizeof(half), &value, sizeof(half));
-            }
+    const std::size_t dataValueBytes = image.dataType == PixelType::Half ? sizeof(half) : sizeof(float);
+    const std::ptrdiff_t pixelStride = image.pixelStride > 0 ? image.pixelStride : std::ptrdiff_t(dataValueBytes) * image.channels;
+    const auto* first = static_cast<const char*>(image.firstRow);
+    // Rows already in the stored type and top-down (a GL read-back written as is) are read
+    // by OpenEXR where they are. OpenEXR neither converts on output nor takes negative
+    // (bottom-up) strides: other rows are copied top-down in the stored type first, half as
+    // Imath rounds it, as OpenImageIO does.
+    const char* base = first;
+    std::ptrdiff_t xStride = pixelStride;
+    std::ptrdiff_t yStride = image.rowStride;
+    std::vector<char> pixels;
+    if (image.dataType != image.storedType || image.rowStride <= 0) {
+        const std::size_t rowValues = std::size_t(image.width) * std::size_t(image.channels);
+        pixels.resize(rowValues * std::size_t(image.height) * valueBytes);
+        for (int y = 0; y < image.height; ++y) {
+            const char* row = first + image.rowStride * y;
+            char* out = &pixels[rowValues * valueBytes * std::size_t(y)];
+            for (int x = 0; x < image.width; ++x)
+                for (int c = 0; c < image.channels; ++c, out += valueBytes) {
+                    const char* value = row + pixelStride * x + std::ptrdiff_t(dataValueBytes) * c;
+                    if (image.dataType == image.storedType) {
+                        std::memcpy(out, value, valueBytes);
+                    } else {
+                        float f;
+                        std::memcpy(&f, value, sizeof f);
+                        const half h(f);
+                        std::memcpy(out, &h, sizeof h);
+                    }
+                }
+        }
+        base = pixels.data();
+        xStride = std::ptrdiff_t(valueBytes) * image.channels;
+        yStride = std::ptrdiff_t(rowValues * valueBytes);
     }
     Imf::FrameBuffer frame;
     for (std::size_t c = 0; c < names.size(); ++c)
-        frame.insert(names[c], Imf::Slice(stored, pixels.data() + c * valueBytes, valueBytes * std::size_t(image.channels),
-                                          valueBytes * rowValues));
+        frame.insert(names[c], Imf::Slice(stored, const_cast<char*>(base) + c * valueBytes, std::size_t(xStride), std::size_t(yStride)));
+    const int threads = Imf::globalThreadCount();
+    MemoryOStream encoded(file.c_str(), std::size_t(image.width) * std::size_t(image.height) * names.size() * valueBytes);
     rethrowAsError(subject, "writing", "cannot write", [&] {
-        Imf::OutputFile out(file.c_str(), header);
-        out.setFrameBuffer(frame);
-        out.writePixels(image.height);
+        // The block offsets are written as `out` closes.
+        if (image.tileSize > 0) {
+            header.setTileDescription(Imf::TileDescription(unsigned(image.tileSize), unsigned(image.tileSize), Imf::ONE_LEVEL));
+            Imf::TiledOutputFile out(encoded, header, threads);
+            out.setFrameBuffer(frame);
+            out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
+        } else {
+            Imf::OutputFile out(encoded, header, threads);
+            out.setFrameBuffer(frame);
+            out.writePixels(image.height);
+        }
     });
+    writeWholeFile(file, encoded.bytes());
     return true;
 }
 

@@ -31,7 +31,7 @@ std::unique_ptr<ImageReader> openExrDirect(const std::string& path);
 std::unique_ptr<ImageReader> openHdrDirect(const std::string& path);
 
 // Writes an "openexr" image: 1 (Y), 3 (RGB) or 4 (RGBA) float channels stored as Half or
-// Float, with a compression OpenEXR names and string attributes ("ImageDescription" is
+// Float, or half channels stored as Half (written from where they are), with a compression OpenEXR names and string attributes ("ImageDescription" is
 // stored as OpenEXR's "comments", as OpenImageIO does). False, with nothing written, for
 // anything else; failures throw iblab::Error naming `subject`.
 bool writeExrDirect(const std::string& subject, const std::string& file, const ImageWrite& image);

@@ -96,6 +96,7 @@ OIIO::ImageSpec specFor(const ImageWrite& image)
     if (!image.channelNames.empty())
         spec.channelnames = image.channelNames;
     spec.alpha_channel = image.alphaChannel;
+    spec.tile_width = spec.tile_height = image.tileSize;
     // A named pair, not a structured binding: clang 14 (the fuzz build) cannot capture those.
     for (const auto& attribute : image.attributes) {
         const std::string& name = attribute.first;
@@ -104,11 +105,13 @@ OIIO::ImageSpec specFor(const ImageWrite& image)
     return spec;
 }
 
+OIIO::stride_t pixelStride(const ImageWrite& image) { return image.pixelStride > 0 ? image.pixelStride : OIIO::AutoStride; }
+
 void writeWith(OIIO::ImageOutput& out, const std::string& subject, const std::string& file, const ImageWrite& image)
 {
     if (!out.open(file, specFor(image)))
         throw Error(subject, "cannot write: " + out.geterror());
-    if (!out.write_image(toTypeDesc(image.dataType), image.firstRow, OIIO::AutoStride, image.rowStride)) {
+    if (!out.write_image(toTypeDesc(image.dataType), image.firstRow, pixelStride(image), image.rowStride)) {
         const std::string why = out.geterror();
         out.close();
         throw Error(subject, "cannot write pixels: " + why);
@@ -166,7 +169,7 @@ public:
             const std::string why = OIIO::geterror();
             throw Error(subject, why.empty() ? "unrecognised or corrupt image data" : why);
         }
-        if (!out->open(name, specFor(image)) || !out->write_image(toTypeDesc(image.dataType), image.firstRow, OIIO::AutoStride, image.rowStride) ||
+        if (!out->open(name, specFor(image)) || !out->write_image(toTypeDesc(image.dataType), image.firstRow, pixelStride(image), image.rowStride) ||
             !out->close())
             throw Error(subject, out->geterror());
         return bytes;

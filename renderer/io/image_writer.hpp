@@ -26,6 +26,10 @@ struct ImageWriteOptions {
     ExrPixelType exrPixelType = ExrPixelType::Float; // EXR only
     // EXR only: OpenEXR's compression by OpenImageIO's name ("zip", "none", "piz", "dwaa", ...).
     std::string exrCompression = "zip";
+    // EXR only: square tiles of this edge (0: scanlines). OpenEXR encodes and decodes each
+    // block as a task on its thread pool, and an uncompressed or RLE scanline file has a
+    // block per scanline: the hand-overs cost more than the copies (docs/bake.md).
+    int exrTileSize = 0;
     Durability durability = Durability::Flush; // the image's and the sidecar's
 };
 
@@ -40,6 +44,18 @@ void writeExr(const std::string& path, int width, int height, int channels, std:
               const ImageWriteOptions& options = {});
 // An ImageRGB32F is top-down by definition (row 0 = zenith); options.bottomUp flips anyway.
 void writeExr(const std::string& path, const ImageRGB32F& image, const ImageWriteOptions& options = {});
+
+// Values stored as they are, half or float, with no conversion (a GL read-back of a half
+// texture: converting it to float and back cost more than the rest of the write): the
+// first `channels` of each pixel's `pixelValues` (RGBA read back, RGB stored: 3 of 4).
+struct ExrPixels {
+    int width = 0, height = 0;
+    int channels = 3;
+    int pixelValues = 4;
+    ExrPixelType type = ExrPixelType::Half; // replaces options.exrPixelType
+    const void* data = nullptr;              // width * height * pixelValues values, row-major
+};
+void writeExr(const std::string& path, const ExrPixels& pixels, const ImageWriteOptions& options = {});
 
 // "<path>.json": where the settings sidecar of `path` goes.
 std::string settingsSidecarPath(const std::string& path);

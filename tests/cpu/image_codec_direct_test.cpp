@@ -4,6 +4,7 @@
 // This executable does not link OpenImageIO: its test files are written through the module.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -264,4 +265,43 @@ TEST(DirectCodec, BakeFormatsNeverLoadOpenImageIo)
     const std::string text((std::istreambuf_iterator<char>(maps)), std::istreambuf_iterator<char>());
     EXPECT_EQ(text.find("libOpenImageIO"), std::string::npos);
     EXPECT_EQ(text.find("libiblab_oiio"), std::string::npos);
+}
+
+TEST(DirectCodec, HalfPixelsAreWrittenAsGivenInTilesAsOpenImageIoWritesThem)
+{
+    // What the bake cache writes: an RGBA half read-back stored as RGB, a tile per cube face.
+    TempDir dir;
+    const int w = 8, h = 48;
+    std::vector<std::uint16_t> rgba(std::size_t(w) * h * 4);
+    for (std::size_t i = 0; i < rgba.size(); ++i)
+        rgba[i] = std::uint16_t((i * 7919) % 0x7bff); // positive finite halves, each value its own
+    const std::string path = dir.file("direct.exr");
+    writeExr(path, ExrPixels{.width = w, .height = h, .channels = 3, .pixelValues = 4, .type = ExrPixelType::Half, .data = rgba.data()},
+             {.exrCompression = "none", .exrTileSize = w});
+    ImageWrite image{.format = "openexr",
+                     .width = w,
+                     .height = h,
+                     .channels = 3,
+                     .storedType = PixelType::Half,
+                     .dataType = PixelType::Half,
+                     .firstRow = rgba.data(),
+                     .rowStride = std::ptrdiff_t(w) * 4 * 2,
+                     .pixelStride = 4 * 2,
+                     .tileSize = w,
+                     .attributes = {{"compression", "none"}}};
+    const std::string reference = dir.file("oiio.exr");
+    openImageIoCodec().writeFile(reference, reference, image);
+
+    const std::vector<float> direct = readWithOpenImageIo(path, 3);
+    const std::vector<float> oiio = readWithOpenImageIo(reference, 3);
+    ASSERT_EQ(direct.size(), std::size_t(w) * h * 3);
+    ASSERT_EQ(direct.size(), oiio.size());
+    EXPECT_EQ(std::memcmp(direct.data(), oiio.data(), direct.size() * sizeof(float)), 0) << "pixels differ";
+    EXPECT_NE(direct[3], direct[0]) << "the pixels differ from one another, so a wrong stride would show";
+    expectSameAsOpenImageIo(path, 3);
+    const std::unique_ptr<ImageReader> in = openExrDirect(path);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->header().tileWidth, w);
+    EXPECT_EQ(in->header().tileHeight, w);
+    EXPECT_EQ(in->header().storedType, PixelType::Half);
 }

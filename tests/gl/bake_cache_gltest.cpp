@@ -13,6 +13,7 @@
 #include "bake/bake_cache.hpp"
 #include "bake/bake_files.hpp"
 #include "bake_test_support.hpp"
+#include "io/atomic_file.hpp"
 #include "io/error.hpp"
 #include "io/image_writer.hpp"
 #include "gl_test_fixture.hpp"
@@ -74,6 +75,36 @@ TEST_F(GlTest, ASecondBakeIsLoadedFromTheCacheUnchanged)
     // Half floats written as half-float EXR and read back: bit-identical; mips rebuilt by the
     // same pass from the same level 0.
     expectSameResults(first, second);
+}
+
+TEST_F(GlTest, TheMirrorMipIsStoredOnceAndLoadedUnchanged)
+{
+    // The mirror mip is a texel copy of an environment level: the cache stores that level
+    // once and copies it back on load, at the environment's own face size (level 0), or from
+    // a mip rebuilt on load (an environment face twice the prefilter's: level 1).
+    auto shaders = library();
+    TempDirectory dir("bake-mirror");
+    bake::BakeCache cache(dir.path());
+    for (const char* spec : {"builtin:sun?width=64&size=10", "builtin:sun?width=128&size=10"}) {
+        SCOPED_TRACE(spec);
+        const Environment env = loadEnvironment(spec);
+        const bake::BakeResult baked = runBake(shaders, env, smallBakeSettings(), &cache);
+        ASSERT_TRUE(cache.finishWrites().empty());
+        const fs::path entry = cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, baked.settings));
+        EXPECT_FALSE(fs::exists(entry / "prefiltered_mip0.exr"));
+        EXPECT_TRUE(fs::exists(entry / "prefiltered_mip1.exr"));
+        const bake::BakeResult loaded = runBake(shaders, env, smallBakeSettings(), &cache);
+        EXPECT_TRUE(loaded.fromCache);
+        EXPECT_TRUE(loaded.notes.empty());
+        expectSameResults(baked, loaded);
+    }
+    // Without the mirror copy the mip is filtered like the others, and has its file.
+    bake::BakeSettings filtered = smallBakeSettings();
+    filtered.prefilter.mirrorCopy = false;
+    const Environment env = loadEnvironment("builtin:sun?width=64&size=10");
+    runBake(shaders, env, filtered, &cache);
+    ASSERT_TRUE(cache.finishWrites().empty());
+    EXPECT_TRUE(fs::exists(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, filtered)) / "prefiltered_mip0.exr"));
 }
 
 TEST_F(GlTest, TheLutCacheIgnoresTheEnvironment)
@@ -147,6 +178,30 @@ TEST_F(GlTest, AnExrOfTheWrongSizeIsReportedAndRebuilt)
 {
     expectDetectedAndRebuilt("environment.exr", [](const fs::path& p) {
         writeExr(p.string(), ImageRGB32F(8, 48)); // a valid EXR, but a cube of face 8, not 16
+    });
+}
+
+TEST_F(GlTest, AnEntryOfAnotherFormatVersionIsReportedAndRebuilt)
+{
+    // Entries of another version have other keys (the key hashes the version) and are never
+    // looked up; one found under this version's key anyway is refused by its bake.json.
+    expectDetectedAndRebuilt("bake.json", [](const fs::path& p) {
+        std::string text = readTextFile(p.string());
+        const std::string current = "\"format\": " + std::to_string(bake::kBakeFormatVersion);
+        ASSERT_NE(text.find(current), std::string::npos) << text;
+        text.replace(text.find(current), current.size(), "\"format\": 1");
+        std::ofstream(p, std::ios::trunc) << text;
+    });
+}
+
+TEST_F(GlTest, ABadMirrorLevelIsReportedAndRebuilt)
+{
+    expectDetectedAndRebuilt("bake.json", [](const fs::path& p) {
+        std::string text = readTextFile(p.string());
+        const std::string level = "\"mirror_of_environment_level\": 0";
+        ASSERT_NE(text.find(level), std::string::npos) << text;
+        text.replace(text.find(level), level.size(), "\"mirror_of_environment_level\": \"zero\"");
+        std::ofstream(p, std::ios::trunc) << text;
     });
 }
 
