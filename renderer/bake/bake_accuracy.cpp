@@ -4,9 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <iomanip>
 #include <span>
-#include <sstream>
 #include <thread>
 
 #include <glm/geometric.hpp>
@@ -294,11 +292,10 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     std::vector<glm::dvec3> values;
     std::filesystem::path cached;
     if (!options.referenceCacheDirectory.empty()) {
-        std::ostringstream key;
-        key << std::hex << std::setfill('0') << std::setw(16)
-            << fnv1a(references.digest(), fnv1a("iblab-reference-1|" + std::to_string(result.contentHash) + "|" +
-                                                std::to_string(wideWidth) + "|" + std::to_string(options.lutReferenceSamples)));
-        cached = options.referenceCacheDirectory / (key.str() + ".bin");
+        const std::string key = hex16(fnv1a(references.digest(), fnv1a("iblab-reference-1|" + std::to_string(result.contentHash) + "|" +
+                                                                        std::to_string(wideWidth) + "|" +
+                                                                        std::to_string(options.lutReferenceSamples))));
+        cached = options.referenceCacheDirectory / (key + ".bin");
         if (auto loaded = loadReferenceValues(cached, references.size(), errors.notes)) {
             values = std::move(*loaded);
             errors.referencesFromCache = true;

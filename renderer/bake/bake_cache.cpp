@@ -10,28 +10,12 @@
 
 #include "bake/bake_files.hpp"
 #include "io/error.hpp"
+#include "io/hash.hpp"
 
 namespace iblab::bake {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::uint64_t fnv1a(std::string_view text)
-{
-    std::uint64_t h = 14695981039346656037ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return h;
-}
-
-std::string hex16(std::uint64_t v)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
-    return text;
-}
 
 const char* envOrNull(const char* name)
 {

@@ -2,6 +2,8 @@
 // 64-bit FNV-1a (offset basis 14695981039346656037, prime 1099511628211): the cache keys'
 // hash. Not cryptographic: keys only need to tell honest inputs apart.
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <string_view>
 
 namespace iblab {
@@ -13,6 +15,14 @@ inline std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 14695981039
         h *= 1099511628211ull;
     }
     return h;
+}
+
+// A key as 16 lower-case hex digits (a cache file or directory name).
+inline std::string hex16(std::uint64_t v)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+    return text;
 }
 
 } // namespace iblab
