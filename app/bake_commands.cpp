@@ -183,7 +183,8 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
         totals.push_back(result.totalMilliseconds);
     }
     std::optional<bake::BakeErrors> errors;
-    const bake::AccuracyOptions accuracy;
+    bake::AccuracyOptions accuracy;
+    if (cache) accuracy.referenceCacheDirectory = cache->root() / "reference";
     if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, shaders, accuracy);
 
     if (!map.out.empty()) {
@@ -204,6 +205,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // the --out files overlapped them, and only what is left is waited for here.
     const auto waitStart = Clock::now();
     std::vector<std::string> notes = result.notes;
+    if (errors) notes.insert(notes.end(), errors->notes.begin(), errors->notes.end());
     if (cache && map.waitForWrites)
         for (std::string& note : cache->finishWrites())
             notes.push_back(std::move(note));

@@ -207,6 +207,7 @@ struct GuiApp::Impl {
     float previousScale = 1.0f;
     bool frameWhenReady = false;
     bool isIdle = false;
+    bool heldForLoad = false; // the last frame drew nothing new: a map decodes, nothing else runs
     bool sleepWhenIdle = false;
     bool scripted = false;
     bool quit = false;
@@ -344,6 +345,11 @@ struct GuiApp::Impl {
 
 void GuiApp::Impl::frame()
 {
+    // While a map decodes and nothing else is to be done, wait for it, a 60 Hz frame at most,
+    // rather than drawing held frames: on two cores each drawn frame took CPU from the decode
+    // (the GUI's switch from the disk cache loaded sunset.exr in 161 ms, the bake command in
+    // 52). Input waits at most that frame.
+    if (heldForLoad && input.empty()) session.waitForLoad(std::chrono::milliseconds(16));
     platform.collectEvents(input, isIdle && sleepWhenIdle && !scripted ? 0.25 : 0.0);
     ImGuiIO& io = ImGui::GetIO();
     const FrameRequests frameInput = input.applyFrame(io);
@@ -449,6 +455,7 @@ void GuiApp::Impl::frame()
     // also keeps drawing while a control is hovered (its tooltip) or a field has the
     // keyboard (the caret), and only sleeps when neither.
     isIdle = converged && !referencePending && !study.running() && input.empty();
+    heldForLoad = holdFrame && !study.running() && !referencePending;
     sleepWhenIdle = !ImGui::IsAnyItemHovered() && !io.WantTextInput;
 
     glBindFramebuffer(GL_FRAMEBUFFER, platform.framebuffer());

@@ -183,6 +183,11 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
     return finished;
 }
 
+void LabSession::waitForLoad(std::chrono::steady_clock::duration timeout) const
+{
+    if (pendingLoad_.valid()) pendingLoad_.wait_for(timeout);
+}
+
 bool LabSession::busy() const { return pendingLoad_.valid() || queuedSpec_ || recentRequested_ || job_ != nullptr; }
 
 std::string LabSession::activity() const
@@ -204,6 +209,7 @@ ui::StatusLine LabSession::loadEnvironment(const std::string& spec, FrameSetting
     requestEnvironment(spec);
     ui::StatusLine status;
     while (busy()) {
+        waitForLoad(std::chrono::hours(1));
         const Finished finished = pump(settings, std::chrono::hours(1));
         for (const auto& line : {finished.environment, finished.bake}) {
             if (!line) continue;

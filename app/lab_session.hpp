@@ -47,6 +47,10 @@ public:
     // after acting on the frame's input, so that the frame it then draws has the new lighting).
     Finished showRequestedRecent(FrameSettings& settings);
     bool busy() const;
+    // Blocks until the environment file being decoded on the worker thread is ready, or for
+    // `timeout`; returns at once when none is. Waiting here instead of polling leaves the
+    // decode the CPU that drawing or pumping would take (two cores here).
+    void waitForLoad(std::chrono::steady_clock::duration timeout) const;
     // An environment was asked for and its bake is not shown yet.
     bool switching() const;
     // "loading courtyard.exr", "baking: prefilter 40%", or "" when idle.

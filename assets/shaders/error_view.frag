@@ -11,8 +11,7 @@ out vec4 fragColor;
 uniform sampler2D uHdrFrame;       // the frame being judged, coverage in alpha
 uniform sampler2D uReferenceFrame; // the reference, same size
 uniform sampler2D uGNormal;        // coverage in alpha
-uniform float uExposureEv;
-uniform int uToneMapOperator;
+uniform float uExposureEv; // TONEMAP_OPERATOR: a compile-time constant, as in tonemap.frag
 uniform bool uDisplaySpace;
 uniform float uErrorScale; // relative error at the top of the colour bar
 
@@ -22,14 +21,14 @@ void main()
     vec4 frame = texelFetch(uHdrFrame, pixel, 0);
     vec3 value = frame.rgb;
     if (!isMeasuredPixel(frame.a, texelFetch(uGNormal, pixel, 0).a)) {
-        vec3 shown = displayEncode(value, uExposureEv, uToneMapOperator);
+        vec3 shown = displayEncode(value, uExposureEv, TONEMAP_OPERATOR);
         fragColor = vec4(vec3(0.3 * dot(shown, vec3(0.2126, 0.7152, 0.0722))), 1.0);
         return;
     }
     vec3 reference = texelFetch(uReferenceFrame, pixel, 0).rgb;
     if (uDisplaySpace) {
-        value = displayEncode(value, uExposureEv, uToneMapOperator);
-        reference = displayEncode(reference, uExposureEv, uToneMapOperator);
+        value = displayEncode(value, uExposureEv, TONEMAP_OPERATOR);
+        reference = displayEncode(reference, uExposureEv, TONEMAP_OPERATOR);
     }
     fragColor = vec4(falseColour(relativeError(value, reference) / uErrorScale), 1.0);
 }

@@ -1,7 +1,8 @@
 // glTF metallic-roughness material under image-based lighting. METHOD selects the
 // estimator at compile time (0 split sum or the fitted lobe, 1 runtime importance sampling,
-// 2 no estimate: the G-buffer the reference renderer integrates over); everything else is a
-// uniform so that sliders never trigger a recompile.
+// 2 no estimate: the G-buffer the reference renderer integrates over), as do FITTED_LOBE
+// and DIFFUSE_SOURCE (ibl_lighting.glsl): choices a user makes in a combo, each compiled
+// once. Everything a slider moves is a uniform, so that dragging never recompiles.
 #include "common/ibl_lighting.glsl"
 
 // Inputs are interpolated at the pixel centre, where a single-sampled frame and the

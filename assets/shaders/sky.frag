@@ -5,8 +5,9 @@
 in vec2 vUv;
 out vec4 fragColor;
 
+// BACKGROUND: 0 environment, 1 irradiance, 2 prefiltered mip, 3 solid (BackgroundMode), a
+// compile-time constant for the reason ibl_lighting.glsl gives.
 uniform mat4 uInverseViewProjection; // rotation-only view: the sky is at infinity
-uniform int uBackground;             // 0 environment, 1 irradiance, 2 prefiltered mip, 3 solid
 uniform float uBackgroundMip;
 uniform vec3 uSolidColour;
 
@@ -15,11 +16,16 @@ void main()
     vec4 clip = vec4(vUv * 2.0 - 1.0, 1.0, 1.0);
     vec4 world = uInverseViewProjection * clip;
     vec3 direction = normalize(world.xyz / world.w);
-    vec3 colour = uSolidColour;
-    if (uBackground == 0) colour = environmentRadiance(direction);
+#if BACKGROUND == 0
+    vec3 colour = environmentRadiance(direction);
+#elif BACKGROUND == 1
     // Irradiance shown as the radiance of a white Lambertian surface facing that way (E / pi),
     // so it sits at the brightness of the sky it comes from.
-    else if (uBackground == 1) colour = diffuseIrradiance(direction) * (1.0 / IBL_PI);
-    else if (uBackground == 2) colour = textureLod(uPrefiltered, toEnvironment(direction), uBackgroundMip).rgb * uEnvironmentIntensity;
+    vec3 colour = diffuseIrradiance(direction) * (1.0 / IBL_PI);
+#elif BACKGROUND == 2
+    vec3 colour = textureLod(uPrefiltered, toEnvironment(direction), uBackgroundMip).rgb * uEnvironmentIntensity;
+#else
+    vec3 colour = uSolidColour;
+#endif
     fragColor = vec4(colour, 0.0); // coverage 0: the frame's alpha counts surface samples only
 }

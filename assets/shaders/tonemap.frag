@@ -6,10 +6,11 @@ out vec4 fragColor;
 
 uniform sampler2D uHdrFrame;
 uniform float uExposureEv;
-uniform int uToneMapOperator;
+// TONEMAP_OPERATOR (IBL_TONEMAP_*) is a compile-time constant, so that only its curve is
+// compiled: llvmpipe evaluates every branch of a switch on a uniform.
 
 void main()
 {
     vec3 hdr = texelFetch(uHdrFrame, ivec2(gl_FragCoord.xy), 0).rgb;
-    fragColor = vec4(displayEncode(hdr, uExposureEv, uToneMapOperator), 1.0);
+    fragColor = vec4(displayEncode(hdr, uExposureEv, TONEMAP_OPERATOR), 1.0);
 }

@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <span>
+#include <sstream>
+#include <thread>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -12,19 +17,13 @@
 #include "ibl/brdf_lut.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/reference.hpp"
+#include "io/atomic_file.hpp"
+#include "io/hash.hpp"
 
 namespace iblab::bake {
 namespace {
 
-ImageRGB32F reduceTo(const ImageRGB32F& env, int maxWidth)
-{
-    ImageRGB32F out = env;
-    while (out.width > maxWidth && out.width % 2 == 0 && out.height % 2 == 0)
-        out = downsampleEquirect2x(out);
-    return out;
-}
-
-ErrorStats relativeErrors(const std::vector<glm::dvec3>& baked, const std::vector<glm::dvec3>& reference)
+ErrorStats relativeErrors(const std::vector<glm::dvec3>& baked, std::span<const glm::dvec3> reference)
 {
     ErrorStats stats;
     for (std::size_t i = 0; i < baked.size(); ++i) {
@@ -39,19 +38,164 @@ ErrorStats relativeErrors(const std::vector<glm::dvec3>& baked, const std::vecto
     return stats;
 }
 
-ErrorStats cubeIrradianceErrors(const BakedTexture& cube, const std::vector<CubeTexelRef>& texels,
-                                const std::vector<glm::dvec3>& reference)
+// sqrt(sum |baked - ref|^2 / sum |ref|^2) over directions and channels.
+double relativeRmse(const std::vector<glm::dvec3>& baked, std::span<const glm::dvec3> reference)
 {
-    const CubeImage image = readCubeLevel(cube, 0);
-    std::vector<glm::dvec3> baked;
-    for (const CubeTexelRef& t : texels)
-        baked.emplace_back(image.rgb(t.face, t.x, t.row));
-    return relativeErrors(baked, reference);
+    double sumErr2 = 0.0;
+    double sumRef2 = 0.0;
+    for (std::size_t i = 0; i < baked.size(); ++i) {
+        const glm::dvec3 d = baked[i] - reference[i];
+        sumErr2 += glm::dot(d, d);
+        sumRef2 += glm::dot(reference[i], reference[i]);
+    }
+    return sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2);
 }
 
 nlohmann::ordered_json statsJson(const ErrorStats& s)
 {
     return {{"mean_relative", s.mean}, {"max_relative", s.max}, {"directions", s.directions}};
+}
+
+// The width downsampleEquirectToWidth would give, without summing anything (for a report
+// whose references come from the cache).
+int reducedWidth(int width, int height, int maxWidth)
+{
+    while (width > maxWidth && width % 2 == 0 && height % 2 == 0) {
+        width /= 2;
+        height /= 2;
+    }
+    return width;
+}
+
+// Every exact value a bake's errors compare against, in one list: the measurement first
+// asks for them (each request returns the first of its slots), then they are computed in
+// batches, or read from the cache, since they depend only on the map and the list itself.
+class ReferenceList {
+public:
+    std::size_t prefilter(const std::vector<glm::dvec3>& directions, double roughness, bool wide)
+    {
+        const std::size_t first = requests_.size();
+        for (const glm::dvec3& d : directions) requests_.push_back({wide ? Kind::WidePrefilter : Kind::SharpPrefilter, d, roughness, {}});
+        return first;
+    }
+    std::size_t irradiance(const std::vector<glm::dvec3>& normals)
+    {
+        const std::size_t first = requests_.size();
+        for (const glm::dvec3& n : normals) requests_.push_back({Kind::Irradiance, n, 0.0, {}});
+        return first;
+    }
+    std::size_t lut(double NdotV, double roughness, GeometryTerm term)
+    {
+        requests_.push_back({Kind::Lut, glm::dvec3(NdotV, roughness, 0.0), 0.0, term});
+        return requests_.size() - 1;
+    }
+
+    // The requests' bytes, for the cache key.
+    std::string digest() const
+    {
+        std::string bytes;
+        for (const Request& r : requests_) {
+            const double fields[] = {double(r.kind), r.direction.x, r.direction.y, r.direction.z, r.roughness, double(r.term)};
+            bytes.append(reinterpret_cast<const char*>(fields), sizeof fields);
+        }
+        return bytes;
+    }
+    std::size_t size() const { return requests_.size(); }
+
+    std::vector<glm::dvec3> evaluate(const ImageRGB32F& environment, const ImageRGB32F& reduced, std::uint32_t lutSamples) const
+    {
+        std::vector<glm::dvec3> values(requests_.size());
+        auto batch = [&](Kind kind, const ImageRGB32F& map) {
+            std::vector<std::size_t> slots;
+            std::vector<ZonalReference::PrefilterQuery> queries;
+            std::vector<glm::dvec3> normals;
+            for (std::size_t i = 0; i < requests_.size(); ++i)
+                if (requests_[i].kind == kind) {
+                    slots.push_back(i);
+                    queries.push_back({requests_[i].direction, requests_[i].roughness});
+                    normals.push_back(requests_[i].direction);
+                }
+            if (slots.empty())
+                return;
+            const ZonalReference sums(map);
+            const std::vector<glm::dvec3> results = kind == Kind::Irradiance ? sums.irradiance(normals) : sums.prefilteredRadiance(queries);
+            for (std::size_t k = 0; k < slots.size(); ++k) values[slots[k]] = results[k];
+        };
+        batch(Kind::SharpPrefilter, environment);
+        batch(Kind::WidePrefilter, reduced);
+        batch(Kind::Irradiance, reduced);
+        // The LUT's points are independent integrals: spread over threads.
+        std::vector<std::size_t> lutSlots;
+        for (std::size_t i = 0; i < requests_.size(); ++i)
+            if (requests_[i].kind == Kind::Lut) lutSlots.push_back(i);
+        const unsigned threads = std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(std::max<std::size_t>(lutSlots.size(), 1)));
+        std::vector<std::thread> pool;
+        for (unsigned t = 0; t < threads; ++t)
+            pool.emplace_back([&, t] {
+                for (std::size_t k = t; k < lutSlots.size(); k += threads) {
+                    const Request& r = requests_[lutSlots[k]];
+                    values[lutSlots[k]] = integrateSplitSumBrdf(r.direction.x, r.direction.y, lutSamples, r.term);
+                }
+            });
+        for (std::thread& t : pool) t.join();
+        return values;
+    }
+
+private:
+    enum class Kind { SharpPrefilter, WidePrefilter, Irradiance, Lut };
+    struct Request {
+        Kind kind;
+        glm::dvec3 direction; // for Lut: (n.v, roughness, 0)
+        double roughness;
+        GeometryTerm term;
+    };
+    std::vector<Request> requests_;
+};
+
+// <dir>/<key>.bin: "iblabref", the value count (uint64), then the values as 3 doubles each,
+// native byte order (a cache is per machine). Anything else is a miss, noted.
+constexpr std::string_view kReferenceMagic = "iblabref";
+
+std::optional<std::vector<glm::dvec3>> loadReferenceValues(const std::filesystem::path& path, std::size_t count,
+                                                           std::vector<std::string>& notes)
+{
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        return std::nullopt;
+    std::string bytes;
+    try {
+        bytes = readTextFile(path.string());
+    } catch (const std::exception& e) {
+        notes.push_back(e.what());
+        return std::nullopt;
+    }
+    const std::size_t expected = kReferenceMagic.size() + sizeof(std::uint64_t) + count * sizeof(glm::dvec3);
+    std::uint64_t stored = 0;
+    if (bytes.size() == expected)
+        std::memcpy(&stored, bytes.data() + kReferenceMagic.size(), sizeof stored);
+    if (bytes.size() != expected || bytes.compare(0, kReferenceMagic.size(), kReferenceMagic) != 0 || stored != count) {
+        notes.push_back(path.string() + ": not a reference cache entry of " + std::to_string(count) +
+                        " values (corrupt or truncated); computed again");
+        std::filesystem::remove(path, ec);
+        return std::nullopt;
+    }
+    std::vector<glm::dvec3> values(count);
+    std::memcpy(values.data(), bytes.data() + kReferenceMagic.size() + sizeof stored, count * sizeof(glm::dvec3));
+    return values;
+}
+
+void storeReferenceValues(const std::filesystem::path& path, const std::vector<glm::dvec3>& values, std::vector<std::string>& notes)
+{
+    std::string bytes(kReferenceMagic);
+    const std::uint64_t count = values.size();
+    bytes.append(reinterpret_cast<const char*>(&count), sizeof count);
+    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(glm::dvec3));
+    try {
+        std::filesystem::create_directories(path.parent_path());
+        writeTextFileAtomic(path.string(), bytes, Durability::NoFlush);
+    } catch (const std::exception& e) {
+        notes.push_back(std::string("reference cache not written: ") + e.what());
+    }
 }
 
 } // namespace
@@ -84,42 +228,99 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
 {
     const auto start = std::chrono::steady_clock::now();
     BakeErrors errors;
-    const ImageRGB32F reduced = reduceTo(environment, options.maxReferenceWidthForWideLobes);
-
-    // Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
-    auto referenceMap = [&](float roughness) -> const ImageRGB32F& { return roughness >= 0.5f ? reduced : environment; };
-    // sqrt(sum |baked - ref|^2 / sum |ref|^2) of baked values against the prefiltered reference
-    // at `roughness` in the given directions.
-    auto prefilterRelativeRmse = [&](const std::vector<glm::dvec3>& baked, const std::vector<glm::dvec3>& directions, float roughness) {
-        double sumErr2 = 0.0;
-        double sumRef2 = 0.0;
-        for (std::size_t i = 0; i < directions.size(); ++i) {
-            const glm::dvec3 ref = referencePrefilteredRadiance(referenceMap(roughness), directions[i], roughness);
-            const glm::dvec3 d = baked[i] - ref;
-            sumErr2 += glm::dot(d, d);
-            sumRef2 += glm::dot(ref, ref);
-        }
-        return sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2);
-    };
-
     const BakedTexture& pre = result.prefiltered;
-    for (int level = 0; level < pre.levels; ++level) {
-        const CubeImage image = readCubeLevel(pre, level);
-        const float roughness = prefilterMipRoughness(result.settings.prefilter, level);
-        std::vector<glm::dvec3> directions;
-        std::vector<glm::dvec3> baked;
-        for (const CubeTexelRef& t : cubeTexelGrid(image.size, options.texelsPerFaceEdge)) {
-            directions.push_back(glm::normalize(glm::dvec3(image.texelDirection(t.face, t.x, t.row))));
-            baked.emplace_back(image.rgb(t.face, t.x, t.row));
-        }
-        errors.prefilter.push_back(
-            {level, roughness, prefilterRelativeRmse(baked, directions, roughness), int(directions.size()), referenceMap(roughness).width});
-    }
+    // Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
+    auto isWide = [](float roughness) { return roughness >= 0.5f; };
+    const int wideWidth = reducedWidth(environment.width, environment.height, options.maxReferenceWidthForWideLobes);
+    auto referenceWidth = [&](float roughness) { return isWide(roughness) ? wideWidth : environment.width; };
 
+    // What is measured where: first every reference value is requested...
+    ReferenceList references;
+    struct LevelPlan {
+        std::vector<CubeTexelRef> texels;
+        std::vector<glm::dvec3> directions;
+        float roughness = 0.0f;
+        std::size_t first = 0;
+    };
+    std::vector<LevelPlan> levels;
+    for (int level = 0; level < pre.levels; ++level) {
+        LevelPlan plan;
+        const CubeImage geometry(std::max(pre.size >> level, 1));
+        plan.texels = cubeTexelGrid(geometry.size, options.texelsPerFaceEdge);
+        for (const CubeTexelRef& t : plan.texels)
+            plan.directions.push_back(glm::normalize(glm::dvec3(geometry.texelDirection(t.face, t.x, t.row))));
+        plan.roughness = prefilterMipRoughness(result.settings.prefilter, level);
+        plan.first = references.prefilter(plan.directions, plan.roughness, isWide(plan.roughness));
+        levels.push_back(std::move(plan));
+    }
     const std::vector<glm::dvec3> shadedDirections = fibonacciSphere(options.shadedDirections);
     std::vector<float> shadedRoughness;
-    for (int i = 0; i <= options.shadedRoughnessSteps; ++i)
+    std::vector<std::size_t> shadedFirst;
+    for (int i = 0; i <= options.shadedRoughnessSteps; ++i) {
         shadedRoughness.push_back(float(i) / float(std::max(options.shadedRoughnessSteps, 1)));
+        shadedFirst.push_back(references.prefilter(shadedDirections, shadedRoughness.back(), isWide(shadedRoughness.back())));
+    }
+    // Irradiance at texel centres: each cube at the grid texels of its own size, the SH at
+    // those of the shading cube (or of a 32^2 one when there is none).
+    const int irradianceSize = result.irradianceCube ? result.irradianceCube.size : 32;
+    const std::vector<CubeTexelRef> irradianceTexels = cubeTexelGrid(irradianceSize, options.texelsPerFaceEdge);
+    std::vector<glm::dvec3> irradianceNormals;
+    const CubeImage irradianceGeometry(irradianceSize);
+    for (const CubeTexelRef& t : irradianceTexels)
+        irradianceNormals.push_back(glm::normalize(glm::dvec3(irradianceGeometry.texelDirection(t.face, t.x, t.row))));
+    const std::size_t irradianceFirst = references.irradiance(irradianceNormals);
+    const std::size_t shadedIrradianceFirst = references.irradiance(shadedDirections);
+    struct LutPoint {
+        GeometryTerm term;
+        int x, row;
+        std::size_t slot;
+    };
+    std::vector<LutPoint> lutPoints;
+    for (GeometryTerm term : kGeometryTerms) {
+        const BakedTexture& lut = result.lut(term);
+        if (!lut)
+            continue;
+        const int n = std::min(lut.size, options.lutGrid);
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int x = (2 * i + 1) * lut.size / (2 * n);
+                const int row = (2 * j + 1) * lut.size / (2 * n);
+                lutPoints.push_back({term, x, row, references.lut((x + 0.5) / lut.size, (row + 0.5) / lut.size, term)});
+            }
+    }
+
+    // ... then computed, or read from the cache: they depend on nothing but the map's
+    // pixels and the list (the bake's sizes and layout decide the directions).
+    std::vector<glm::dvec3> values;
+    std::filesystem::path cached;
+    if (!options.referenceCacheDirectory.empty()) {
+        std::ostringstream key;
+        key << std::hex << std::setfill('0') << std::setw(16)
+            << fnv1a(references.digest(), fnv1a("iblab-reference-1|" + std::to_string(result.contentHash) + "|" +
+                                                std::to_string(wideWidth) + "|" + std::to_string(options.lutReferenceSamples)));
+        cached = options.referenceCacheDirectory / (key.str() + ".bin");
+        if (auto loaded = loadReferenceValues(cached, references.size(), errors.notes)) {
+            values = std::move(*loaded);
+            errors.referencesFromCache = true;
+        }
+    }
+    if (!errors.referencesFromCache) {
+        values = references.evaluate(environment, downsampleEquirectToWidth(environment, options.maxReferenceWidthForWideLobes),
+                                     options.lutReferenceSamples);
+        if (!cached.empty()) storeReferenceValues(cached, values, errors.notes);
+    }
+    errors.referenceMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    auto slice = [&](std::size_t first, std::size_t count) { return std::span<const glm::dvec3>(values).subspan(first, count); };
+
+    for (int level = 0; level < pre.levels; ++level) {
+        const LevelPlan& plan = levels[std::size_t(level)];
+        const CubeImage image = readCubeLevel(pre, level);
+        std::vector<glm::dvec3> baked;
+        for (const CubeTexelRef& t : plan.texels) baked.emplace_back(image.rgb(t.face, t.x, t.row));
+        errors.prefilter.push_back({level, plan.roughness, relativeRmse(baked, slice(plan.first, baked.size())),
+                                    int(baked.size()), referenceWidth(plan.roughness)});
+    }
+
     std::vector<glm::vec4> queries;
     for (float roughness : shadedRoughness)
         for (const glm::dvec3& d : shadedDirections)
@@ -130,77 +331,58 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
         const float roughness = shadedRoughness[r];
         const auto first = shaded.begin() + std::ptrdiff_t(r * shadedDirections.size());
         const std::vector<glm::dvec3> baked(first, first + std::ptrdiff_t(shadedDirections.size()));
-        const double rmse = prefilterRelativeRmse(baked, shadedDirections, roughness);
+        const double rmse = relativeRmse(baked, slice(shadedFirst[r], baked.size()));
         errors.prefilterShaded.push_back({roughness, prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout)),
-                                          rmse, int(shadedDirections.size()), referenceMap(roughness).width});
+                                          rmse, int(shadedDirections.size()), referenceWidth(roughness)});
         sumSquares += rmse * rmse;
     }
     if (!errors.prefilterShaded.empty())
         errors.prefilterShadedRms = std::sqrt(sumSquares / double(errors.prefilterShaded.size()));
 
-    // Irradiance at texel centres: each cube at the grid texels of its own size, the SH at
-    // those of the shading cube (or of a 32^2 one when there is none).
-    auto texelGridErrors = [&](const BakedTexture& cube, int size) {
-        const auto texels = cubeTexelGrid(size, options.texelsPerFaceEdge);
-        const CubeImage directions(size);
-        std::vector<glm::dvec3> normals;
-        std::vector<glm::dvec3> reference;
-        for (const CubeTexelRef& t : texels) {
-            normals.push_back(glm::normalize(glm::dvec3(directions.texelDirection(t.face, t.x, t.row))));
-            reference.push_back(referenceIrradiance(reduced, normals.back()));
-        }
-        if (!cube) {
-            std::vector<glm::dvec3> sh;
-            std::vector<glm::dvec3> shWindowed;
-            for (const glm::dvec3& n : normals) {
-                sh.push_back(evaluate(result.sh.irradiance, n));
-                shWindowed.push_back(evaluate(result.sh.irradianceWindowed, n));
-            }
-            errors.shIrradiance = relativeErrors(sh, reference);
-            errors.shIrradianceWindowed = relativeErrors(shWindowed, reference);
-            return ErrorStats{};
-        }
-        return cubeIrradianceErrors(cube, texels, reference);
-    };
-    texelGridErrors({}, result.irradianceCube ? result.irradianceCube.size : 32);
-    errors.irradianceReferenceWidth = reduced.width;
+    const auto irradianceReference = slice(irradianceFirst, irradianceNormals.size());
+    std::vector<glm::dvec3> sh;
+    std::vector<glm::dvec3> shWindowed;
+    for (const glm::dvec3& n : irradianceNormals) {
+        sh.push_back(evaluate(result.sh.irradiance, n));
+        shWindowed.push_back(evaluate(result.sh.irradianceWindowed, n));
+    }
+    errors.shIrradiance = relativeErrors(sh, irradianceReference);
+    errors.shIrradianceWindowed = relativeErrors(shWindowed, irradianceReference);
+    errors.irradianceReferenceWidth = wideWidth;
     errors.irradianceMethod = result.settings.irradiance;
-    if (result.irradianceCube) errors.irradianceCube = texelGridErrors(result.irradianceCube, result.irradianceCube.size);
+    if (result.irradianceCube) {
+        const CubeImage image = readCubeLevel(result.irradianceCube, 0);
+        std::vector<glm::dvec3> baked;
+        for (const CubeTexelRef& t : irradianceTexels) baked.emplace_back(image.rgb(t.face, t.x, t.row));
+        errors.irradianceCube = relativeErrors(baked, irradianceReference);
+    }
 
     // Irradiance as shaded: each cube read where shading reads it (bilinear, seamless) at the
     // Fibonacci directions, which counts the interpolation between texel centres that the
     // texel-centre numbers above leave out, and compares cubes of different sizes on the
     // same directions. A one-level cube read at roughness 0 is read at lod 0.
-    std::vector<glm::vec4> irradianceQueries;
-    std::vector<glm::dvec3> shadedReference;
-    for (const glm::dvec3& d : shadedDirections) {
-        irradianceQueries.emplace_back(glm::vec3(d), 0.0f);
-        shadedReference.push_back(referenceIrradiance(reduced, d));
-    }
-    auto shadedIrradianceErrors = [&](const BakedTexture& cube) {
-        const std::vector<glm::vec3> read = BakePasses(shaders).samplePrefiltered(cube, RoughnessLayout::Linear, irradianceQueries);
-        return relativeErrors(std::vector<glm::dvec3>(read.begin(), read.end()), shadedReference);
-    };
+    const auto shadedReference = slice(shadedIrradianceFirst, shadedDirections.size());
     std::vector<glm::dvec3> shShaded;
     for (const glm::dvec3& d : shadedDirections)
         shShaded.push_back(evaluate(result.sh.irradiance, d));
     errors.shIrradianceShaded = relativeErrors(shShaded, shadedReference);
-    if (result.irradianceCube) errors.irradianceCubeShaded = shadedIrradianceErrors(result.irradianceCube);
+    if (result.irradianceCube) {
+        std::vector<glm::vec4> irradianceQueries;
+        for (const glm::dvec3& d : shadedDirections) irradianceQueries.emplace_back(glm::vec3(d), 0.0f);
+        const std::vector<glm::vec3> read =
+            BakePasses(shaders).samplePrefiltered(result.irradianceCube, RoughnessLayout::Linear, irradianceQueries);
+        errors.irradianceCubeShaded = relativeErrors(std::vector<glm::dvec3>(read.begin(), read.end()), shadedReference);
+    }
 
     for (GeometryTerm term : kGeometryTerms) {
         const BakedTexture& lut = result.lut(term);
         if (!lut)
             continue;
         const Image2D image = read2D(lut);
-        const int n = std::min(lut.size, options.lutGrid);
         double worst = 0.0;
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const int x = (2 * i + 1) * lut.size / (2 * n);
-                const int row = (2 * j + 1) * lut.size / (2 * n);
-                const glm::dvec3 ref = integrateSplitSumBrdf((x + 0.5) / lut.size, (row + 0.5) / lut.size,
-                                                             options.lutReferenceSamples, term);
-                const glm::dvec3 d = glm::abs(glm::dvec3(glm::vec3(image.at(x, row))) - ref);
+        for (const LutPoint& p : lutPoints)
+            if (p.term == term) {
+                const glm::dvec3 d = glm::abs(glm::dvec3(glm::vec3(image.at(p.x, p.row))) - values[p.slot]);
                 worst = std::max({worst, d.x, d.y, d.z});
             }
         errors.lutMaxAbs[std::size_t(term)] = worst;
@@ -259,6 +441,7 @@ std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& opti
                   std::to_string(options.lutGrid) + "x" + std::to_string(options.lutGrid) + " texel grid against " +
                   std::to_string(options.lutReferenceSamples) + "-sample CPU integration";
     j["milliseconds"] = errors.milliseconds;
+    j["references"] = {{"from_cache", errors.referencesFromCache}, {"milliseconds", errors.referenceMilliseconds}};
     return j.dump();
 }
 

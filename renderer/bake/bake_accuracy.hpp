@@ -10,6 +10,7 @@
 // Used by `iblab bake --json` and docs/bake.md.
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,6 +39,11 @@ struct AccuracyOptions {
     int shadedRoughnessSteps = 10;
     int lutGrid = 8;                       // 8 x 8 LUT texels
     std::uint32_t lutReferenceSamples = 16384;
+    // Where the reference values are kept between runs (empty: computed every time). They
+    // depend only on the map's pixels and on what is measured (the bake's sizes and layout),
+    // not on how it was baked, so every later bake of a map reads them, as bakes read the
+    // cached LUTs. <bake cache root>/reference in the bake command.
+    std::filesystem::path referenceCacheDirectory;
 };
 
 struct ErrorStats {
@@ -79,7 +85,10 @@ struct BakeErrors {
     std::optional<ErrorStats> irradianceCubeShaded;
     // Max |baked - reference| over the grid and the A, B, A + B channels.
     std::array<std::optional<double>, 2> lutMaxAbs;
+    bool referencesFromCache = false;
+    double referenceMilliseconds = 0.0; // computing or reading them, within milliseconds
     double milliseconds = 0.0;
+    std::vector<std::string> notes; // one line each: a reference cache entry found corrupt, or not written
 };
 
 // Reads the result's textures back and samples them (needs its context current).

@@ -8,42 +8,42 @@ namespace iblab {
 namespace {
 
 struct ToneMapUniforms {
-    explicit ToneMapUniforms(const gl::ShaderProgram& p) : exposureEv(p, "uExposureEv"), toneMapOperator(p, "uToneMapOperator") {}
+    explicit ToneMapUniforms(const gl::ShaderProgram& p) : exposureEv(p, "uExposureEv") {}
     gl::Uniform<float> exposureEv;
-    gl::Uniform<int> toneMapOperator;
 };
 
 struct ErrorViewUniforms {
     explicit ErrorViewUniforms(const gl::ShaderProgram& p)
-        : exposureEv(p, "uExposureEv"), toneMapOperator(p, "uToneMapOperator"), displaySpace(p, "uDisplaySpace"), errorScale(p, "uErrorScale")
+        : exposureEv(p, "uExposureEv"), displaySpace(p, "uDisplaySpace"), errorScale(p, "uErrorScale")
     {
     }
     gl::Uniform<float> exposureEv;
-    gl::Uniform<int> toneMapOperator;
     gl::Uniform<bool> displaySpace;
     gl::Uniform<float> errorScale;
 };
+
+// The operator is compiled in (tonemap.frag says why): one program per operator used.
+gl::ShaderDefines toneMapDefines(ToneMapOperator op) { return {{"TONEMAP_OPERATOR", std::to_string(int(op))}}; }
 
 } // namespace
 
 void ToneMapPass::draw(GLuint hdrFrame, const ToneMapSettings& toneMap, bool dataOnly)
 {
-    const gl::ShaderProgram& program = shaders_.program({"fullscreen.vert", "tonemap.frag"});
+    const gl::ShaderProgram& program =
+        shaders_.program({"fullscreen.vert", "tonemap.frag"}, toneMapDefines(dataOnly ? ToneMapOperator::None : toneMap.op));
     const ToneMapUniforms& u = program.uniforms<ToneMapUniforms>();
     glUseProgram(program.id());
     u.exposureEv.set(dataOnly ? 0.0f : toneMap.exposureEv);
-    u.toneMapOperator.set(int(dataOnly ? ToneMapOperator::None : toneMap.op));
     glBindTextureUnit(kUnitHdrFrame, hdrFrame);
     triangle_.draw();
 }
 
 void ErrorViewPass::draw(GLuint hdrFrame, GLuint referenceFrame, GLuint referenceNormals, const FrameSettings& settings)
 {
-    const gl::ShaderProgram& program = shaders_.program({"fullscreen.vert", "error_view.frag"});
+    const gl::ShaderProgram& program = shaders_.program({"fullscreen.vert", "error_view.frag"}, toneMapDefines(settings.toneMap.op));
     const ErrorViewUniforms& u = program.uniforms<ErrorViewUniforms>();
     glUseProgram(program.id());
     u.exposureEv.set(settings.toneMap.exposureEv);
-    u.toneMapOperator.set(int(settings.toneMap.op));
     u.displaySpace.set(settings.view.errorSpace == ErrorSpace::Display);
     u.errorScale.set(std::max(settings.view.errorScale, 1e-6f));
     glBindTextureUnit(kUnitHdrFrame, hdrFrame);

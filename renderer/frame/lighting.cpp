@@ -19,7 +19,7 @@ static_assert(int(SpecularDirection::Filament) == SPECULAR_DIRECTION_FILAMENT);
 IblUniforms::IblUniforms(const gl::ShaderProgram& p)
     : environmentYaw(p, "uEnvironmentYaw"), environmentIntensity(p, "uEnvironmentIntensity"), shIrradiance(p, "uShIrradiance"),
       prefilteredLevels(p, "uPrefilteredLevels"), prefilteredLayout(p, "uPrefilteredLayout"), environmentFaceSize(p, "uEnvironmentFaceSize"),
-      environmentLevels(p, "uEnvironmentLevels"), geometry(p, "uGeometry"), diffuseSource(p, "uDiffuseSource"), multiscatter(p, "uMultiscatter"),
+      environmentLevels(p, "uEnvironmentLevels"), geometry(p, "uGeometry"), multiscatter(p, "uMultiscatter"),
       roughFresnelOnLut(p, "uRoughFresnelOnLut"), specularDirection(p, "uSpecularDirection"), forcedMip(p, "uForcedMip"), pdfMipFiltering(p, "uPdfMipFiltering"), mipBias(p, "uMipBias")
 {
 }
@@ -50,13 +50,18 @@ void IblUniforms::bind(const Lighting& lighting, const FrameSettings& settings) 
     environmentFaceSize.set(float(b.environmentCube.size));
     environmentLevels.set(float(b.environmentCube.levels));
     geometry.set(int(settings.sampling.geometry));
-    diffuseSource.set(settings.sampling.diffuse == DiffuseSource::IrradianceCube && bool(irradiance) ? 1 : 0);
     multiscatter.set(settings.sampling.multiscatter);
     roughFresnelOnLut.set(settings.sampling.roughFresnelOnLut);
     specularDirection.set(int(settings.sampling.specularDirection));
     forcedMip.set(float(settings.sampling.forcedMip));
     pdfMipFiltering.set(settings.sampling.pdfMipFiltering);
     mipBias.set(settings.sampling.mipBias);
+}
+
+gl::ShaderDefine diffuseSourceDefine(const Lighting& lighting, const FrameSettings& settings)
+{
+    const bool cube = settings.sampling.diffuse == DiffuseSource::IrradianceCube && lighting.bake && bool(lighting.bake->irradianceCube);
+    return {"DIFFUSE_SOURCE", cube ? "1" : "0"};
 }
 
 std::vector<float> prefilterMipRoughnessOf(const bake::BakeResult& bake)

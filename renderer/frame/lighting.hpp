@@ -35,7 +35,6 @@ struct IblUniforms {
     gl::Uniform<float> environmentFaceSize;
     gl::Uniform<float> environmentLevels;
     gl::Uniform<int> geometry;
-    gl::Uniform<int> diffuseSource;
     gl::Uniform<bool> multiscatter;
     gl::Uniform<bool> roughFresnelOnLut;
     gl::Uniform<int> specularDirection;
@@ -43,6 +42,11 @@ struct IblUniforms {
     gl::Uniform<bool> pdfMipFiltering;
     gl::Uniform<float> mipBias;
 };
+
+// Where diffuse irradiance comes from (ibl_lighting.glsl's DIFFUSE_SOURCE, compiled into the
+// programs that shade with it): 1 the bake's irradiance cube when the settings ask for it and
+// the bake has one, else 0, SH9.
+gl::ShaderDefine diffuseSourceDefine(const Lighting& lighting, const FrameSettings& settings);
 
 // The roughness of each prefiltered mip of the bake, as its layout put them.
 std::vector<float> prefilterMipRoughnessOf(const bake::BakeResult& bake);

@@ -24,7 +24,6 @@ struct MeshUniforms {
     gl::Uniform<bool> normalizeByAccepted;
     gl::Uniform<bool> cosineSampledDiffuse;
     gl::Uniform<int> sampleCount;
-    gl::Uniform<bool> fittedLobe;
     gl::Uniform<int> lobeFitLayout;
     gl::Uniform<glm::mat4> model;
     gl::Uniform<glm::mat3> normalMatrix;
@@ -49,7 +48,7 @@ struct MeshUniforms {
 MeshUniforms::MeshUniforms(const gl::ShaderProgram& p)
     : ibl(p), viewProjection(p, "uViewProjection"), cameraPosition(p, "uCameraPosition"), sampleRotation(p, "uSampleRotation"),
       normalizeByAccepted(p, "uNormalizeByAccepted"), cosineSampledDiffuse(p, "uCosineSampledDiffuse"), sampleCount(p, "uSampleCount"),
-      fittedLobe(p, "uFittedLobe"), lobeFitLayout(p, "uLobeFitLayout"), model(p, "uModel"), normalMatrix(p, "uNormalMatrix"),
+      lobeFitLayout(p, "uLobeFitLayout"), model(p, "uModel"), normalMatrix(p, "uNormalMatrix"),
       baseColorFactor(p, "uBaseColorFactor"), metallicFactor(p, "uMetallicFactor"),
       roughnessFactor(p, "uRoughnessFactor"), emissiveFactor(p, "uEmissiveFactor"), occlusionStrength(p, "uOcclusionStrength"),
       normalScale(p, "uNormalScale"), specular(p, "uSpecular"), ambientOcclusion(p, "uAmbientOcclusion"),
@@ -155,7 +154,11 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
             if (!gbuffer && (draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
             if (!u) {
                 sampledDraws = sampledDraws || (sampled && rotating);
-                const gl::ShaderProgram& program = shaders_.program({"mesh.vert", "pbr.frag"}, {{"METHOD", std::to_string(method)}});
+                // What the settings choose between is compiled in (ibl_lighting.glsl says why).
+                const bool fittedLobe = method == 0 && settings.sampling.method == ShadingMethod::FittedLobe;
+                const gl::ShaderProgram& program =
+                    shaders_.program({"mesh.vert", "pbr.frag"},
+                                     {{"METHOD", std::to_string(method)}, {"FITTED_LOBE", fittedLobe ? "1" : "0"}, diffuseSourceDefine(lighting, settings)});
                 u = &program.uniforms<MeshUniforms>();
                 glUseProgram(program.id());
                 u->ibl.bind(lighting, settings);
@@ -164,7 +167,6 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
                 u->sampleRotation.set(sampleRotation);
                 u->normalizeByAccepted.set(settings.sampling.normalizeByAccepted);
                 u->cosineSampledDiffuse.set(settings.sampling.cosineSampledDiffuse);
-                u->fittedLobe.set(settings.sampling.method == ShadingMethod::FittedLobe);
                 u->lobeFitLayout.set(lobeFitLayout_);
                 glBindTextureUnit(kUnitLobeFit, lobeFit_.id());
             }

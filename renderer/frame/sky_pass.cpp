@@ -13,13 +13,12 @@ namespace {
 
 struct SkyUniforms {
     explicit SkyUniforms(const gl::ShaderProgram& p)
-        : ibl(p), inverseViewProjection(p, "uInverseViewProjection"), background(p, "uBackground"), backgroundMip(p, "uBackgroundMip"),
+        : ibl(p), inverseViewProjection(p, "uInverseViewProjection"), backgroundMip(p, "uBackgroundMip"),
           solidColour(p, "uSolidColour")
     {
     }
     IblUniforms ibl;
     gl::Uniform<glm::mat4> inverseViewProjection;
-    gl::Uniform<int> background;
     gl::Uniform<float> backgroundMip;
     gl::Uniform<glm::vec3> solidColour;
 };
@@ -51,13 +50,15 @@ void SkyPass::draw(const FrameSettings& settings, const Lighting& lighting, floa
     // The rotation alone: the sky is at infinity.
     const glm::mat4 viewRotation = glm::mat4(glm::mat3(cameraView(settings.camera)));
     const glm::mat4 inverseViewProjection = glm::inverse(cameraProjection(settings.camera, aspect) * viewRotation);
-    const gl::ShaderProgram& program = shaders_.program({"fullscreen.vert", "sky.frag"}, {{"AT_FAR_PLANE", "1"}});
+    const Background background = backgroundOf(settings, lighting.bake != nullptr);
+    // The background's mode is compiled in (sky.frag): one program per mode shown.
+    const gl::ShaderProgram& program = shaders_.program(
+        {"fullscreen.vert", "sky.frag"},
+        {{"AT_FAR_PLANE", "1"}, {"BACKGROUND", std::to_string(int(background.mode))}, diffuseSourceDefine(lighting, settings)});
     const SkyUniforms& u = program.uniforms<SkyUniforms>();
     glUseProgram(program.id());
     u.ibl.bind(lighting, settings);
     u.inverseViewProjection.set(inverseViewProjection);
-    const Background background = backgroundOf(settings, lighting.bake != nullptr);
-    u.background.set(int(background.mode));
     const int lastMip = lighting.bake ? lighting.bake->prefiltered.levels - 1 : 0;
     u.backgroundMip.set(float(std::clamp(settings.view.backgroundMip, 0, lastMip)));
     u.solidColour.set(background.solidColour);

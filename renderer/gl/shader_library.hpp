@@ -25,7 +25,8 @@ struct ShaderError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-using ShaderDefines = std::vector<std::pair<std::string, std::string>>;
+using ShaderDefine = std::pair<std::string, std::string>;
+using ShaderDefines = std::vector<ShaderDefine>;
 
 struct PreprocessedSource {
     std::string text;

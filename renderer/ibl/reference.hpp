@@ -10,6 +10,9 @@
 // Cost is O(texels) per query direction. Large images are summed by several threads over
 // bands of rows (partial sums combined in a fixed order, so results do not depend on
 // scheduling); for many queries on a big environment, downsample it first.
+#include <span>
+#include <vector>
+
 #include <glm/vec3.hpp>
 
 #include "ibl/brdf.hpp"
@@ -25,6 +28,53 @@ glm::dvec3 referenceIrradiance(const ImageRGB32F& env, glm::dvec3 n);
 // alpha = roughness^2. At roughness 0 the lobe is a delta: returns the bilinear lookup at n.
 // (Derivation in reference.cpp.)
 glm::dvec3 referencePrefilteredRadiance(const ImageRGB32F& env, glm::dvec3 n, double roughness);
+
+// The prefiltered-radiance and irradiance references above for many directions against one
+// environment (the ~1500 directions `iblab bake --json` measures a bake at). Both integrands
+// depend on the texel direction w only through c = n.w: the prefilter's weight D(h) (n.w)
+// with h = normalize(n + w) has (n.h)^2 = (1 + c) / 2, and irradiance's is max(0, c). So the
+// texel directions are computed once per environment instead of once per query, and each
+// (query, texel) pair is a dot product and a few flops, in lanes the compiler vectorises.
+// The single-query functions above are this class with one query, so there is one
+// definition of each sum; a row's sum is formed the same way whatever the batch and the
+// threads, and rows are added in order, so results do not depend on either.
+class ZonalReference {
+public:
+    // Throws std::invalid_argument on an empty environment or non-finite radiance.
+    explicit ZonalReference(const ImageRGB32F& env);
+
+    struct PrefilterQuery {
+        glm::dvec3 direction{0.0, 1.0, 0.0}; // unit length
+        double roughness = 0.0;
+    };
+    std::vector<glm::dvec3> prefilteredRadiance(std::span<const PrefilterQuery> queries) const;
+    std::vector<glm::dvec3> irradiance(std::span<const glm::dvec3> normals) const;
+    int width() const { return env_.width; }
+
+    static constexpr int kLanes = 4; // texels summed at once, in vector lanes
+
+    struct RowSums {
+        double r = 0.0, g = 0.0, b = 0.0, weight = 0.0; // per row, before the row's solid angle
+    };
+
+private:
+    enum class Kernel { Prefilter, Irradiance };
+    struct Query {
+        glm::dvec3 direction;
+        double alphaSquared = 0.0; // Prefilter only
+    };
+    std::vector<RowSums> sum(Kernel kernel, std::span<const Query> queries) const;
+    RowSums sumRow(Kernel kernel, const Query& query, int row) const;
+
+    ImageRGB32F env_;
+    std::size_t rowStride_ = 0; // width rounded up to whole vector lanes
+    // Per texel, row-major, one array per component so that rows stream into vector lanes.
+    std::vector<double> dirX_, dirY_, dirZ_;
+    std::vector<float> red_, green_, blue_;
+    // Per row: its texels' solid angle, and bounds on their directions that let a query
+    // skip a row where every texel has n.w <= 0 (both kernels are 0 there).
+    std::vector<double> rowSolidAngle_, rowMinY_, rowMaxY_, rowMaxHorizontal_;
+};
 
 // The full specular integral without the split-sum factorisation:
 //   integral L(w) D(h) Vis(n.v, n.w) F(v.h) max(0, n.w) dOmega,  h = normalize(v + w),

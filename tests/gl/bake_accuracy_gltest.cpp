@@ -6,7 +6,9 @@
 #include <cmath>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
+#include "bake/bake_accuracy.hpp"
 #include "bake/bake_passes.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "bake_test_support.hpp"
@@ -392,6 +394,58 @@ TEST_F(GlTest, LutConvergesToTheCpuReference)
         // 0.004-0.01); 0.02 catches a wrong term, whose error is 0.05 and up.
         EXPECT_LT(worst, 0.02) << enumName(term);
     }
+}
+
+} // namespace
+} // namespace iblab
+
+namespace iblab {
+namespace {
+
+// The errors' reference values depend only on the map and on what is measured, so a second
+// measurement of the same map reads them from the cache and reports the very same errors; a
+// corrupt entry is noted, computed again and replaced; another map is another entry.
+TEST_F(GlTest, BakeErrorsReadTheirReferencesFromTheCacheAndRecomputeACorruptEntry)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const Environment environment = environmentFromImage(linearEnvironment(64), "linear");
+    const bake::BakeResult result = runBake(shaders, environment, smallBakeSettings());
+    const testing::TempDirectory cache("reference-cache");
+    bake::AccuracyOptions options;
+    options.referenceCacheDirectory = cache.path();
+    // Every number of the report but the times.
+    auto numbers = [&](const bake::BakeErrors& e) {
+        nlohmann::json j = nlohmann::json::parse(bake::errorsJsonText(e, options));
+        j.erase("milliseconds");
+        j.erase("references");
+        return j.dump();
+    };
+
+    const bake::BakeErrors computed = bake::measureBakeErrors(result, environment.image, shaders, options);
+    EXPECT_FALSE(computed.referencesFromCache);
+    EXPECT_TRUE(computed.notes.empty());
+    const std::vector<std::filesystem::path> entries(std::filesystem::directory_iterator(cache.path()), {});
+    ASSERT_EQ(entries.size(), 1u);
+
+    const bake::BakeErrors read = bake::measureBakeErrors(result, environment.image, shaders, options);
+    EXPECT_TRUE(read.referencesFromCache);
+    EXPECT_EQ(numbers(read), numbers(computed));
+    EXPECT_EQ(numbers(computed), numbers(bake::measureBakeErrors(result, environment.image, shaders, {})));
+
+    std::filesystem::resize_file(entries[0], std::filesystem::file_size(entries[0]) - 8);
+    const bake::BakeErrors repaired = bake::measureBakeErrors(result, environment.image, shaders, options);
+    EXPECT_FALSE(repaired.referencesFromCache);
+    ASSERT_EQ(repaired.notes.size(), 1u);
+    EXPECT_NE(repaired.notes[0].find(entries[0].filename().string()), std::string::npos) << repaired.notes[0];
+    EXPECT_EQ(numbers(repaired), numbers(computed));
+    EXPECT_TRUE(bake::measureBakeErrors(result, environment.image, shaders, options).referencesFromCache);
+
+    ImageRGB32F brighter = environment.image;
+    for (float& v : brighter.texels) v *= 2.0f;
+    const Environment other = environmentFromImage(brighter, "brighter");
+    const bake::BakeResult otherResult = runBake(shaders, other, smallBakeSettings());
+    EXPECT_FALSE(bake::measureBakeErrors(otherResult, other.image, shaders, options).referencesFromCache);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(cache.path()), {}), 2);
 }
 
 } // namespace

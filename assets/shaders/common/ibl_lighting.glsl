@@ -18,14 +18,23 @@ uniform int uPrefilteredLayout;  // PREFILTER_LAYOUT_* of prefilter_lod.glsl, as
 uniform float uEnvironmentFaceSize;
 uniform float uEnvironmentLevels;
 uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
-uniform int uDiffuseSource;  // 0: SH9, 1: irradiance cube
+// Code paths that settings choose are compile-time constants, and each pass specialises its
+// program with them (lighting.hpp's diffuseSourceOf, mesh_pass.cpp): llvmpipe evaluates
+// both sides of a branch on a uniform, texture reads included. The fitted lobe's unused
+// reads were a third of a split-sum mesh pass, and the sky's unused modes two thirds of
+// the sky pass (1280 x 720); a GPU resolves such branches at compile time either way.
+#ifndef DIFFUSE_SOURCE
+#define DIFFUSE_SOURCE 0 // 0: SH9, 1: the irradiance cube
+#endif
+#ifndef FITTED_LOBE
+#define FITTED_LOBE 0 // 1: shadeSplitSum reads where the fitted table says (ShadingMethod::FittedLobe)
+#endif
 uniform bool uMultiscatter;
 uniform bool uRoughFresnelOnLut; // LearnOpenGL's F_roughness * A + B (SamplingSettings::roughFresnelOnLut)
 uniform int uSpecularDirection;  // SPECULAR_DIRECTION_* of specular_lobe.glsl: where the split sum reads the cube
 // ShadingMethod::FittedLobe: the cube read per the fitted table (specular_approximations.hpp's
 // LobeFitTable, uploaded once from the CPU core's fittedLobeTable()): x = n.v, y = perceptual
 // roughness, texel centres (i + 0.5) / size, bilinear, clamp to edge; uLobeFitLayout its taps.
-uniform bool uFittedLobe;
 uniform sampler2D uLobeFit;
 uniform int uLobeFitLayout;
 uniform float uForcedMip;    // < 0: automatic
@@ -44,8 +53,11 @@ struct SurfacePoint {
 
 vec3 diffuseIrradiance(vec3 N)
 {
-    if (uDiffuseSource == 0) return max(sh9Evaluate(uShIrradiance, toEnvironment(N)), vec3(0.0)) * uEnvironmentIntensity;
+#if DIFFUSE_SOURCE == 0
+    return max(sh9Evaluate(uShIrradiance, toEnvironment(N)), vec3(0.0)) * uEnvironmentIntensity;
+#else
     return textureLod(uIrradianceCube, toEnvironment(N), 0.0).rgb * uEnvironmentIntensity;
+#endif
 }
 
 // Fdez-Aguera 2019 (Filament's "energy compensation"): single scattering misses the energy
@@ -107,7 +119,7 @@ vec3 fittedLobeRadiance(SurfacePoint s, float NdotV, vec3 R, vec3 scaledA, float
 // roughness-aware Fresnel instead of F0; that counts Fresnel twice (it is already inside A
 // and B), so by default F_roughness only sets the diffuse weight kD = (1 - F)(1 - metallic),
 // and uRoughFresnelOnLut reproduces the tutorial for the convention presets.
-// uSpecularDirection moves the read from R towards N (a dominant direction); uFittedLobe
+// uSpecularDirection moves the read from R towards N (a dominant direction); FITTED_LOBE
 // reads where the fitted table says instead.
 vec3 shadeSplitSum(SurfacePoint s)
 {
@@ -115,14 +127,13 @@ vec3 shadeSplitSum(SurfacePoint s)
     vec3 R = reflect(-s.V, s.N);
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
     vec3 scaleFresnel = uRoughFresnelOnLut ? fresnelSchlickRoughness(NdotV, s.F0, s.roughness) : s.F0;
-    vec3 reflected;
-    if (uFittedLobe) {
-        reflected = fittedLobeRadiance(s, NdotV, R, scaleFresnel * lut.r, lut.g);
-    } else {
-        if (uSpecularDirection != SPECULAR_DIRECTION_REFLECTION)
-            R = lobeTapDirection(s.N, R, specularDirectionTowardsNormal(uSpecularDirection, s.roughness * s.roughness));
-        reflected = prefilteredRadiance(R, s.roughness) * (scaleFresnel * lut.r + lut.g);
-    }
+#if FITTED_LOBE
+    vec3 reflected = fittedLobeRadiance(s, NdotV, R, scaleFresnel * lut.r, lut.g);
+#else
+    if (uSpecularDirection != SPECULAR_DIRECTION_REFLECTION)
+        R = lobeTapDirection(s.N, R, specularDirectionTowardsNormal(uSpecularDirection, s.roughness * s.roughness));
+    vec3 reflected = prefilteredRadiance(R, s.roughness) * (scaleFresnel * lut.r + lut.g);
+#endif
     vec3 specular = reflected * energyCompensation(s.F0, lut.b);
     return combineLobes(s, NdotV, diffuseIrradiance(s.N) * (1.0 / IBL_PI), specular);
 }
