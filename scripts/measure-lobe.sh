@@ -13,6 +13,10 @@
 # from another process does not land on one method only).
 #   scripts/measure-lobe.sh [OUT_DIR]     (the bench's files stay in OUT_DIR, default a temporary one)
 #   MAPS="city night" scripts/measure-lobe.sh    (only these bundled maps, for a quick look)
+#   UNSEEN="../shared/assets/hdri/pmndrs/*.exr" scripts/measure-lobe.sh
+#                                         (also these maps, which the fit never saw: their rows are
+#                                          marked "unseen", benched apart so that a stem equal to a
+#                                          bundled map's keeps its own row)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 iblab=${IBLAB:-build/app/iblab}
@@ -31,11 +35,16 @@ for scene in "${scenes[@]}"; do
     *) args=(--scene "$scene") ;;
   esac
   "$iblab" bench --family specular-lobe "${args[@]}" --reference-width 256 "${envs[@]}" --out "$out/$scene" >/dev/null
+  unseen=()
+  for f in ${UNSEEN:-}; do unseen+=(--env "$f"); done
+  if [ ${#unseen[@]} -gt 0 ]; then
+    "$iblab" bench --family specular-lobe "${args[@]}" --reference-width 256 "${unseen[@]}" --out "$out/unseen-$scene" >/dev/null
+  fi
 done
 renderer=$("$iblab" render --scene none --width 64 --height 64 --json -o "$out/probe.png" |
   python3 -c "import json,sys; print(json.load(sys.stdin)['renderer'].split(': ',1)[1].split(', OpenGL')[0])")
 python3 - "$out" "$renderer" <<'EOF'
-import csv, sys
+import csv, os, sys
 out, renderer = sys.argv[1], sys.argv[2]
 reads = ["split-sum", "split-sum, Frostbite direction", "split-sum, Filament direction", "fitted lobe"]
 print(f"Relative RMSE against the reference (ratio to the split sum's; frame time ratio in brackets), {renderer}:\n")
@@ -45,8 +54,10 @@ worst = {r: 0.0 for r in reads}
 frames = {r: [] for r in reads}
 for scene in ["sphere-0.3", "sphere-0.6", "grid"]:
     rows = {}
-    for row in csv.DictReader(open(f"{out}/{scene}/bench.csv")):
-        rows.setdefault(row["environment"], {})[row["series"]] = row
+    for prefix, path in [("", f"{out}/{scene}/bench.csv"), ("unseen ", f"{out}/unseen-{scene}/bench.csv")]:
+        if os.path.exists(path):
+            for row in csv.DictReader(open(path)):
+                rows.setdefault(prefix + row["environment"], {})[row["series"]] = row
     for env, points in rows.items():
         base = points["split-sum"]
         e0, f0 = float(base["relative_rmse"]), float(base["frame_ms"])

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -39,6 +40,7 @@ BakeSettings tutorialPreset()
                    .layout = RoughnessLayout::Linear,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
+                   .mipSampleScale = "",
                    .mipFiltering = false,
                    .mipBias = 0.0f,
                    .mirrorCopy = false};
@@ -65,6 +67,7 @@ BakeSettings filamentPreset()
                    .layout = RoughnessLayout::Quadratic,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
+                   .mipSampleScale = "",
                    .mipFiltering = true,
                    .mipBias = 1.0f,
                    .mirrorCopy = true};
@@ -91,6 +94,7 @@ BakeSettings gltfViewerPreset()
                    .layout = RoughnessLayout::Linear,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
+                   .mipSampleScale = "",
                    .mipFiltering = true,
                    .mipBias = 1.8257f,
                    .mirrorCopy = false};
@@ -120,11 +124,39 @@ BakeSettings presetByName(std::string_view name)
     throw Error("preset \"" + std::string(name) + "\"", "unknown preset; expected default, tutorial, filament or gltf-viewer");
 }
 
+namespace {
+
+std::vector<double> prefilterMipSampleScales(const std::string& list)
+{
+    std::vector<double> scales;
+    std::size_t begin = 0;
+    while (begin < list.size()) {
+        const std::size_t end = std::min(list.find(',', begin), list.size());
+        const std::string item = list.substr(begin, end - begin);
+        std::size_t used = 0;
+        double scale = 0.0;
+        try {
+            scale = std::stod(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        require(used == item.size() && used > 0 && scale >= 1.0 / 64.0 && scale <= 64.0, "prefilter.mip_sample_scale",
+                "expected numbers in [1/64, 64] separated by commas, got \"" + list + "\"");
+        scales.push_back(scale);
+        begin = end + 1;
+    }
+    return scales;
+}
+
+} // namespace
+
 int prefilterSamples(const PrefilterSettings& settings, int level)
 {
     if (level == 0)
         return settings.mirrorCopy ? 1 : settings.samples;
-    const double n = double(settings.samples) * std::pow(double(settings.sampleGrowth), double(std::max(level - 1, 0)));
+    const std::vector<double> scales = prefilterMipSampleScales(settings.mipSampleScale);
+    const double scale = std::size_t(level - 1) < scales.size() ? scales[std::size_t(level - 1)] : 1.0;
+    const double n = scale * double(settings.samples) * std::pow(double(settings.sampleGrowth), double(std::max(level - 1, 0)));
     return int(std::clamp(std::lround(n), 1l, 65536l));
 }
 
@@ -202,6 +234,9 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.samples; }), {1, 65536}, "--prefilter-samples", value},
         {"prefilter.sample_growth", "Prefilter sample growth", "Mip m takes samples * growth^(m-1)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.sampleGrowth; }), {1, 8}, "--prefilter-sample-growth", value},
+        {"prefilter.mip_sample_scale", "Prefilter sample scale per mip",
+         "Factors on samples * growth^(m-1) for mips 1, 2, ..., comma-separated (default 1,1,2: mip 3 doubled; \"\" for none)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipSampleScale; }), {}, "--prefilter-mip-sample-scale", value},
         {"prefilter.mip_filtering", "Prefilter mip filtering", "PDF-based source-mip selection for the prefilter (on/off)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipFiltering; }), {}, "--prefilter-mip-filter", value},
         {"prefilter.mip_bias", "Prefilter mip bias", "Bias added to the prefilter source lod (0 LearnOpenGL, 1 Filament)",
@@ -229,6 +264,7 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
 void validate(const BakeSettings& s)
 {
     validateRanges(bakeSettingsFields(), s, "bake settings");
+    prefilterMipSampleScales(s.prefilter.mipSampleScale);
     // The rule that relates two fields.
     const int maxLevels = std::bit_width(unsigned(std::max(s.prefilter.faceSize, 1)));
     require(s.prefilter.levels <= maxLevels, "prefilter.levels",

@@ -88,7 +88,10 @@ inline bool readsPrefilteredCube(ShadingMethod method) { return method == Shadin
 inline constexpr int kMaxSampleCount = 1024;
 
 struct SamplingSettings {
-    ShadingMethod method = ShadingMethod::SplitSum;
+    // The fitted lobe: at most half the split sum's error against the full integral on every
+    // bundled and unseen map of scripts/measure-lobe.sh, at the split sum's frame time
+    // (docs/accuracy-study.md).
+    ShadingMethod method = ShadingMethod::FittedLobe;
     int samples = 16;      // N for the sampled method, 1..1024
     int forcedMip = -1;    // -1: the lod follows roughness (split-sum) or the sample pdf (sampled)
     bool pdfMipFiltering = true;

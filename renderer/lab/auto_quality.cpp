@@ -134,7 +134,8 @@ std::string describeSettings(const SweepPoint& p)
         text = "sampled, N = " + std::to_string(p.sampling.samples);
     else
         text = specularReadName(p.sampling) + ", prefilter face " + std::to_string(p.bake.prefilter.faceSize) + ", " + std::to_string(p.bake.prefilter.levels) + " mips, " +
-               std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth, "%.3g") + " per mip)";
+               std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth, "%.3g") + " per mip" +
+               (p.bake.prefilter.mipSampleScale.empty() ? "" : ", mip factors " + p.bake.prefilter.mipSampleScale) + ")";
     text += pdfFiltered(p) ? ", PDF mips" : ", no PDF mips";
     if (readsCube(p)) {
         if (p.bake.irradiance == bake::IrradianceMethod::Moments)

@@ -59,10 +59,11 @@ struct SweepPoint {
     std::string series; // "split-sum 64 PDF", "sampled no mip filter", "Riemann cube"
     std::string label;  // the whole setting in words, for tooltips and tables
     double parameter = 0.0;
-    // Windowed SH9 diffuse unless the point says otherwise: a specular point's error must not
+    // The split sum with windowed SH9 diffuse unless the point says otherwise: a specular point's error must not
     // depend on which irradiance cube its bake happens to have.
     SamplingSettings sampling = [] {
         SamplingSettings s;
+        s.method = ShadingMethod::SplitSum; // the families that shade otherwise say so
         s.diffuse = DiffuseSource::Sh9;
         return s;
     }();

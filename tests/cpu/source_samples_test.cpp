@@ -2,11 +2,15 @@
 // built from: each entry is the sampler's direction, and its lod term, completed with the
 // texel's term, is the PDF-based lod prefilter_lod.glsl computes from the pdf directly.
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
 #include "ibl/prefilter_lod.hpp"
+#include "bake/bake_settings.hpp"
 #include "bake/source_samples.hpp"
 #include "ibl/sampling.hpp"
 
@@ -65,6 +69,37 @@ TEST(SourceSamples, RoughnessZeroIsEverySampleOnTheNormal)
     ASSERT_EQ(table.size(), 16u);
     for (const glm::vec4& e : table)
         EXPECT_EQ(glm::vec3(e), glm::vec3(0.0f, 0.0f, 1.0f));
+}
+
+// How many samples each prefiltered mip draws: the default doubles mip 3 on the tripling rule
+// (docs/bake.md), a preset with its own rule keeps it, and a malformed scale list is refused
+// naming its key.
+TEST(PrefilterSampleCounts, DefaultDoublesMipThreeAndPresetsKeepTheirRule)
+{
+    auto counts = [](const PrefilterSettings& p) {
+        std::vector<int> n;
+        for (int level = 0; level < p.levels; ++level) n.push_back(prefilterSamples(p, level));
+        return n;
+    };
+    EXPECT_EQ(counts(defaultPreset().prefilter), (std::vector<int>{1, 8, 24, 144, 216, 648}));
+    PrefilterSettings rule = defaultPreset().prefilter;
+    rule.mipSampleScale = "";
+    EXPECT_EQ(counts(rule), (std::vector<int>{1, 8, 24, 72, 216, 648}));
+    rule.mipSampleScale = "0.5,1,1,1,1,4"; // a factor beyond the last mip is ignored
+    EXPECT_EQ(counts(rule), (std::vector<int>{1, 4, 24, 72, 216, 648}));
+    EXPECT_EQ(counts(tutorialPreset().prefilter), (std::vector<int>(5, 1024)));
+    EXPECT_EQ(counts(filamentPreset().prefilter), (std::vector<int>{1, 1024, 1024, 1024, 1024}));
+
+    BakeSettings bad;
+    for (const char* list : {"1,x", "1,,2", "0", "100", ","}) {
+        bad.prefilter.mipSampleScale = list;
+        try {
+            validate(bad);
+            ADD_FAILURE() << "accepted \"" << list << "\"";
+        } catch (const std::exception& e) {
+            EXPECT_NE(std::string(e.what()).find("prefilter.mip_sample_scale"), std::string::npos) << e.what();
+        }
+    }
 }
 
 } // namespace

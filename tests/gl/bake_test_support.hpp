@@ -30,6 +30,7 @@ inline bake::BakeSettings smallBakeSettings(bake::IrradianceMethod irradiance = 
                    .layout = bake::RoughnessLayout::Linear,
                    .samples = 64,
                    .sampleGrowth = 2.0f,
+                   .mipSampleScale = "",
                    .mipFiltering = true,
                    .mipBias = 0.0f};
     s.lut = {.size = 16, .samples = 256, .schlickGgx = true, .heightCorrelatedSmith = true};

@@ -315,6 +315,9 @@ TEST_F(Frame, MsaaErrorMeasuresTheSingleSampledPixels)
 {
     bake("builtin:studio?width=128");
     FrameSettings s = sphere();
+    // The split sum, on which the tolerances below were measured (the fitted lobe's narrower
+    // reads vary more within a pixel: 1.04e-2 inside). What is tested is the MSAA pixel rule.
+    s.sampling.method = ShadingMethod::SplitSum;
     s.view.mode = ViewMode::Error;
     ASSERT_TRUE(renderer().advanceReference(s, kSize, kSize, std::chrono::hours(1)).complete);
     const FrameReadback reference = renderer().readReferenceFrame();
