@@ -324,8 +324,13 @@ struct GuiApp::Impl {
             requests.frameScene = true;
         }
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
+            const bool startFraming = frameWhenReady && !requests.sceneChanged && !requests.frameScene;
+            const auto cameraBefore = settings.camera;
             const SceneInfo scene = renderer.sceneInfo(settings);
             frameBox(settings.camera, scene.centre, scene.halfExtents, float(viewWidth) / float(viewHeight));
+            // The start's own framing (once the first bake is in) is not an edit of the
+            // user's: what counts as saved moves with it, so that quitting does not ask.
+            if (startFraming && savedSettings.camera == cameraBefore) savedSettings.camera = settings.camera;
             frameWhenReady = false;
         }
         if (requests.quit) {

@@ -10,7 +10,8 @@ namespace {
 // lights") and its shading code (perceptualRoughnessToLod, DFG with energy compensation,
 // SH irradiance); glTF-Sample-Viewer's ibl_sampler.js and ibl.glsl (getIBLRadianceGGX uses
 // k_S = F0 + (max(1 - roughness, F0) - F0) (1 - n.v)^5, the roughness-aware Fresnel, on the
-// LUT). iblab is the lab's own default: the exact F0 A + B and energy compensation on.
+// LUT). iblab is the lab's own default: the exact F0 A + B, energy compensation on, and the
+// fitted lobe's reads instead of the split sum's one.
 // Where the cube is read: Filament's getReflectedVector leans R towards N by alpha^2
 // (common/specular_lobe.glsl); LearnOpenGL's and the Sample Viewer's ibl code read at R.
 constexpr std::array kConventions{
@@ -21,7 +22,7 @@ constexpr std::array kConventions{
     ConventionPreset{"gltf-viewer", "glTF Sample Viewer", "gltf-viewer", GeometryTerm::HeightCorrelatedSmith, true, false,
                      DiffuseSource::IrradianceCube, SpecularDirection::Reflection},
     ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::IrradianceCube,
-                     SpecularDirection::Reflection},
+                     SpecularDirection::Reflection, ShadingMethod::FittedLobe},
 };
 
 std::string formatted(const char* format, double value)
@@ -60,7 +61,7 @@ bake::BakeSettings conventionBakeSettings(const ConventionPreset& convention)
 
 void applyConvention(const ConventionPreset& convention, SamplingSettings& sampling)
 {
-    sampling.method = ShadingMethod::SplitSum;
+    sampling.method = convention.method;
     sampling.forcedMip = -1;
     sampling.geometry = convention.geometry;
     sampling.roughFresnelOnLut = convention.roughFresnelOnLut;
@@ -78,8 +79,9 @@ std::vector<std::pair<std::string, std::string>> conventionChoices(const Convent
     rows.emplace_back("roughness per mip", p.layout == bake::RoughnessLayout::Quadratic ? "quadratic: lod = (L-1) r (2-r)" : "linear: lod = (L-1) r");
     std::string bias = p.mipFiltering ? formatted("%+.2f", p.mipBias) + (bake.exactTexelSolidAngle ? " (texel read)" : " (face average)") : "off (source mip 0)";
     rows.emplace_back("source-mip bias", bias);
-    rows.emplace_back("prefilter", std::to_string(p.faceSize) + "^2 x " + std::to_string(p.levels) + " mips, " + std::to_string(p.samples) +
-                                       (p.sampleGrowth > 1.0f ? formatted(" samples x%.0f per mip", p.sampleGrowth) : " samples"));
+    std::string samples;
+    for (int level = 1; level < p.levels; ++level) samples += (samples.empty() ? "" : "/") + std::to_string(bake::prefilterSamples(p, level));
+    rows.emplace_back("prefilter", std::to_string(p.faceSize) + "^2 x " + std::to_string(p.levels) + " mips, " + samples + " samples (mips 1+)");
     rows.emplace_back("LUT", std::to_string(bake.lut.size) + "^2 x " + std::to_string(bake.lut.samples) + " samples");
     rows.emplace_back("Fresnel on LUT", convention.roughFresnelOnLut ? "F_roughness(n.v) A + B" : "F0 A + B");
     rows.emplace_back("energy compensation", convention.multiscatter ? "on" : "off");
@@ -87,7 +89,10 @@ std::vector<std::pair<std::string, std::string>> conventionChoices(const Convent
                                 : bake.irradiance == bake::IrradianceMethod::Moments ? "moment cube"
                                 : bake.irradiance == bake::IrradianceMethod::Riemann ? "Riemann cube"
                                                                                       : "cosine-sampled cube");
-    rows.emplace_back("specular direction", convention.specularDirection == SpecularDirection::Filament    ? "mix(R, N, alpha^2) (Filament)"
+    if (convention.method == ShadingMethod::FittedLobe)
+        rows.emplace_back("specular reads", "the fitted lobe's, per n.v and roughness (docs/accuracy-study.md)");
+    else
+        rows.emplace_back("specular direction", convention.specularDirection == SpecularDirection::Filament    ? "mix(R, N, alpha^2) (Filament)"
                                             : convention.specularDirection == SpecularDirection::Frostbite ? "lerp(N, R, s (sqrt(s) + alpha)), s = 1 - alpha (Frostbite)"
                                                                                                             : "R");
     return rows;

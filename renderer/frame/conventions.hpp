@@ -25,6 +25,9 @@ struct ConventionPreset {
     bool multiscatter = false;
     DiffuseSource diffuse = DiffuseSource::Sh9;
     SpecularDirection specularDirection = SpecularDirection::Reflection;
+    // The engines read the prefiltered cube once (the split sum); iblab's default reads it
+    // where the fitted table says (ShadingMethod::FittedLobe, docs/accuracy-study.md).
+    ShadingMethod method = ShadingMethod::SplitSum;
 };
 
 std::span<const ConventionPreset> conventionPresets();

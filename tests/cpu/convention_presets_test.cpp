@@ -82,6 +82,11 @@ TEST(ConventionPresets, ApplyingOneSetsTheSplitSumShadingItUses)
     EXPECT_EQ(sampling.samples, 77); // not the convention's business
     applyConvention(preset("filament"), sampling);
     EXPECT_EQ(sampling.specularDirection, SpecularDirection::Filament);
+    EXPECT_EQ(sampling.method, ShadingMethod::SplitSum);
+    // iblab's own convention is its default shading, the fitted lobe.
+    applyConvention(preset("iblab"), sampling);
+    EXPECT_EQ(sampling.method, ShadingMethod::FittedLobe);
+    EXPECT_EQ(sampling.method, SamplingSettings{}.method);
 }
 
 } // namespace
