@@ -154,11 +154,15 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
             if (!gbuffer && (draw.forceSampled || settings.sampling.method == ShadingMethod::Sampled) != sampled) continue;
             if (!u) {
                 sampledDraws = sampledDraws || (sampled && rotating);
-                // What the settings choose between is compiled in (ibl_lighting.glsl says why).
-                const bool fittedLobe = method == 0 && settings.sampling.method == ShadingMethod::FittedLobe;
-                const gl::ShaderProgram& program =
-                    shaders_.program({"mesh.vert", "pbr.frag"},
-                                     {{"METHOD", std::to_string(method)}, {"FITTED_LOBE", fittedLobe ? "1" : "0"}, diffuseSourceDefine(lighting, settings)});
+                // What the settings choose between is compiled in (ibl_lighting.glsl says why);
+                // the G-buffer shades nothing, so one program serves every choice.
+                gl::ShaderDefines defines{{"METHOD", std::to_string(method)}};
+                if (!gbuffer) {
+                    const bool fittedLobe = !sampled && settings.sampling.method == ShadingMethod::FittedLobe;
+                    defines.push_back({"FITTED_LOBE", fittedLobe ? "1" : "0"});
+                    defines.push_back(diffuseSourceDefine(lighting, settings));
+                }
+                const gl::ShaderProgram& program = shaders_.program({"mesh.vert", "pbr.frag"}, defines);
                 u = &program.uniforms<MeshUniforms>();
                 glUseProgram(program.id());
                 u->ibl.bind(lighting, settings);
