@@ -434,12 +434,16 @@ void GuiApp::Impl::frame()
     const RenderedState current{settings, viewWidth, viewHeight, renderer.contentRevision(), errorView && panels.compare.reference.complete,
                                 referenceMethodSide(settings) ? panels.compare.reference.progress : 0.0f};
     const int framesToConverge = renderer.lastFrameWasSampled() && !keepsExactSampleCount(settings) ? kMaxAccumulatedFrames : 1;
-    const bool converged = rendered == current && !interacting && !session.busy() && !capturing && renderer.accumulatedFrames() >= framesToConverge;
+    // The same image again: nothing it shows has changed (a load or bake that lands moves the
+    // content revision, and a frame follows then), so a decode that runs meanwhile keeps
+    // both cores rather than sharing them with copies of the last frame.
+    const bool unchanged = rendered == current && !interacting && !capturing && renderer.accumulatedFrames() >= framesToConverge;
+    const bool converged = unchanged && !session.busy();
     // While another environment loads and bakes, the view keeps its last image (the previous
     // environment, lit by its own bake) rather than drawing each frame again: the new one
     // shows sooner, and never with the old one's lighting.
     const bool holdFrame = session.switching() && renderer.hasBake();
-    if (!converged && !holdFrame) {
+    if (!unchanged && !holdFrame) {
         renderTimer.begin();
         renderer.renderFrame(settings, viewWidth, viewHeight, renderOptions);
         renderTimer.end();
@@ -460,7 +464,7 @@ void GuiApp::Impl::frame()
     // also keeps drawing while a control is hovered (its tooltip) or a field has the
     // keyboard (the caret), and only sleeps when neither.
     isIdle = converged && !referencePending && !study.running() && input.empty();
-    heldForLoad = holdFrame && !study.running() && !referencePending;
+    heldForLoad = (holdFrame || unchanged) && !study.running() && !referencePending;
     sleepWhenIdle = !ImGui::IsAnyItemHovered() && !io.WantTextInput;
 
     glBindFramebuffer(GL_FRAMEBUFFER, platform.framebuffer());

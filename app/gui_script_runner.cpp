@@ -420,6 +420,9 @@ int runGuiScript(GuiApp& app, const std::string& path, const std::string& covera
     const auto start = Clock::now();
     int status = 0;
     try {
+        // As a person does, the script starts once the window shows the start's environment:
+        // the panel's status lines change when it lands, and controls below them move.
+        runner.run({0, "wait-until", {"/session/busy", "==", "false"}, "(start)"});
         runner.run({0, "frames", {"2"}, "(start)"});
         for (const ScriptStep& step : steps) {
             try {

@@ -48,13 +48,49 @@ void LabSession::requestEnvironment(const std::string& spec)
         return;
     }
     pendingSpec_ = spec;
-    pendingLoad_ = std::async(std::launch::async, [spec] { return iblab::loadEnvironment(spec); });
+    startEarlyBake(spec);
+    // With an early bake the decode waits for its first frame (pump starts it): the two
+    // cores then read the cache and draw that frame undisturbed, and OpenEXR's one thread
+    // pool is not shared between the map and the cache's files.
+    decodeDeferred_ = early_.has_value();
+    if (!decodeDeferred_) startDecode();
+}
+
+void LabSession::startDecode()
+{
+    decodeDeferred_ = false;
+    pendingLoad_ = std::async(std::launch::async, [spec = pendingSpec_] { return iblab::loadEnvironment(spec); });
+}
+
+void LabSession::startEarlyBake(const std::string& spec)
+{
+    if (early_) withdrawEarlyBake();
+    if (!cache_.enabled()) return;
+    const std::optional<bake::BakeCache::SourceRecord> record = cache_.findSource(spec);
+    if (!record) return;
+    job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), spec, *record, bakeSettings_, cache_);
+    early_ = EarlyBake{.spec = spec, .contentHash = record->contentHash, .previous = bake_};
+}
+
+void LabSession::withdrawEarlyBake()
+{
+    if (!early_) return;
+    if (early_->jobRunning) job_.reset();
+    if (early_->shown && !early_->decoded) {
+        bake_ = early_->previous;
+        renderer_.setBake(bake_);
+    }
+    early_.reset();
 }
 
 ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& settings)
 {
     renderer_.setEnvironment(loaded.image);
-    if (switchInProgress_) switchInProgress_->loadMs = millisecondsSince(switchRequested_);
+    const double loadMs = millisecondsSince(switchRequested_);
+    if (switchInProgress_) switchInProgress_->loadMs = loadMs;
+    else if (lastSwitch_ && lastSwitch_->environment == pendingSpec_ && lastSwitch_->loadMs == 0.0) lastSwitch_->loadMs = loadMs; // shown early
+    cache_.rememberSource(pendingSpec_.empty() ? loaded.source : pendingSpec_,
+                          {loaded.contentHash, loaded.image.width, loaded.image.height});
     const std::string text = shortName(loaded.source) + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
     // Repairs, downsampling and LDR input are the loader's warnings: notes under the line,
     // since the environment loaded and is usable (the bundled courtyard has negative texels
@@ -62,28 +98,58 @@ ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& setting
     std::vector<std::string> notes = loaded.warnings;
     settings.environment.source = pendingSpec_.empty() ? loaded.source : pendingSpec_;
     currentSpec_ = settings.environment.source;
+    if (early_ && early_->spec == currentSpec_ && early_->contentHash == loaded.contentHash) {
+        // The early bake is this map's: it is shown, or its job is still reading the cache.
+        early_->decoded = true;
+        environment_ = std::make_shared<const Environment>(std::move(loaded));
+        if (early_->shown) {
+            rememberCurrent();
+            early_.reset();
+        }
+        return {text, false, std::move(notes)};
+    }
+    // Not what the record said (the file was rewritten in place): bake what was decoded.
+    withdrawEarlyBake();
     job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), loaded, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
     environment_ = std::make_shared<const Environment>(std::move(loaded));
     return {text, false, std::move(notes)};
 }
 
-ui::StatusLine LabSession::finishBake()
+std::optional<ui::StatusLine> LabSession::finishBake()
 {
+    const bool earlyJob = early_ && early_->jobRunning;
+    if (earlyJob && job_->missedCache()) {
+        // The record outlived its bake: bake the pixels once they are here (or now).
+        const bool decoded = early_->decoded;
+        job_.reset();
+        early_.reset();
+        if (decoded) job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), *environment_, bakeSettings_, &cache_);
+        return std::nullopt;
+    }
     auto result = std::make_shared<bake::BakeResult>(job_->takeResult());
     job_.reset();
+    if (earlyJob) {
+        early_->jobRunning = false;
+        early_->shown = true;
+    }
     char gpuMemory[48];
     std::snprintf(gpuMemory, sizeof gpuMemory, ", %.1f MiB of GPU memory", double(result->gpuBytes()) / (1024.0 * 1024.0));
     std::string text = "baked in " + std::to_string(int(result->totalMilliseconds + 0.5)) + " ms" + (result->fromCache ? " (from cache)" : "") + gpuMemory;
     for (const auto& note : result->notes) text += "; " + note;
     bake_ = result;
     renderer_.setBake(bake_);
-    rememberCurrent();
+    if (early_ && !early_->decoded) {
+        text += "; reading " + shortName(early_->spec);
+    } else {
+        rememberCurrent();
+        early_.reset();
+    }
     if (switchInProgress_) {
         switchInProgress_->bakeMs = millisecondsSince(switchRequested_);
         switchInProgress_->fromCache = result->fromCache;
         switchAwaitsFrame_ = true;
     }
-    return {text, false};
+    return ui::StatusLine{text, false};
 }
 
 std::optional<std::filesystem::file_time_type> LabSession::modificationTime(const std::string& spec)
@@ -112,6 +178,8 @@ void LabSession::rememberCurrent()
 
 ui::StatusLine LabSession::showRecent(const RecentEnvironment& recent, FrameSettings& settings)
 {
+    early_.reset();
+    decodeDeferred_ = false;
     job_.reset(); // a bake of the environment being left
     renderer_.setEnvironment(recent.environment->image);
     renderer_.setBake(recent.bake);
@@ -154,10 +222,13 @@ LabSession::Finished LabSession::showRequestedRecent(FrameSettings& settings)
 LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::steady_clock::duration budget)
 {
     if (recentRequested_) return showRequestedRecent(settings);
+    // The early bake was shown in an earlier pump (or is gone): its frame has been drawn.
+    if (decodeDeferred_ && !(early_ && early_->jobRunning)) startDecode();
     Finished finished;
     if (pendingLoad_.valid() && pendingLoad_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         if (queuedSpec_) {
             // The user has asked for another environment since: this result is stale.
+            withdrawEarlyBake();
             pendingLoad_ = {};
             requestEnvironment(*std::exchange(queuedSpec_, std::nullopt));
             return finished;
@@ -165,6 +236,7 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
         try {
             finished.environment = finishLoad(pendingLoad_.get(), settings);
         } catch (const Error& e) {
+            withdrawEarlyBake();
             switchInProgress_.reset();
             finished.environment = ui::StatusLine{e.what(), true};
             return finished;
@@ -175,6 +247,7 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
         try {
             if (!job_->runFor(budget)) finished.bake = finishBake();
         } catch (const std::exception& e) {
+            withdrawEarlyBake();
             job_.reset();
             switchInProgress_.reset();
             finished.bake = ui::StatusLine{std::string("bake failed: ") + e.what(), true};
@@ -185,14 +258,14 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
 
 void LabSession::waitForLoad(std::chrono::steady_clock::duration timeout) const
 {
-    if (pendingLoad_.valid()) pendingLoad_.wait_for(timeout);
+    if (pendingLoad_.valid() && !job_) pendingLoad_.wait_for(timeout);
 }
 
-bool LabSession::busy() const { return pendingLoad_.valid() || queuedSpec_ || recentRequested_ || job_ != nullptr; }
+bool LabSession::busy() const { return pendingLoad_.valid() || decodeDeferred_ || queuedSpec_ || recentRequested_ || job_ != nullptr; }
 
 std::string LabSession::activity() const
 {
-    if (pendingLoad_.valid()) return "loading " + shortName(queuedSpec_ ? *queuedSpec_ : pendingSpec_);
+    if (pendingLoad_.valid() || decodeDeferred_) return "loading " + shortName(queuedSpec_ ? *queuedSpec_ : pendingSpec_);
     if (job_) {
         const std::optional<bake::BakePhase> phase = job_->currentPhase();
         return "baking: " + std::string(phase ? enumName(*phase) : "done");
@@ -223,6 +296,7 @@ ui::StatusLine LabSession::loadEnvironment(const std::string& spec, FrameSetting
 
 void LabSession::setBakeSettings(const bake::BakeSettings& settings)
 {
+    withdrawEarlyBake(); // read with the old settings; the decode bakes with the new ones
     bakeSettings_ = settings;
     // The furnace bake reads the LUT of the session's settings: make it again on next use.
     renderer_.setFurnaceBake(nullptr);

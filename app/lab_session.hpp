@@ -79,7 +79,8 @@ public:
     // drawn with the new lighting. Each time is since the request.
     struct SwitchTiming {
         std::string environment;
-        double loadMs = 0.0;       // the file decoded (on the worker thread)
+        double loadMs = 0.0;       // the file decoded (on the worker thread); with a bake read early
+                                   // from the cache's record of the file, after the first frame
         double bakeMs = 0.0;       // the bake (or its cache lookup) handed to the renderer
         double firstFrameMs = 0.0; // the first frame with that bake drawn and presented
         bool fromCache = false;
@@ -109,7 +110,14 @@ private:
     ui::StatusLine showRecent(const RecentEnvironment& recent, FrameSettings& settings);
 
     ui::StatusLine finishLoad(Environment loaded, FrameSettings& settings);
-    ui::StatusLine finishBake();
+    std::optional<ui::StatusLine> finishBake();
+    // A file the cache has a record of (BakeCache::findSource): its bake is read from the
+    // cache while the file decodes, and shown as soon as it is read; the decoded pixels then
+    // only have to match the record's hash. Nothing starts for a file without a record.
+    void startEarlyBake(const std::string& spec);
+    void startDecode(); // of pendingSpec_, on the worker thread
+    // Puts back the bake shown before an early bake that turned out not to belong.
+    void withdrawEarlyBake();
 
     Renderer& renderer_;
     bake::BakeSettings bakeSettings_;
@@ -121,6 +129,7 @@ private:
     std::string pendingSpec_;
     std::optional<std::string> queuedSpec_; // asked for while pendingLoad_ runs
     std::future<Environment> pendingLoad_;
+    bool decodeDeferred_ = false; // pendingSpec_ decodes after its early bake's first frame
     std::string currentSpec_;                   // what environment_ was asked for as
     std::optional<std::string> recentRequested_; // a spec of recent_, shown at the next pump
     std::deque<RecentEnvironment> recent_;      // most recent first
@@ -128,6 +137,15 @@ private:
     std::optional<SwitchTiming> switchInProgress_;
     bool switchAwaitsFrame_ = false;
     std::optional<SwitchTiming> lastSwitch_;
+    struct EarlyBake {
+        std::string spec;
+        std::uint64_t contentHash = 0; // what the record says the file decodes to
+        std::shared_ptr<const bake::BakeResult> previous; // shown until the early bake is
+        bool jobRunning = true;  // job_ is the early job
+        bool shown = false;      // its bake is bake_ (environment_ is still the previous one)
+        bool decoded = false;    // the file decoded to contentHash: environment_ is its own
+    };
+    std::optional<EarlyBake> early_;
 };
 
 } // namespace iblab::app

@@ -10,6 +10,8 @@
 
 #include "bake/bake_files.hpp"
 #include "io/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/builtin_environments.hpp"
 #include "io/hash.hpp"
 
 namespace iblab::bake {
@@ -142,6 +144,61 @@ void BakeCache::storeBake(const BakeResult& result)
     snapshot->durability = Durability::NoFlush;
     const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));
     writeInBackground(dir, [dir, snapshot] { writeBakeSnapshot(dir, *snapshot); });
+}
+
+fs::path BakeCache::sourceRecordPath(const std::string& spec) const
+{
+    if (!enabled() || isBuiltinSpec(spec))
+        return {};
+    std::error_code ec;
+    const fs::path file = fs::absolute(spec, ec);
+    if (ec)
+        return {};
+    const auto size = fs::file_size(file, ec);
+    if (ec)
+        return {};
+    const auto modified = fs::last_write_time(file, ec);
+    if (ec)
+        return {};
+    // The loader's version too: a loader that repairs or converts pixels differently makes
+    // other pixels of the same file.
+    const std::string identity = "iblab-source-" + std::to_string(kBakeFormatVersion) + "|" + file.lexically_normal().string() + "|" +
+                                 std::to_string(size) + "|" + std::to_string(modified.time_since_epoch().count());
+    return root_ / "source" / (hex16(fnv1a(identity)) + ".json");
+}
+
+std::optional<BakeCache::SourceRecord> BakeCache::findSource(const std::string& spec) const
+{
+    const fs::path path = sourceRecordPath(spec);
+    std::error_code ec;
+    if (path.empty() || !fs::exists(path, ec))
+        return std::nullopt;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(readTextFile(path.string()));
+        SourceRecord record{std::stoull(j.at("content_hash").get<std::string>(), nullptr, 16), j.at("width").get<int>(),
+                            j.at("height").get<int>()};
+        if (record.width <= 0 || record.height <= 0)
+            return std::nullopt;
+        return record;
+    } catch (const std::exception&) {
+        return std::nullopt; // a torn or foreign record is only a miss: the decode decides
+    }
+}
+
+void BakeCache::rememberSource(const std::string& spec, const SourceRecord& record)
+{
+    const fs::path path = sourceRecordPath(spec);
+    if (path.empty())
+        return;
+    const std::string text =
+        nlohmann::json{{"source", spec}, {"content_hash", hex16(record.contentHash)}, {"width", record.width}, {"height", record.height}}.dump();
+    writeInBackground(path, [path, text] {
+        std::error_code ec;
+        fs::create_directories(path.parent_path(), ec);
+        if (ec)
+            throw Error(path.parent_path().string(), "cannot create the directory: " + ec.message());
+        writeTextFileAtomic(path.string(), text, Durability::NoFlush);
+    });
 }
 
 bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes)

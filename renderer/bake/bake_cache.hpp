@@ -7,6 +7,12 @@
 //                               changes the output
 //   <root>/lut/<key>.exr        one BRDF LUT, key = its own (size, samples, geometry) only:
 //                               it depends on no environment
+//   <root>/source/<key>.json    what a file decoded to when it was last loaded (its content
+//                               hash and size), key = its absolute path, size and
+//                               modification time: a bake can then be read from the cache
+//                               while the file decodes, not after (the GUI's environment
+//                               switch). The decoded pixels' hash is still checked; a
+//                               record that no longer matches only costs that overlap.
 //
 // root: $IBLAB_CACHE_DIR if set (tests), else $XDG_CACHE_HOME/iblab, else $HOME/.cache/iblab.
 // Files are written atomically (a reader never sees half a file) and bake.json last (an
@@ -28,6 +34,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,6 +75,18 @@ public:
     bool loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes);
     void storeLut(const BakedTexture& lut, int samples, GeometryTerm term);
 
+    // What a file decoded to when it was last loaded, if the cache has a record of it and the
+    // file's size and modification time are still those; nullopt for builtins, unknown or
+    // changed files, and unreadable records.
+    struct SourceRecord {
+        std::uint64_t contentHash = 0;
+        int width = 0;
+        int height = 0;
+    };
+    std::optional<SourceRecord> findSource(const std::string& spec) const;
+    // Records what spec decoded to (written in the background; builtins are not recorded).
+    void rememberSource(const std::string& spec, const SourceRecord& record);
+
     // Waits for the background writes; returns one line for each that failed.
     std::vector<std::string> finishWrites();
     // The time the finished background writes took, summed (they run beside the caller).
@@ -79,6 +98,8 @@ private:
         std::future<void> done;
     };
     void writeInBackground(std::filesystem::path target, std::function<void()> write);
+    // The record's path for spec as the file is now; empty for builtins and missing files.
+    std::filesystem::path sourceRecordPath(const std::string& spec) const;
     // Waits for the writes to `target` in flight, forgets the finished ones, and returns one
     // line for each write that failed so far.
     std::vector<std::string> settleWrites(const std::filesystem::path& target);

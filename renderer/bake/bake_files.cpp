@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
 #include "io/image_codec.hpp"
+#include "io/image_codec_direct.hpp"
 #include "io/image_writer.hpp"
 
 namespace iblab::bake {
@@ -59,16 +60,40 @@ void writeCubeExr(const fs::path& path, const StoredCubeLevel& image, const Bake
              {.exrCompression = snapshot.exrCompression, .exrTileSize = image.size, .durability = snapshot.durability});
 }
 
-CubeImage readCubeExr(const fs::path& path, int expectedSize)
+// A cube level as writeCubeExr stored it, into the texture format's own layout (RGB from the
+// file, A = 1): uploaded as it is, with no conversion on either side.
+StoredCubeLevel readStoredCubeExr(const fs::path& path, int expectedSize, GLenum internalFormat)
 {
-    const RgbImage rgb = readExrRgb(path);
-    if (rgb.width != expectedSize || rgb.height != 6 * expectedSize)
-        throw BakeFileError(path, "is " + std::to_string(rgb.width) + "x" + std::to_string(rgb.height) + ", expected " +
-                                      std::to_string(expectedSize) + "x" + std::to_string(6 * expectedSize) + " (6 faces)");
-    CubeImage image(expectedSize);
-    for (std::size_t i = 0; i < image.texels.size(); ++i)
-        image.texels[i] = glm::vec4(rgb.rgb[i * 3], rgb.rgb[i * 3 + 1], rgb.rgb[i * 3 + 2], 1.0f);
-    return image;
+    if (!fs::exists(path))
+        throw BakeFileError(path, "missing");
+    StoredCubeLevel stored{expectedSize, internalFormat, nullptr};
+    stored.bytes = std::make_unique_for_overwrite<std::byte[]>(stored.byteCount());
+    const std::size_t texels = std::size_t(6) * std::size_t(expectedSize) * std::size_t(expectedSize);
+    const bool halfTexels = internalFormat == GL_RGBA16F;
+    if (halfTexels) {
+        auto* values = reinterpret_cast<std::uint16_t*>(stored.bytes.get());
+        for (std::size_t i = 0; i < texels; ++i)
+            values[i * 4 + 3] = 0x3C00; // 1.0 as a half
+    } else {
+        auto* values = reinterpret_cast<float*>(stored.bytes.get());
+        for (std::size_t i = 0; i < texels; ++i)
+            values[i * 4 + 3] = 1.0f;
+    }
+    try {
+        readExrDirect(path.string(), {.width = expectedSize,
+                                      .height = 6 * expectedSize,
+                                      .channels = 3,
+                                      .pixelValues = 4,
+                                      .type = halfTexels ? ExrPixelType::Half : ExrPixelType::Float,
+                                      .data = stored.bytes.get()});
+    } catch (const Error& e) {
+        // Its message already names the file.
+        std::string problem = e.what();
+        if (const std::string named = path.string() + ": "; problem.rfind(named, 0) == 0)
+            problem.erase(0, named.size());
+        throw BakeFileError(path, problem);
+    }
+    return stored;
 }
 
 ordered_json shArray(const SH9Color& sh)
@@ -221,13 +246,13 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
     const int face = environmentFaceSize(s.cube, result.sourceWidth, result.sourceHeight);
     const int levels = std::bit_width(unsigned(face));
     result.environmentCube = createCubeTexture(format, face, levels);
-    uploadCubeLevel(result.environmentCube, 0, readCubeExr(directory / "environment.exr", face));
+    uploadStoredCubeLevel(result.environmentCube, 0, readStoredCubeExr(directory / "environment.exr", face, format));
     buildMips(result.environmentCube);
 
     if (s.irradiance != IrradianceMethod::None) {
         const int irradianceFace = irradianceFaceSize(s);
         result.irradianceCube = createCubeTexture(format, irradianceFace, 1);
-        uploadCubeLevel(result.irradianceCube, 0, readCubeExr(directory / irradianceFileName(s.irradiance), irradianceFace));
+        uploadStoredCubeLevel(result.irradianceCube, 0, readStoredCubeExr(directory / irradianceFileName(s.irradiance), irradianceFace, format));
     }
     result.prefiltered = createCubeTexture(format, s.prefilter.faceSize, s.prefilter.levels);
     int mirrorSource = -1;
@@ -244,8 +269,7 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
             copyCubeRows(result.environmentCube, mirrorSource, result.prefiltered, level, 0, 6, 0, result.prefiltered.levelSize(level));
             continue;
         }
-        uploadCubeLevel(result.prefiltered, level,
-                        readCubeExr(directory / prefilterFile(level), result.prefiltered.levelSize(level)));
+        uploadStoredCubeLevel(result.prefiltered, level, readStoredCubeExr(directory / prefilterFile(level), result.prefiltered.levelSize(level), format));
     }
 
     const fs::path shPath = directory / "sh.json";

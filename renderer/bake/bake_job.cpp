@@ -60,6 +60,21 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const Bake
     plan();
 }
 
+BakeJob::BakeJob(gl::ShaderLibrary& shaders, const std::string& source, const BakeCache::SourceRecord& record, const BakeSettings& settings,
+                 BakeCache& cache)
+    : passes_(shaders), cache_(&cache)
+{
+    validate(settings);
+    if (!cache.enabled())
+        throw std::logic_error("BakeJob: a job from the cache needs an enabled cache");
+    result_.settings = settings;
+    result_.source = source;
+    result_.contentHash = record.contentHash;
+    result_.sourceWidth = record.width;
+    result_.sourceHeight = record.height;
+    plan();
+}
+
 BakeJob::~BakeJob() = default;
 
 bool BakeJob::compilesLut(const BakeSettings& settings, const BakeCache* cache)
@@ -101,11 +116,13 @@ void BakeJob::plan()
 {
     const BakeSettings& s = result_.settings;
     const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
-    const double sourceTexels = double(image_.width) * double(image_.height);
-    const int envFace = environmentFaceSize(s.cube, image_.width, image_.height);
+    const double sourceTexels = double(result_.sourceWidth) * double(result_.sourceHeight);
+    const int envFace = environmentFaceSize(s.cube, result_.sourceWidth, result_.sourceHeight);
     const int envLevels = std::bit_width(unsigned(envFace)); // full chain down to 1x1
+    // No pixels: a job from the cache's record of the file (the constructor's second form).
+    const bool cacheOnly = image_.empty();
 
-    const int equirectLevels = BakePasses::equirectLevelsForCube(image_.width, image_.height, envFace);
+    const int equirectLevels = BakePasses::equirectLevelsForCube(result_.sourceWidth, result_.sourceHeight, envFace);
     steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost, [this, equirectLevels] {
                           passes_.compileFor(result_.settings, equirectLevels, compilesLut(result_.settings, cache_));
                       }});
@@ -117,6 +134,15 @@ void BakeJob::plan()
                                   skipGroup(StepGroup::Environment);
                               }
                           }});
+
+    if (cacheOnly) {
+        // Reached only when the lookup missed (a hit skips the group).
+        steps_.push_back({BakePhase::CacheLookup, StepGroup::Environment, 1.0, [this] { missedCache_ = true; }});
+        planLuts();
+        for (const Step& step : steps_)
+            totalCost_ += step.cost;
+        return;
+    }
 
     steps_.push_back({BakePhase::Upload, StepGroup::Environment, sourceTexels, [this, format, envFace, envLevels, equirectLevels] {
                           equirect_ = passes_.uploadEquirect(image_, equirectLevels);
@@ -185,6 +211,18 @@ void BakeJob::plan()
                                              result_.settings.exactTexelSolidAngle);
                        });
 
+    planLuts();
+
+    if (cache_)
+        steps_.push_back({BakePhase::CacheStore, StepGroup::Environment, sourceTexels, [this] { cache_->storeBake(result_); }});
+
+    for (const Step& step : steps_)
+        totalCost_ += step.cost;
+}
+
+void BakeJob::planLuts()
+{
+    const BakeSettings& s = result_.settings;
     for (GeometryTerm term : kGeometryTerms) {
         if (!s.lut.wants(term))
             continue;
@@ -214,12 +252,6 @@ void BakeJob::plan()
                                   cache_->storeLut(result_.brdfLut[index], result_.settings.lut.samples, term);
                               }});
     }
-
-    if (cache_)
-        steps_.push_back({BakePhase::CacheStore, StepGroup::Environment, sourceTexels, [this] { cache_->storeBake(result_); }});
-
-    for (const Step& step : steps_)
-        totalCost_ += step.cost;
 }
 
 void BakeJob::skipGroup(StepGroup group)

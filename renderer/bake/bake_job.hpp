@@ -39,6 +39,12 @@ public:
     // moved in by a caller that needs them no longer. cache may be null (no cache); it must
     // outlive the job. Throws iblab::Error for invalid settings.
     BakeJob(gl::ShaderLibrary& shaders, Environment environment, const BakeSettings& settings, BakeCache* cache = nullptr);
+    // A job for a map whose pixels are not decoded yet, from what the cache recorded of its
+    // file (BakeCache::findSource): it only reads the cache (the bake's entry and the LUTs),
+    // so that the bake is shown while the file decodes. If the entry is gone, the job ends
+    // with missedCache() and a result without the environment's textures.
+    BakeJob(gl::ShaderLibrary& shaders, const std::string& source, const BakeCache::SourceRecord& record, const BakeSettings& settings,
+            BakeCache& cache);
     ~BakeJob();
     BakeJob(const BakeJob&) = delete;
     BakeJob& operator=(const BakeJob&) = delete;
@@ -58,6 +64,7 @@ public:
 
     bool done() const { return steps_.empty(); }
     bool failed() const { return failed_; }
+    bool missedCache() const { return missedCache_; }
     // Share of the estimated work done, 0..1 (work = texture samples; cache hits skip ahead).
     float progress() const;
     // The phase the next step belongs to (nullopt when done).
@@ -85,6 +92,7 @@ private:
         gl::Fence fence;
     };
     void plan();
+    void planLuts();
     void planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
                         const std::function<void(const CubeSlice&)>& run);
     void skipGroup(StepGroup group);
@@ -103,6 +111,7 @@ private:
     double totalCost_ = 0.0;
     double doneCost_ = 0.0;
     bool failed_ = false;
+    bool missedCache_ = false;
 };
 
 } // namespace iblab::bake

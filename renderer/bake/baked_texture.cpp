@@ -112,6 +112,15 @@ void uploadCubeLevel(const BakedTexture& texture, int level, const CubeImage& im
     glTextureSubImage3D(texture.id(), level, 0, 0, 0, image.size, image.size, 6, GL_RGBA, GL_FLOAT, image.texels.data());
 }
 
+void uploadStoredCubeLevel(const BakedTexture& texture, int level, const StoredCubeLevel& stored)
+{
+    if (stored.internalFormat != texture.internalFormat || stored.size != texture.levelSize(level))
+        throw std::invalid_argument("uploadStoredCubeLevel: a level of another format or size");
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage3D(texture.id(), level, 0, 0, 0, stored.size, stored.size, 6, GL_RGBA,
+                        stored.internalFormat == GL_RGBA16F ? GL_HALF_FLOAT : GL_FLOAT, stored.bytes.get());
+}
+
 void upload2D(const BakedTexture& texture, const Image2D& image)
 {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

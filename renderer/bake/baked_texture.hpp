@@ -79,6 +79,8 @@ CubeImage readCubeLevel(const BakedTexture& texture, int level);
 StoredCubeLevel readStoredCubeLevel(const BakedTexture& texture, int level);
 Image2D read2D(const BakedTexture& texture);
 void uploadCubeLevel(const BakedTexture& texture, int level, const CubeImage& image);
+// In the texture's own format (the stored level's): a copy, no conversion.
+void uploadStoredCubeLevel(const BakedTexture& texture, int level, const StoredCubeLevel& stored);
 void upload2D(const BakedTexture& texture, const Image2D& image);
 // Rows [firstRow, firstRow + rowCount) of faces [firstFace, firstFace + faceCount) of a
 // level of `from` into the same texels of a level of `to`, of the same size and format.

@@ -123,7 +123,9 @@ Renderer::~Renderer() = default;
 void Renderer::setEnvironment(const ImageRGB32F& image)
 {
     impl_->reference.setEnvironment(image);
-    ++impl_->contentRevision;
+    // The frame reads the map only as the sky before a bake exists (the sky pass): with a
+    // bake, a new map changes nothing drawn until its own bake is set.
+    if (!impl_->bake) ++impl_->contentRevision;
     // Repeat in u (longitude wraps), clamp in v (the poles do not).
     impl_->equirect = gl::createMipmappedTexture2D(
         {GL_RGB32F, image.width, image.height, GL_RGB, GL_FLOAT, image.texels.data(), 4, GL_REPEAT, GL_CLAMP_TO_EDGE});

@@ -62,7 +62,8 @@ public:
     // A loaded glTF model for SceneKind::Model (uploads meshes and textures).
     void setModel(const ModelData& model, const std::string& path);
     // Counts the calls above that change what a frame shows besides its settings
-    // (setEnvironment, setBake, setFurnaceBake, setModel). Accumulation restarts when it
+    // (setBake, setFurnaceBake, setModel, and setEnvironment while no bake is set: the
+    // sky shows the bake's environment cube once there is one). Accumulation restarts when it
     // moves; the app may key its own "is this frame final" on it too.
     std::uint64_t contentRevision() const;
 

@@ -54,7 +54,10 @@ void SkyPass::draw(const FrameSettings& settings, const Lighting& lighting, floa
     // The background's mode is compiled in (sky.frag): one program per mode shown.
     const gl::ShaderProgram& program = shaders_.program(
         {"fullscreen.vert", "sky.frag"},
-        {{"AT_FAR_PLANE", "1"}, {"BACKGROUND", std::to_string(int(background.mode))}, diffuseSourceDefine(lighting, settings)});
+        {{"AT_FAR_PLANE", "1"},
+         {"BACKGROUND", std::to_string(int(background.mode))},
+         {"SKY_FROM_CUBE", lighting.bake ? "1" : "0"},
+         diffuseSourceDefine(lighting, settings)});
     const SkyUniforms& u = program.uniforms<SkyUniforms>();
     glUseProgram(program.id());
     u.ibl.bind(lighting, settings);
@@ -62,6 +65,7 @@ void SkyPass::draw(const FrameSettings& settings, const Lighting& lighting, floa
     const int lastMip = lighting.bake ? lighting.bake->prefiltered.levels - 1 : 0;
     u.backgroundMip.set(float(std::clamp(settings.view.backgroundMip, 0, lastMip)));
     u.solidColour.set(background.solidColour);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS); // the cube's faces filtered across their edges
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);

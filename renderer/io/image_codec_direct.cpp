@@ -135,8 +135,9 @@ public:
         header_ = std::move(header);
     }
 
-protected:
-    bool readFloatRows(int y0, int y1, int channels, float* out) override
+    // Rows [y0, y1) of the first `channels` channels, as `type` (OpenEXR converts from what
+    // is stored), each pixel xStride bytes after the last; the bytes between are left alone.
+    bool readSlices(int y0, int y1, int channels, Imf::PixelType type, char* out, std::size_t xStride)
     {
         const ImageHeader& h = header_;
         // Frame buffer for rows [y0, y1) only: Slice::Make places the base pointer, which
@@ -144,10 +145,11 @@ protected:
         if (std::size_t(channels) > layout_.channels.size())
             return fail("cannot read " + std::to_string(channels) + " channels of a grey (Y) image");
         Imf::FrameBuffer frame;
-        const std::size_t xStride = sizeof(float) * std::size_t(channels);
+        const std::size_t valueBytes = type == Imf::HALF ? sizeof(half) : sizeof(float);
         const std::size_t yStride = xStride * std::size_t(h.width);
         for (int c = 0; c < channels; ++c) {
-            frame.insert(layout_.channels[std::size_t(c)], Imf::Slice::Make(Imf::FLOAT, out + c, IMATH_NAMESPACE::V2i(h.x, y0), h.width, y1 - y0, xStride, yStride));
+            frame.insert(layout_.channels[std::size_t(c)],
+                         Imf::Slice::Make(type, out + std::size_t(c) * valueBytes, IMATH_NAMESPACE::V2i(h.x, y0), h.width, y1 - y0, xStride, yStride));
         }
         if (tiles_) {
             // Whole tile rows, as OpenImageIO's read_tiles: the band must start one and end
@@ -162,6 +164,12 @@ protected:
             scanlines_->readPixels(y0, y1 - 1);
         }
         return true;
+    }
+
+protected:
+    bool readFloatRows(int y0, int y1, int channels, float* out) override
+    {
+        return readSlices(y0, y1, channels, Imf::FLOAT, reinterpret_cast<char*>(out), sizeof(float) * std::size_t(channels));
     }
 
 private:
@@ -491,6 +499,34 @@ std::unique_ptr<ImageReader> openExrDirect(const std::string& path)
     } catch (const std::exception&) {
         return nullptr; // OpenImageIO reads it again and reports its own error, as before
     }
+}
+
+void readExrDirect(const std::string& path, const ExrPixelTarget& target)
+{
+    std::unique_ptr<ImageReader> reader;
+    try {
+        reader = openExr(path);
+    } catch (const std::exception& e) {
+        throw Error(path, oneLine(e.what()));
+    }
+    auto* exr = dynamic_cast<ExrReader*>(reader.get());
+    if (!exr)
+        throw Error(path, "not an OpenEXR image with R, G and B channels");
+    const ImageHeader& h = exr->header();
+    if (h.width != target.width || h.height != target.height)
+        throw Error(path, "is " + std::to_string(h.width) + "x" + std::to_string(h.height) + ", expected " + std::to_string(target.width) +
+                              "x" + std::to_string(target.height));
+    const Imf::PixelType type = target.type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
+    const std::size_t valueBytes = type == Imf::HALF ? sizeof(half) : sizeof(float);
+    bool read = false;
+    try {
+        read = exr->readSlices(h.y, h.y + h.height, target.channels, type, static_cast<char*>(target.data),
+                               valueBytes * std::size_t(target.pixelValues));
+    } catch (const std::exception& e) {
+        throw Error(path, "cannot read pixels: " + oneLine(e.what()));
+    }
+    if (!read)
+        throw Error(path, "cannot read pixels: " + exr->takeError());
 }
 
 std::unique_ptr<ImageReader> openHdrDirect(const std::string& path)

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "io/image_codec.hpp"
+#include "io/image_writer.hpp"
 
 namespace iblab {
 
@@ -29,6 +30,20 @@ ImageFileKind sniffImageFile(const std::string& path);
 // read as Float or UInt8 (clamped to [0, 1] and rounded, as OpenImageIO converts).
 std::unique_ptr<ImageReader> openExrDirect(const std::string& path);
 std::unique_ptr<ImageReader> openHdrDirect(const std::string& path);
+
+// writeExr(ExrPixels)'s mirror, for files this program wrote: an OpenEXR file's R, G and B
+// read as `type` (OpenEXR converts from what is stored) into the first `channels` of each
+// pixel's `pixelValues`, row-major, the values past them left as they are (the caller's
+// alpha), with no conversion in between. Throws iblab::Error naming the file for anything
+// else: not such an OpenEXR file, another size, a truncated one.
+struct ExrPixelTarget {
+    int width = 0, height = 0;
+    int channels = 3;
+    int pixelValues = 4;
+    ExrPixelType type = ExrPixelType::Half;
+    void* data = nullptr; // width * height * pixelValues values
+};
+void readExrDirect(const std::string& path, const ExrPixelTarget& target);
 
 // Writes an "openexr" image: 1 (Y), 3 (RGB) or 4 (RGBA) float channels stored as Half or
 // Float, or half channels stored as Half (written from where they are), with a compression OpenEXR names and string attributes ("ImageDescription" is

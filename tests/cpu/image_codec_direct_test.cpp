@@ -305,3 +305,49 @@ TEST(DirectCodec, HalfPixelsAreWrittenAsGivenInTilesAsOpenImageIoWritesThem)
     EXPECT_EQ(in->header().tileHeight, w);
     EXPECT_EQ(in->header().storedType, PixelType::Half);
 }
+
+TEST(DirectCodec, HalfPixelsAreReadBackAsStoredIntoTheirStride)
+{
+    // What the bake cache reads: the file above read back into an RGBA half layout, the
+    // alpha values left as the caller set them, every RGB value bit for bit.
+    TempDir dir;
+    const int w = 8, h = 48;
+    std::vector<std::uint16_t> rgba(std::size_t(w) * h * 4);
+    for (std::size_t i = 0; i < rgba.size(); ++i)
+        rgba[i] = std::uint16_t((i * 7919) % 0x7bff);
+    const std::string path = dir.file("cube.exr");
+    writeExr(path, ExrPixels{.width = w, .height = h, .channels = 3, .pixelValues = 4, .type = ExrPixelType::Half, .data = rgba.data()},
+             {.exrCompression = "none", .exrTileSize = w});
+    std::vector<std::uint16_t> back(rgba.size(), 0x3C00);
+    readExrDirect(path, {.width = w, .height = h, .channels = 3, .pixelValues = 4, .type = ExrPixelType::Half, .data = back.data()});
+    for (std::size_t i = 0; i < back.size(); ++i)
+        ASSERT_EQ(back[i], i % 4 == 3 ? 0x3C00 : rgba[i]) << "value " << i;
+
+    // As floats (a float texture's layout): OpenEXR converts each half exactly.
+    std::vector<float> floats(rgba.size(), -1.0f);
+    readExrDirect(path, {.width = w, .height = h, .channels = 3, .pixelValues = 4, .type = ExrPixelType::Float, .data = floats.data()});
+    const std::vector<float> oiio = readWithOpenImageIo(path, 3);
+    for (std::size_t p = 0; p < std::size_t(w) * h; ++p) {
+        for (std::size_t c = 0; c < 3; ++c) ASSERT_EQ(floats[p * 4 + c], oiio[p * 3 + c]) << "pixel " << p;
+        ASSERT_EQ(floats[p * 4 + 3], -1.0f);
+    }
+
+    // Another size, a truncated file, not an EXR: one line naming the file.
+    const auto expectRefused = [&](const std::string& file, int width, int height, const std::string& problem) {
+        try {
+            readExrDirect(file, {.width = width, .height = height, .channels = 3, .pixelValues = 4, .type = ExrPixelType::Half, .data = back.data()});
+            FAIL() << file << " was read";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind(file + ": ", 0), 0u) << what;
+            EXPECT_NE(what.find(problem), std::string::npos) << what;
+            EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        }
+    };
+    expectRefused(path, 4, 24, "is 8x48, expected 4x24");
+    fs::resize_file(path, fs::file_size(path) / 2);
+    expectRefused(path, w, h, "");
+    const std::string text = dir.file("text.exr");
+    std::ofstream(text) << "not an image";
+    expectRefused(text, w, h, "");
+}

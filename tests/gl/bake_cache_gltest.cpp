@@ -1,6 +1,7 @@
 // The bake as a job of steps, and its on-disk cache: results loaded from the cache are the
 // results baked, corrupt entries are reported by name and rebuilt, the LUT cache ignores
 // the environment, and cutting the work into smaller steps changes nothing.
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -281,6 +282,76 @@ TEST_F(GlTest, InvalidSettingsAreRefusedWithTheirName)
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("prefilter.levels"), std::string::npos) << e.what();
     }
+}
+
+// The record of what a file decoded to (the GUI reads its bake while the file decodes):
+// found for the file as it was, and for nothing else.
+TEST(BakeCacheSources, AreFoundForTheFileAsItWasOnly)
+{
+    TempDirectory dir("bake-sources");
+    bake::BakeCache cache(dir.path() / "cache");
+    const fs::path map = dir.path() / "map.exr";
+    writeExr(map.string(), loadEnvironment("builtin:sky?width=32").image);
+    EXPECT_FALSE(cache.findSource(map.string())) << "never loaded";
+    cache.rememberSource(map.string(), {0x0123456789abcdefull, 32, 16});
+    cache.rememberSource("builtin:sky?width=32", {1, 32, 16});
+    ASSERT_TRUE(cache.finishWrites().empty());
+
+    const std::optional<bake::BakeCache::SourceRecord> found = cache.findSource(map.string());
+    ASSERT_TRUE(found);
+    EXPECT_EQ(found->contentHash, 0x0123456789abcdefull);
+    EXPECT_EQ(found->width, 32);
+    EXPECT_EQ(found->height, 16);
+    EXPECT_FALSE(cache.findSource("builtin:sky?width=32")) << "builtins decode in no time: no record";
+    EXPECT_FALSE(cache.findSource((dir.path() / "other.exr").string())) << "a missing file";
+    // The same file by a relative path: the record is keyed by the absolute one.
+    const fs::path before = fs::current_path();
+    fs::current_path(dir.path());
+    EXPECT_TRUE(cache.findSource("map.exr"));
+    fs::current_path(before);
+
+    // Saved again (another modification time): the record no longer applies.
+    fs::last_write_time(map, fs::last_write_time(map) + std::chrono::seconds(2));
+    EXPECT_FALSE(cache.findSource(map.string()));
+    cache.rememberSource(map.string(), {42, 32, 16});
+    ASSERT_TRUE(cache.finishWrites().empty());
+    ASSERT_TRUE(cache.findSource(map.string()));
+    EXPECT_EQ(cache.findSource(map.string())->contentHash, 42u);
+
+    // A torn record is a miss, not an error.
+    for (const auto& entry : fs::directory_iterator(dir.path() / "cache" / "source"))
+        std::ofstream(entry.path(), std::ios::trunc) << "{\"content_hash\": ";
+    EXPECT_FALSE(cache.findSource(map.string()));
+    EXPECT_FALSE(bake::BakeCache(fs::path()).findSource(map.string())) << "no cache";
+}
+
+// A job from the record alone (no pixels) reads the bake the pixels would have made, or says
+// that the entry is gone.
+TEST_F(GlTest, AJobFromASourceRecordReadsTheCachedBakeOrSaysItMissed)
+{
+    auto shaders = library();
+    TempDirectory dir("bake-from-record");
+    bake::BakeCache cache(dir.path());
+    const Environment env = loadEnvironment("builtin:sun?width=64&size=10");
+    const bake::BakeResult baked = runBake(shaders, env, smallBakeSettings(), &cache);
+    ASSERT_TRUE(cache.finishWrites().empty());
+    const bake::BakeCache::SourceRecord record{env.contentHash, env.image.width, env.image.height};
+
+    bake::BakeJob job(shaders, "sun.exr", record, smallBakeSettings(), cache);
+    const bake::BakeResult read = job.runToCompletion();
+    EXPECT_FALSE(job.missedCache());
+    EXPECT_TRUE(read.fromCache);
+    EXPECT_EQ(read.contentHash, env.contentHash);
+    EXPECT_EQ(read.source, "sun.exr");
+    expectSameResults(baked, read);
+
+    fs::remove_all(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, baked.settings)));
+    bake::BakeJob missing(shaders, "sun.exr", record, smallBakeSettings(), cache);
+    const bake::BakeResult empty = missing.runToCompletion();
+    EXPECT_TRUE(missing.missedCache());
+    EXPECT_FALSE(empty.fromCache);
+    EXPECT_FALSE(empty.environmentCube);
+    EXPECT_FALSE(empty.prefiltered);
 }
 
 TEST(BakeCacheDirectory, FollowsTheEnvironmentVariables)

@@ -10,6 +10,8 @@
 
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
+#include "bake/bake_cache.hpp"
+#include "io/image_writer.hpp"
 #include "lab_session.hpp"
 #include "malformed_images.hpp"
 #include "temp_dir.hpp"
@@ -136,6 +138,129 @@ TEST_F(LabSessionTest, RequestsDuringALoadAreQueuedAndTheNewestWins)
     EXPECT_EQ(settings.environment.source, "builtin:studio?width=64");
     EXPECT_EQ(session.environment()->source, "builtin:studio?width=64");
     EXPECT_TRUE(session.bake());
+}
+
+// A map whose bake is cached from an earlier run: its bake is read from the cache's record
+// of the file and shown first, then the file decodes and must be what the record said.
+class EarlyBakeTest : public LabSessionTest {
+protected:
+    void SetUp() override
+    {
+        LabSessionTest::SetUp();
+        writeExr(mapA.string(), loadEnvironment("builtin:sun?width=64&size=20&elevation=30").image);
+        writeExr(mapB.string(), loadEnvironment("builtin:sky?width=64").image);
+        // An earlier run: both decoded and baked once (bakes and records in the cache).
+        Renderer renderer(shaderDirectory());
+        app::LabSession earlier(renderer, testing::smallBakeSettings());
+        FrameSettings settings;
+        ASSERT_FALSE(earlier.loadEnvironment(mapA.string(), settings).isError);
+        hashA = earlier.environment()->contentHash;
+        ASSERT_FALSE(earlier.loadEnvironment(mapB.string(), settings).isError);
+        hashB = earlier.environment()->contentHash;
+    } // the session's cache finishes its writes
+
+    // A session showing map B, as the user's before the switch.
+    void showB(app::LabSession& session, FrameSettings& settings)
+    {
+        ASSERT_FALSE(session.loadEnvironment(mapB.string(), settings).isError);
+        ASSERT_EQ(session.bake()->contentHash, hashB);
+    }
+
+    std::filesystem::path mapA = folder.path / "a.exr", mapB = folder.path / "b.exr";
+    std::uint64_t hashA = 0, hashB = 0;
+};
+
+TEST_F(EarlyBakeTest, TheBakeIsShownBeforeTheFileDecodes)
+{
+    Renderer renderer(shaderDirectory());
+    app::LabSession session(renderer, testing::smallBakeSettings());
+    FrameSettings settings;
+    showB(session, settings);
+    const std::uint64_t revision = renderer.contentRevision();
+
+    session.requestEnvironment(mapA.string());
+    // One pump reads the bake; the decode waits for the frame that shows it.
+    session.pump(settings, std::chrono::seconds(10));
+    ASSERT_TRUE(session.bake());
+    EXPECT_EQ(session.bake()->contentHash, hashA);
+    EXPECT_TRUE(session.bake()->fromCache);
+    EXPECT_GT(renderer.contentRevision(), revision) << "the renderer has the new bake";
+    EXPECT_EQ(session.environment()->source, mapB.string()) << "not decoded yet";
+    EXPECT_TRUE(session.busy());
+    session.frameDrawn();
+    ASSERT_TRUE(session.lastSwitch());
+    EXPECT_EQ(session.lastSwitch()->environment, mapA.string());
+    EXPECT_TRUE(session.lastSwitch()->fromCache);
+
+    const std::uint64_t shown = renderer.contentRevision();
+    pumpUntilIdle(session, settings);
+    EXPECT_EQ(session.environment()->source, mapA.string());
+    EXPECT_EQ(session.environment()->contentHash, hashA);
+    EXPECT_EQ(session.bake()->contentHash, hashA);
+    EXPECT_EQ(settings.environment.source, mapA.string());
+    EXPECT_EQ(renderer.contentRevision(), shown) << "the decoded map draws nothing new: no second frame";
+    EXPECT_GT(session.lastSwitch()->loadMs, 0.0) << "the decode's time, after the first frame";
+
+    // Kept with its own pixels: back to B and to A again shows each at once.
+    session.requestEnvironment(mapB.string());
+    session.showRequestedRecent(settings);
+    EXPECT_EQ(session.bake()->contentHash, hashB);
+    session.requestEnvironment(mapA.string());
+    session.showRequestedRecent(settings);
+    EXPECT_EQ(session.environment()->contentHash, hashA);
+    EXPECT_EQ(session.bake()->contentHash, hashA);
+}
+
+TEST_F(EarlyBakeTest, ARecordThatNoLongerMatchesGivesWayToTheDecodedMap)
+{
+    // The file rewritten with another map, its size and time kept: the record says B.
+    bake::BakeCache(folder.path / "cache").rememberSource(mapA.string(), {hashB, 64, 32});
+    Renderer renderer(shaderDirectory());
+    app::LabSession session(renderer, testing::smallBakeSettings());
+    FrameSettings settings;
+    ASSERT_FALSE(session.loadEnvironment("builtin:studio?width=64", settings).isError);
+    session.requestEnvironment(mapA.string());
+    session.pump(settings, std::chrono::seconds(10));
+    EXPECT_EQ(session.bake()->contentHash, hashB) << "what the record promised";
+    pumpUntilIdle(session, settings);
+    EXPECT_EQ(session.environment()->contentHash, hashA);
+    EXPECT_EQ(session.bake()->contentHash, hashA) << "the decoded pixels' bake replaces it";
+}
+
+TEST_F(EarlyBakeTest, ARecordWhoseBakeIsGoneBakesTheDecodedMap)
+{
+    std::filesystem::remove_all(folder.path / "cache" / "bake");
+    Renderer renderer(shaderDirectory());
+    app::LabSession session(renderer, testing::smallBakeSettings());
+    FrameSettings settings;
+    const ui::StatusLine status = session.loadEnvironment(mapA.string(), settings);
+    ASSERT_FALSE(status.isError) << status.text;
+    EXPECT_EQ(session.environment()->contentHash, hashA);
+    EXPECT_EQ(session.bake()->contentHash, hashA);
+    EXPECT_FALSE(session.bake()->fromCache);
+    EXPECT_NE(session.bake()->environmentCube.id(), 0u);
+}
+
+TEST_F(EarlyBakeTest, AFileThatNoLongerDecodesPutsBackWhatWasShown)
+{
+    Renderer renderer(shaderDirectory());
+    app::LabSession session(renderer, testing::smallBakeSettings());
+    FrameSettings settings;
+    showB(session, settings);
+    // Damaged in place, its size and time kept: the record still applies, the decode fails.
+    const auto size = std::filesystem::file_size(mapA);
+    const auto time = std::filesystem::last_write_time(mapA);
+    { std::ofstream(mapA, std::ios::binary | std::ios::trunc) << std::string(size, 'x'); }
+    std::filesystem::last_write_time(mapA, time);
+    session.requestEnvironment(mapA.string());
+    session.pump(settings, std::chrono::seconds(10));
+    EXPECT_EQ(session.bake()->contentHash, hashA);
+    const app::LabSession::Finished last = pumpUntilIdle(session, settings);
+    ASSERT_TRUE(last.environment);
+    EXPECT_TRUE(last.environment->isError);
+    EXPECT_NE(last.environment->text.find("a.exr"), std::string::npos) << last.environment->text;
+    EXPECT_EQ(session.environment()->source, mapB.string());
+    EXPECT_EQ(session.bake()->contentHash, hashB) << "B's lighting with B's map, as before the request";
 }
 
 TEST_F(LabSessionTest, BakeStatusReportsItsGpuMemory)

@@ -3,10 +3,12 @@
 // must land for a given camera and environment rotation.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include <glm/glm.hpp>
 
+#include "bake/bake_job.hpp"
 #include "io/environment.hpp"
 #include "gl_test_fixture.hpp"
 #include "frame/renderer.hpp"
@@ -111,6 +113,36 @@ TEST_F(SkyRender, SunLandsWhereTheCameraAndRotationSay)
     FrameSettings turnedRight = rotated;
     turnedRight.camera.yawDegrees = 10.0f;
     EXPECT_LT(brightestPixel(render(sun, turnedRight, 65, 65)).x, 32 - 5);
+}
+
+// With a bake, the background is the bake's environment cube, not the map last given: sky
+// and lighting change together when an environment is switched (the GUI shows a cached
+// bake before its map has decoded), and a new map draws nothing new until its bake is set.
+TEST_F(SkyRender, WithABakeTheSkyIsTheBakesEnvironment)
+{
+    Renderer renderer(shaderDirectory());
+    const Environment black = loadEnvironment("builtin:black?width=64");
+    renderer.setEnvironment(loadEnvironment("builtin:white?width=64").image);
+    FrameSettings settings;
+    settings.scene.kind = SceneKind::None;
+    renderer.renderFrame(settings, 32, 32);
+    EXPECT_EQ(pixel(renderer.readHdrFrame(), 16, 16), 1.0f) << "no bake yet: the map";
+
+    auto shaders = gl::ShaderLibrary(IBLAB_SHADER_DIR);
+    bake::BakeSettings small = bake::defaultPreset();
+    small.prefilter.faceSize = 16;
+    small.prefilter.levels = 3;
+    small.lut = {.size = 16, .samples = 64, .schlickGgx = true, .heightCorrelatedSmith = false};
+    renderer.setBake(std::make_shared<bake::BakeResult>(bake::BakeJob(shaders, black, small).runToCompletion()));
+    renderer.renderFrame(settings, 32, 32);
+    const FrameReadback shown = renderer.readHdrFrame();
+    float brightest = 0.0f;
+    for (std::size_t i = 0; i < shown.rgba.size(); i += 4) brightest = std::max(brightest, shown.rgba[i]);
+    EXPECT_EQ(brightest, 0.0f) << "the black bake's sky over the white map";
+
+    const std::uint64_t revision = renderer.contentRevision();
+    renderer.setEnvironment(loadEnvironment("builtin:sky?width=64").image);
+    EXPECT_EQ(renderer.contentRevision(), revision) << "the new map is not drawn until its bake is set";
 }
 
 } // namespace
