@@ -349,7 +349,7 @@ int runBakeBatch(const BakeCommandOptions& o, const bake::BakeSettings& settings
         if (session && session->cache) j["other_ms"]["cache_write"] = session->cache->writeMilliseconds();
         std::printf("%s\n", j.dump(2).c_str());
     }
-    return failed > 0 ? 1 : 0;
+    return exitWithoutTeardown(failed > 0 ? 1 : 0);
 }
 
 int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
@@ -364,7 +364,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
         std::unique_ptr<BakeSession> session;
         const ordered_json report = bakeMap(o, settings, {.environment = maps.front(), .out = o.out}, session, processStart);
         if (o.json) std::printf("%s\n", report.dump(2).c_str());
-        return 0;
+        return exitWithoutTeardown(0); // the session's context included
     } catch (const std::exception& e) {
         return failCommand("bake", e.what());
     }

@@ -1,6 +1,7 @@
 #include "command_support.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "io/error.hpp"
 
@@ -15,6 +16,20 @@ int failCommand(const char* command, const std::string& reason)
 {
     std::fprintf(stderr, "iblab %s: %s\n", command, oneLine(reason).c_str());
     return 1;
+}
+
+int exitWithoutTeardown(int status)
+{
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    return status;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+    return status;
+#endif
+#endif
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(status);
 }
 
 void echoOnStderr(gl::DebugOutput& debug)

@@ -9,6 +9,7 @@ find_package(Threads REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
 pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)
 
 # OpenImageIO through its pkg-config file, not its CMake config. Debian splits the
 # packages so that the CMake configs name files that libopenimageio-dev and libimath-dev

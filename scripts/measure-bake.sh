@@ -8,13 +8,14 @@
 #   scripts/measure-bake.sh cmgen           # iblab against Filament's cmgen, process to process
 #                                           # (IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors)
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
+#   scripts/measure-bake.sh hugepages       # the bake with and without malloc's huge pages (app/main.cpp)
 # Every time is the minimum of 3 interleaved runs; process times are wall clock around the
 # whole process (start, context, load, bake, errors, cache writes, exit).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 iblab=${IBLAB:-build/app/iblab}
 mode=tutorial
-case "${1:-}" in batch | cmgen | writes) mode=$1; shift ;; esac
+case "${1:-}" in batch | cmgen | writes | hugepages) mode=$1; shift ;; esac
 cache=$(mktemp -d)
 trap 'rm -rf "$cache"' EXIT
 # Wall time of one process in ms (stdout and stderr discarded; a failure stops the script).
@@ -189,8 +190,37 @@ PY
   done
 }
 
+# iblab bake restarts itself with glibc.malloc.hugetlb=1 (app/main.cpp); a GLIBC_TUNABLES that
+# names the tunable is kept, so =0 runs the same build without. Process wall times, default
+# preset, courtyard.exr, LUTs cached, no bake cached, with the errors (references cached) and
+# without, 8 interleaved runs each: minimum and median.
+measure_hugepages() {
+  local map=assets/environments/courtyard.exr
+  "$iblab" bake --env "$map" --cache-dir "$cache" > /dev/null # the LUTs and the references, once
+  local on=() off=() on_errors=() off_errors=()
+  for _ in 1 2 3 4 5 6 7 8; do
+    rm -rf "$cache/bake"
+    on+=("$(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json)")
+    rm -rf "$cache/bake"
+    off+=("$(GLIBC_TUNABLES=glibc.malloc.hugetlb=0 wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json)")
+    rm -rf "$cache/bake"
+    on_errors+=("$(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --json)")
+    rm -rf "$cache/bake"
+    off_errors+=("$(GLIBC_TUNABLES=glibc.malloc.hugetlb=0 wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --json)")
+  done
+  echo "transparent huge pages: $(cat /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null || echo unknown)"
+  python3 - "${on[*]}" "${off[*]}" "${on_errors[*]}" "${off_errors[*]}" <<'PY'
+import statistics, sys
+on, off, on_e, off_e = ([float(x) for x in a.split()] for a in sys.argv[1:])
+for name, a, b in (("--no-errors", on, off), ("with errors", on_e, off_e)):
+    print(f"{name}: huge pages min {min(a):.0f} / median {statistics.median(a):.0f} ms, without {min(b):.0f} / {statistics.median(b):.0f} ms: "
+          f"{min(a) / min(b):.2f}x / {statistics.median(a) / statistics.median(b):.2f}x")
+PY
+}
+
 case $mode in
   tutorial) measure_tutorial "$@" ;;
+  hugepages) measure_hugepages ;;
   batch) measure_batch ;;
   cmgen) measure_cmgen ;;
   writes) measure_writes ;;

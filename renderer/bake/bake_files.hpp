@@ -31,7 +31,9 @@ namespace iblab::bake {
 
 // 2: the mirror mip is not stored twice in the cache. Older entries have other keys
 // (BakeCache::bakeKey hashes this) and a bake.json that readBakeDirectory refuses.
-inline constexpr int kBakeFormatVersion = 2;
+// 3: contentHash is XXH3 (was FNV-1a): the source records that map a file to its hash
+// are versioned by this too, so none of the older hashes is looked up again.
+inline constexpr int kBakeFormatVersion = 3;
 // The LUT files' own, unchanged since version 1 of the bakes.
 inline constexpr int kLutFormatVersion = 1;
 

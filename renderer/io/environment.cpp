@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include <unistd.h>
+#include <xxhash.h>
 
 #include "ibl/equirect.hpp"
 
@@ -444,18 +445,12 @@ TexelRepairReport repairTexels(ImageRGB32F& image)
 
 std::uint64_t contentHash(const ImageRGB32F& image)
 {
-    std::uint64_t h = 14695981039346656037ull;
-    const auto mix = [&h](std::uint32_t word) {
-        for (int i = 0; i < 4; ++i) {
-            h ^= (word >> (8 * i)) & 0xffu; // little-endian byte order, whatever the host
-            h *= 1099511628211ull;
-        }
-    };
-    mix(std::uint32_t(image.width));
-    mix(std::uint32_t(image.height));
-    for (float v : image.texels)
-        mix(std::bit_cast<std::uint32_t>(v));
-    return h;
+    // XXH3 of the texels' bytes as they lie in memory, seeded with the size. The cache
+    // directories this keys may be shared between machines, which are all little-endian
+    // where iblab builds (x86-64, arm64).
+    static_assert(std::endian::native == std::endian::little, "contentHash keys caches by little-endian bytes");
+    const std::uint64_t seed = (std::uint64_t(std::uint32_t(image.width)) << 32) | std::uint32_t(image.height);
+    return XXH3_64bits_withSeed(image.texels.data(), image.texels.size() * sizeof(float), seed);
 }
 
 Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOptions& options)

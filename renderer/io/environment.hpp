@@ -85,10 +85,9 @@ inline constexpr std::uint64_t kMaxTileTexels = std::uint64_t(1) << 22;
 // space) are linearised, gamma-encoded ones ("Gamma2.2") are raised to the gamma.
 Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOptions& options = {});
 
-// 64-bit FNV-1a (offset basis 14695981039346656037, prime 1099511628211) over the bytes
-// of: width and height as little-endian uint32, then every texel component's IEEE-754
-// bit pattern as little-endian uint32, in memory order. Stable across runs and machines;
-// -0.0 and +0.0 hash differently (loaded maps never hold -0.0: repairTexels clears it).
+// XXH3-64 of every texel component's IEEE-754 bit pattern (little-endian, in memory order),
+// seeded with width << 32 | height. Stable across runs and machines; -0.0 and +0.0 hash
+// differently (loaded maps never hold -0.0: repairTexels clears it).
 std::uint64_t contentHash(const ImageRGB32F& image);
 
 // Solid angle of one texel in row `row` of a width x height equirect (see above).

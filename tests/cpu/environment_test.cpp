@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
+#include <xxhash.h>
 
 #include "io/environment.hpp"
 #include "io/error.hpp"
@@ -494,27 +495,21 @@ TEST(Environment, BuiltinNanIsRepairedAndEveryInvalidTexelCounted)
     EXPECT_NE(env.warnings[0].find("75 NaN"), std::string::npos) << env.warnings[0];
 }
 
-TEST(Environment, ContentHashIsFnv1aOverSizeAndTexelBits)
+TEST(Environment, ContentHashIsXxh3OverTexelBitsSeededWithSize)
 {
-    // Independent byte-wise FNV-1a of the documented byte stream.
-    const auto fnv = [](const std::vector<std::uint8_t>& bytes) {
-        std::uint64_t h = 0xcbf29ce484222325ull;
-        for (std::uint8_t b : bytes) {
-            h ^= b;
-            h *= 0x100000001b3ull;
-        }
-        return h;
-    };
+    // XXH3 of the documented byte stream (each component's bits, little-endian), built here
+    // byte by byte, not from the image's memory.
     ImageRGB32F img(2, 1);
     img.texels = {1.0f, 0.0f, 0.5f, -2.0f, 3.0f, 0.25f};
-    std::vector<std::uint8_t> bytes = {2, 0, 0, 0, 1, 0, 0, 0};
+    std::vector<std::uint8_t> bytes;
     for (float v : img.texels) {
         std::uint32_t u = 0;
         std::memcpy(&u, &v, 4);
         for (int i = 0; i < 4; ++i)
             bytes.push_back(std::uint8_t(u >> (8 * i)));
     }
-    EXPECT_EQ(contentHash(img), fnv(bytes));
+    const std::uint64_t seed = (std::uint64_t(2) << 32) | 1u; // width << 32 | height
+    EXPECT_EQ(contentHash(img), XXH3_64bits_withSeed(bytes.data(), bytes.size(), seed));
     ImageRGB32F other = img;
     other.texels[5] = std::nextafter(0.25f, 1.0f);
     EXPECT_NE(contentHash(other), contentHash(img));

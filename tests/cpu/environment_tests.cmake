@@ -1,5 +1,7 @@
 # iblab_io: loading/validating environments, builtins, image writing.
 iblab_add_cpu_test(environment_test ${CMAKE_CURRENT_SOURCE_DIR}/environment_test.cpp)
+# The content hash is checked against XXH3 of a byte stream the test builds by hand.
+target_link_libraries(environment_test PRIVATE PkgConfig::XXHASH)
 iblab_add_cpu_test(builtin_environments_test ${CMAKE_CURRENT_SOURCE_DIR}/builtin_environments_test.cpp)
 iblab_add_cpu_test(image_writer_test ${CMAKE_CURRENT_SOURCE_DIR}/image_writer_test.cpp)
 # The direct OpenEXR/Radiance codec against the OpenImageIO module, through the module
