@@ -314,8 +314,17 @@ private:
 
     void clickItem(const std::string& path)
     {
-        const ImVec2 p = visibleItem(path).centre();
-        moveTo(p);
+        // Aimed, then aimed again where the item is once the cursor is there, as a hand follows
+        // a control that moves: a frame drawn meanwhile can move it (a bake that lands adds
+        // status lines above the sections below it, and the click would land on what moved in).
+        ImVec2 p = visibleItem(path).centre();
+        for (int aim = 0; aim < 4; ++aim) {
+            moveTo(p);
+            settle(0);
+            const ImVec2 now = visibleItem(path).centre();
+            if (now.x == p.x && now.y == p.y) break;
+            p = now;
+        }
         push({.type = InputEvent::Type::MouseButton, .code = 0, .pressed = true});
         push({.type = InputEvent::Type::MouseButton, .code = 0, .pressed = false});
         settle();
