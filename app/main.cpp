@@ -20,8 +20,11 @@ namespace {
 void restartWithHugePagesForBake(char** argv)
 {
     bool bake = false;
-    for (char** arg = argv + 1; *arg; ++arg)
-        bake = bake || std::string_view(*arg) == "bake";
+    for (char** arg = argv + 1; *arg; ++arg) {
+        const std::string_view a(*arg);
+        if (a == "--help" || a == "-h" || a == "--version") return; // prints, allocates nothing much
+        bake = bake || a == "bake";
+    }
     if (!bake) return;
     const char* current = std::getenv("GLIBC_TUNABLES");
     if (current && std::strstr(current, "glibc.malloc.hugetlb")) return;

@@ -5,11 +5,12 @@
 #       runs each so both see the same machine load, the minimum reported, and the errors of
 #       each against the exact references (deterministic: one run)
 #   scripts/measure-bake.sh batch           # 4 maps in one process against one map per process
-#   scripts/measure-bake.sh cmgen           # iblab against Filament's cmgen, process to process
-#                                           # (IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors)
+#   scripts/measure-bake.sh cmgen           # iblab against Filament's cmgen, process to process, 7 interleaved
+#                                           # rounds (ROUNDS=N); IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
 #   scripts/measure-bake.sh hugepages       # the bake with and without malloc's huge pages (app/main.cpp)
-# Every time is the minimum of 3 interleaved runs; process times are wall clock around the
+# Every time is the minimum of 3 interleaved runs (cmgen: of ROUNDS, default 7, since the
+# processes differ by less than a shared machine's noise in 3); process times are wall clock around the
 # whole process (start, context, load, bake, errors, cache writes, exit).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -112,8 +113,8 @@ measure_cmgen() {
   # With the errors, two cases: the map's exact references computed (its first bake on a
   # machine), and read from the cache's reference/ directory (every later bake of the map,
   # whatever the settings: they depend only on its pixels and on what is measured).
-  local ours=() ours_cold=() ours_no_errors=() theirs=() older=()
-  for _ in 1 2 3; do
+  local ours=() ours_cold=() ours_no_errors=() theirs=() older=() rounds=${ROUNDS:-7}
+  for _ in $(seq "$rounds"); do
     if [ $have_cmgen = 1 ]; then
       rm -rf "$cache/cmgen"
       theirs+=("$(wall_ms cmgen --size=128 --ibl-samples=64 --ibl-ld="$cache/cmgen" "$map")")
@@ -129,27 +130,22 @@ measure_cmgen() {
       older+=("$(wall_ms "$baseline" bake --env "$map" --cache-dir "$cache/baseline" --no-errors --json)")
     fi
   done
-  local with cold without reference=""
-  with=$(echo "${ours[*]}" | minimum)
-  cold=$(echo "${ours_cold[*]}" | minimum)
-  without=$(echo "${ours_no_errors[*]}" | minimum)
-  [ $have_cmgen = 1 ] && reference=$(echo "${theirs[*]}" | minimum)
-  local older_min=""
-  [ -n "$baseline" ] && older_min=$(echo "${older[*]}" | minimum)
-  python3 - "$with" "$without" "$reference" "$older_min" "$baseline" "$cold" <<'PY'
-import sys
-with_errors, without, cmgen, older, baseline, cold = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5], float(sys.argv[6])
-line = (f"courtyard 1024x512: iblab bake {with_errors:.0f} ms with the errors against the exact references (cached), "
-        f"{cold:.0f} ms with them computed (the map's first bake), {without:.0f} ms with --no-errors")
+  python3 - "${ours[*]}" "${ours_no_errors[*]}" "${theirs[*]:-}" "${older[*]:-}" "$baseline" "${ours_cold[*]}" <<'PY'
+import statistics, sys
+def times(arg): return [float(x) for x in arg.split()]
+with_errors, without, cmgen, older, baseline, cold = times(sys.argv[1]), times(sys.argv[2]), times(sys.argv[3]), times(sys.argv[4]), sys.argv[5], times(sys.argv[6])
+def ms(t): return f"{min(t):.0f} ms (median {statistics.median(t):.0f})"
+line = (f"courtyard 1024x512, minimum of {len(without)} rounds: iblab bake {ms(with_errors)} with the errors against the exact references "
+        f"(cached), {ms(cold)} with them computed (the map's first bake), {ms(without)} with --no-errors")
 if cmgen:
-    cmgen = float(cmgen)
-    line += (f"; cmgen {cmgen:.0f} ms: iblab takes {with_errors / cmgen:.2f}x cmgen's time with errors (cached), "
-             f"{cold / cmgen:.2f}x with them computed, {without / cmgen:.2f}x without")
+    line += f"; cmgen {ms(cmgen)}: iblab takes " + ", ".join(
+        f"{min(t) / min(cmgen):.2f}x (median {statistics.median(t) / statistics.median(cmgen):.2f}x) cmgen's time {what}"
+        for t, what in ((with_errors, "with errors (cached)"), (cold, "with them computed"), (without, "without")))
 print(line)
 if older:
-    line = f"  baseline {baseline}: {float(older):.0f} ms with --no-errors"
+    line = f"  baseline {baseline}: {ms(older)} with --no-errors"
     if cmgen:
-        line += f", {float(older) / cmgen:.2f}x cmgen's time"
+        line += f", {min(older) / min(cmgen):.2f}x cmgen's time"
     print(line)
 PY
   rm -rf "$cache/bake"
