@@ -2,10 +2,12 @@
 // Each prints its result on stdout (a table, or JSON with --json) and, on failure, exits
 // non-zero with one line on stderr naming the file or the problem.
 #include <algorithm>
+#include <malloc.h>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -144,19 +146,25 @@ struct LoadedEnvironment {
     double milliseconds = 0.0;
 };
 
-// Bakes one map in the session (made on the first map) and prints its table, or returns its
-// JSON report. Throws on failure; a file that cannot be loaded is the error reported, even
-// when the context failed too.
-ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& settings, const MapBake& map,
-                     std::unique_ptr<BakeSession>& session, Clock::time_point processStart)
+// A map decodes on a thread of its own: the first while the context is created, each later
+// one of a batch while the map before it bakes (each takes tens of ms here).
+std::future<LoadedEnvironment> startLoading(const std::string& path)
 {
-    // The map decodes on a thread of its own while the first map's context is created: the
-    // two are independent, and each takes tens of ms here.
-    std::future<LoadedEnvironment> loading = std::async(std::launch::async, [&map] {
+    return std::async(std::launch::async, [path] {
         const auto loadStart = Clock::now();
-        Environment environment = loadEnvironment(map.environment);
+        Environment environment = loadEnvironment(path);
         return LoadedEnvironment{std::move(environment), millisecondsSince(loadStart)};
     });
+}
+
+// Bakes one map in the session (made on the first map) and prints its table, or returns its
+// JSON report. `loading` decodes map.environment (startLoading); `decoded` runs once it has,
+// before the bake (a batch starts the next map's decode there). Throws on failure; a file that
+// cannot be loaded is the error reported, even when the context failed too.
+ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& settings, const MapBake& map,
+                     std::future<LoadedEnvironment> loading, const std::function<void()>& decoded,
+                     std::unique_ptr<BakeSession>& session, Clock::time_point processStart)
+{
     const auto contextStart = Clock::now();
     try {
         if (!session) {
@@ -164,6 +172,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
             if (!o.noCache) session->cache.emplace(o.cacheDir.empty() ? bake::defaultCacheDirectory() : std::filesystem::path(o.cacheDir));
         }
     } catch (...) {
+        if (decoded) decoded();
         loading.get(); // its error first, if it has one
         throw;
     }
@@ -173,7 +182,15 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     const auto compileStart = Clock::now();
     bake::BakeJob::compilePrograms(session->shaders, settings, session->cache ? &*session->cache : nullptr);
     const double compileMs = millisecondsSince(compileStart);
-    auto [environment, loadMs] = loading.get();
+    std::optional<LoadedEnvironment> loaded;
+    try {
+        loaded = loading.get();
+    } catch (...) {
+        if (decoded) decoded();
+        throw;
+    }
+    if (decoded) decoded();
+    auto& [environment, loadMs] = *loaded;
     gl::ShaderLibrary& shaders = session->shaders;
     std::optional<bake::BakeCache>& cache = session->cache;
     const std::size_t glErrorsBefore = session->gl.debug.errorCount();
@@ -323,10 +340,17 @@ int runBakeBatch(const BakeCommandOptions& o, const bake::BakeSettings& settings
     std::unique_ptr<BakeSession> session;
     ordered_json reports = ordered_json::array();
     int failed = 0;
+    std::future<LoadedEnvironment> next = startLoading(maps.front());
     for (std::size_t i = 0; i < maps.size(); ++i) {
         const auto start = Clock::now();
+        std::future<LoadedEnvironment> loading = std::move(next);
+        // The next map decodes while this one bakes, not while this one decodes too.
+        const auto startNext = [&] {
+            if (i + 1 < maps.size()) next = startLoading(maps[i + 1]);
+        };
         try {
-            reports.push_back(bakeMap(o, settings, {.environment = maps[i], .out = outs[i], .waitForWrites = false}, session, processStart));
+            reports.push_back(bakeMap(o, settings, {.environment = maps[i], .out = outs[i], .waitForWrites = false}, std::move(loading),
+                                      startNext, session, processStart));
             std::fprintf(stderr, "iblab bake: [%zu/%zu] %s: %.0f ms\n", i + 1, maps.size(), maps[i].c_str(), millisecondsSince(start));
         } catch (const std::exception& e) {
             ++failed;
@@ -354,6 +378,12 @@ int runBakeBatch(const BakeCommandOptions& o, const bake::BakeSettings& settings
 
 int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
 {
+    // Each map's textures and read-backs are the same few sizes (MBs each). From the heap
+    // rather than their own mappings, and kept there once freed, the next map of a batch
+    // reuses the last one's memory instead of faulting in fresh pages: `measure-bake.sh
+    // batch` took 0.90x the time with these two settings (4 maps, 346 against 382 ms).
+    mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024); // glibc's largest
+    mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
     try {
         const bake::BakeSettings settings = resolveSettings(o);
         const std::vector<std::string> maps = expandEnvironments(o.environments);
@@ -362,7 +392,8 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
         const bool single = o.environments.size() == 1 && maps.size() == 1 && maps.front() == o.environments.front();
         if (!single) return runBakeBatch(o, settings, maps, processStart);
         std::unique_ptr<BakeSession> session;
-        const ordered_json report = bakeMap(o, settings, {.environment = maps.front(), .out = o.out}, session, processStart);
+        const ordered_json report =
+            bakeMap(o, settings, {.environment = maps.front(), .out = o.out}, startLoading(maps.front()), nullptr, session, processStart);
         if (o.json) std::printf("%s\n", report.dump(2).c_str());
         return exitWithoutTeardown(0); // the session's context included
     } catch (const std::exception& e) {

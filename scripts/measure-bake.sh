@@ -4,7 +4,7 @@
 #       the default's LUTs cached, as they are after the first bake on a machine, 3 interleaved
 #       runs each so both see the same machine load, the minimum reported, and the errors of
 #       each against the exact references (deterministic: one run)
-#   scripts/measure-bake.sh batch           # 4 maps in one process against one map per process
+#   scripts/measure-bake.sh batch           # 4 maps in one process against one map per process (ROUNDS=N, default 5)
 #   scripts/measure-bake.sh cmgen           # iblab against Filament's cmgen, process to process, 7 interleaved
 #                                           # rounds (ROUNDS=N); IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
@@ -71,8 +71,8 @@ measure_batch() {
   local maps=(assets/environments/courtyard.exr assets/environments/sunset.exr assets/environments/forest.exr
     assets/environments/city.exr)
   "$iblab" bake --env "${maps[0]}" --cache-dir "$cache" --no-errors > /dev/null # the LUTs, once
-  local one=() four=() separate=()
-  for _ in 1 2 3; do
+  local one=() four=() separate=() rounds=${ROUNDS:-5}
+  for _ in $(seq "$rounds"); do
     rm -rf "$cache/bake"
     one+=("$(wall_ms "$iblab" bake --env "${maps[0]}" --cache-dir "$cache" --no-errors --json)")
     rm -rf "$cache/bake"
@@ -82,11 +82,14 @@ measure_batch() {
     for map in "${maps[@]}"; do sum=$((sum + $(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json))); done
     separate+=("$sum")
   done
-  python3 - "$(echo "${one[*]}" | minimum)" "$(echo "${four[*]}" | minimum)" "$(echo "${separate[*]}" | minimum)" <<'PY'
-import sys
-one, four, separate = map(float, sys.argv[1:])
-print(f"one map (courtyard.exr) {one:.0f} ms; 4 maps in one process {four:.0f} ms = {four / one:.2f}x one map; "
-      f"the same 4 maps in 4 processes {separate:.0f} ms")
+  python3 - "${one[*]}" "${four[*]}" "${separate[*]}" <<'PY'
+import statistics, sys
+one, four, separate = ([float(x) for x in a.split()] for a in sys.argv[1:])
+m = statistics.median
+print(f"{len(one)} rounds, minimum (median): one map (courtyard.exr) {min(one):.0f} ms ({m(one):.0f}); 4 maps in one process "
+      f"{min(four):.0f} ms ({m(four):.0f}) = {min(four) / min(one):.2f}x ({m(four) / m(one):.2f}x) one map, "
+      f"{4 * min(four) / min(separate):.2f}x ({4 * m(four) / m(separate):.2f}x) the mean of the four maps alone; "
+      f"the same 4 maps in 4 processes {min(separate):.0f} ms ({m(separate):.0f})")
 PY
 }
 

@@ -208,10 +208,15 @@ bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& 
     const fs::path path = lutPath(lutKey(size, samples, term));
     for (std::string& note : settleWrites(path))
         notes.push_back(std::move(note));
+    if (const auto kept = lutImages_.find(path); kept != lutImages_.end()) {
+        out = create2DTexture(GL_RGBA16F, size);
+        upload2D(out, kept->second);
+        return true;
+    }
     if (!fs::exists(path))
         return false;
     try {
-        const Image2D image = readLutExr(path, size);
+        const Image2D& image = lutImages_[path] = readLutExr(path, size);
         out = create2DTexture(GL_RGBA16F, size);
         upload2D(out, image);
         return true;

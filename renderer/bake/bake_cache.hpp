@@ -30,6 +30,7 @@
 // for the writes in flight to its own entry, so a store followed by a load always hits, and
 // for no other: a batch's next map bakes while the previous one's files are written.
 #include <future>
+#include <map>
 #include <mutex>
 #include <cstdint>
 #include <filesystem>
@@ -105,6 +106,9 @@ private:
     std::vector<std::string> settleWrites(const std::filesystem::path& target);
 
     std::filesystem::path root_;
+    // The LUTs read so far, by file: every bake after the first in a process (a batch, the
+    // GUI's next environment) uploads them from memory instead of decoding the files again.
+    std::map<std::filesystem::path, Image2D> lutImages_;
     std::vector<PendingWrite> pending_;
     std::string exrCompression_;
     std::mutex notesMutex_; // guards the two below, which the writing threads update
