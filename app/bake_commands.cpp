@@ -248,6 +248,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     j["source"] = result.source;
     j["source_size"] = {result.sourceWidth, result.sourceHeight};
     j["renderer"] = gl::describeCurrentContext();
+    j["malloc_huge_pages"] = mallocHugePages();
     j["preset"] = settings.preset;
     j["settings"] = ordered_json::parse(bake::toJsonText(settings));
     j["from_cache"] = result.fromCache;
@@ -391,6 +392,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
         // several maps make a batch.
         const bool single = o.environments.size() == 1 && maps.size() == 1 && maps.front() == o.environments.front();
         if (!single) return runBakeBatch(o, settings, maps, processStart);
+        restartWithHugePages();
         std::unique_ptr<BakeSession> session;
         const ordered_json report =
             bakeMap(o, settings, {.environment = maps.front(), .out = o.out}, startLoading(maps.front()), nullptr, session, processStart);

@@ -2,6 +2,12 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
 
 #include "io/error.hpp"
 
@@ -30,6 +36,35 @@ int exitWithoutTeardown(int status)
     std::fflush(stdout);
     std::fflush(stderr);
     std::_Exit(status);
+}
+
+void restartWithHugePages()
+{
+    const char* current = std::getenv("GLIBC_TUNABLES");
+    if (current && std::strstr(current, "glibc.malloc.hugetlb")) return;
+    std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
+    std::vector<std::string> arguments;
+    for (std::string argument; std::getline(cmdline, argument, '\0');) arguments.push_back(argument);
+    if (arguments.empty()) return;
+    std::vector<char*> argv;
+    for (std::string& argument : arguments) argv.push_back(argument.data());
+    argv.push_back(nullptr);
+    const std::string previous = current ? current : "";
+    const std::string tunables = (previous.empty() ? "" : previous + ":") + "glibc.malloc.hugetlb=1";
+    if (::setenv("GLIBC_TUNABLES", tunables.c_str(), 1) != 0) return;
+    std::fflush(stdout);
+    std::fflush(stderr);
+    ::execv("/proc/self/exe", argv.data());
+    if (previous.empty())
+        ::unsetenv("GLIBC_TUNABLES");
+    else
+        ::setenv("GLIBC_TUNABLES", previous.c_str(), 1);
+}
+
+bool mallocHugePages()
+{
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    return tunables && std::strstr(tunables, "glibc.malloc.hugetlb=1");
 }
 
 void echoOnStderr(gl::DebugOutput& debug)

@@ -63,4 +63,22 @@ TEST_F(Cli, BakeOfADirectoryBakesItsMapsInNameOrder)
     EXPECT_TRUE(one["timings_ms"].contains("total"));
 }
 
+// A bake of one map restarts itself with malloc's huge pages (command_support.hpp); a batch
+// does not, and a GLIBC_TUNABLES that names the tunable is kept as it is.
+TEST_F(Cli, OneMapBakesWithMallocHugePagesABatchWithout)
+{
+    const Result single = run("bake --env 'builtin:sky?width=64'" + kSmallBake);
+    ASSERT_EQ(single.exitCode, 0) << single.err;
+    EXPECT_EQ(nlohmann::json::parse(single.out)["malloc_huge_pages"], true) << single.out;
+
+    const Result declined = run("bake --env 'builtin:sky?width=64'" + kSmallBake, "GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
+    ASSERT_EQ(declined.exitCode, 0) << declined.err;
+    EXPECT_EQ(nlohmann::json::parse(declined.out)["malloc_huge_pages"], false) << declined.out;
+
+    const Result batch = run("bake --env 'builtin:sky?width=64' --env 'builtin:white?width=64'" + kSmallBake);
+    ASSERT_EQ(batch.exitCode, 0) << batch.err;
+    const nlohmann::json j = nlohmann::json::parse(batch.out);
+    for (const nlohmann::json& map : j["maps"]) EXPECT_EQ(map["malloc_huge_pages"], false) << map;
+}
+
 } // namespace
