@@ -2,7 +2,6 @@
 // Each prints its result on stdout (a table, or JSON with --json) and, on failure, exits
 // non-zero with one line on stderr naming the file or the problem.
 #include <algorithm>
-#include <malloc.h>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include <epoxy/gl.h>
+#include <malloc.h>
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.hpp"
