@@ -382,7 +382,8 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
     // Each map's textures and read-backs are the same few sizes (MBs each). From the heap
     // rather than their own mappings, and kept there once freed, the next map of a batch
     // reuses the last one's memory instead of faulting in fresh pages: `measure-bake.sh
-    // batch` took 0.90x the time with these two settings (4 maps, 346 against 382 ms).
+    // batch` took about 0.9x the time with these two settings. A one-map bake gets them too
+    // (its numbers in the README were measured so); it frees little before it exits.
     mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024); // glibc's largest
     mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
     try {

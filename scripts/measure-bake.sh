@@ -28,6 +28,15 @@ wall_ms() {
   echo $(((end - start) / 1000000))
 }
 minimum() { tr ' ' '\n' | sort -n | head -1; }
+# CPU time (user + system, ms) of one process and its threads; its output is discarded.
+cpu_ms() {
+  python3 - "$@" <<'PY'
+import resource, subprocess, sys
+subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(round((r.ru_utime + r.ru_stime) * 1000))
+PY
+}
 total() { python3 -c 'import json,sys; print(json.load(sys.stdin)["timings_ms"]["total"])'; }
 errors() {
   python3 -c '
@@ -71,7 +80,7 @@ measure_batch() {
   local maps=(assets/environments/courtyard.exr assets/environments/sunset.exr assets/environments/forest.exr
     assets/environments/city.exr)
   "$iblab" bake --env "${maps[0]}" --cache-dir "$cache" --no-errors > /dev/null # the LUTs, once
-  local one=() four=() separate=() rounds=${ROUNDS:-5}
+  local one=() four=() separate=() one_cpu=() four_cpu=() rounds=${ROUNDS:-5}
   for _ in $(seq "$rounds"); do
     rm -rf "$cache/bake"
     one+=("$(wall_ms "$iblab" bake --env "${maps[0]}" --cache-dir "$cache" --no-errors --json)")
@@ -81,15 +90,21 @@ measure_batch() {
     local sum=0
     for map in "${maps[@]}"; do sum=$((sum + $(wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors --json))); done
     separate+=("$sum")
+    rm -rf "$cache/bake"
+    one_cpu+=("$(cpu_ms "$iblab" bake --env "${maps[0]}" --cache-dir "$cache" --no-errors --json)")
+    rm -rf "$cache/bake"
+    four_cpu+=("$(cpu_ms "$iblab" bake "${maps[@]/#/--env=}" --cache-dir "$cache" --no-errors --json)")
   done
-  python3 - "${one[*]}" "${four[*]}" "${separate[*]}" <<'PY'
+  python3 - "${one[*]}" "${four[*]}" "${separate[*]}" "${one_cpu[*]}" "${four_cpu[*]}" <<'PY'
 import statistics, sys
-one, four, separate = ([float(x) for x in a.split()] for a in sys.argv[1:])
+one, four, separate, one_cpu, four_cpu = ([float(x) for x in a.split()] for a in sys.argv[1:])
 m = statistics.median
 print(f"{len(one)} rounds, minimum (median): one map (courtyard.exr) {min(one):.0f} ms ({m(one):.0f}); 4 maps in one process "
       f"{min(four):.0f} ms ({m(four):.0f}) = {min(four) / min(one):.2f}x ({m(four) / m(one):.2f}x) one map, "
       f"{4 * min(four) / min(separate):.2f}x ({4 * m(four) / m(separate):.2f}x) the mean of the four maps alone; "
       f"the same 4 maps in 4 processes {min(separate):.0f} ms ({m(separate):.0f})")
+print(f"  CPU time (user + system, median): one map {m(one_cpu):.0f} ms, 4 maps in one process {m(four_cpu):.0f} ms: "
+      f"{(m(four_cpu) - m(one_cpu)) / 3:.0f} ms per map after the first")
 PY
 }
 
@@ -151,6 +166,21 @@ if older:
         line += f", {min(older) / min(cmgen):.2f}x cmgen's time"
     print(line)
 PY
+  if [ -n "$baseline" ]; then
+    # The map's decode (other_ms.environment_load, on its thread while the context is made),
+    # both builds, 8 interleaved runs, no cache.
+    local load=() older_load=()
+    for _ in 1 2 3 4 5 6 7 8; do
+      load+=("$("$iblab" bake --env "$map" --no-cache --no-errors --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["other_ms"]["environment_load"])')")
+      older_load+=("$("$baseline" bake --env "$map" --no-cache --no-errors --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["other_ms"]["environment_load"])')")
+    done
+    python3 - "${load[*]}" "${older_load[*]}" <<'PY'
+import statistics, sys
+ours, older = ([float(x) for x in a.split()] for a in sys.argv[1:])
+print(f"  decode of the map (environment_load), minimum / median of {len(ours)}: {min(ours):.0f} / {statistics.median(ours):.0f} ms, "
+      f"baseline {min(older):.0f} / {statistics.median(older):.0f} ms")
+PY
+  fi
   rm -rf "$cache/bake"
   "$iblab" bake --env "$map" --cache-dir "$cache" --json | python3 -c '
 import json, sys
@@ -207,11 +237,21 @@ measure_hugepages() {
     rm -rf "$cache/bake"
     off_errors+=("$(GLIBC_TUNABLES=glibc.malloc.hugetlb=0 wall_ms "$iblab" bake --env "$map" --cache-dir "$cache" --json)")
   done
+  # A batch does not restart; here it is run with the tunable set by hand, against without.
+  local maps=(assets/environments/courtyard.exr assets/environments/sunset.exr assets/environments/forest.exr
+    assets/environments/city.exr)
+  local batch_on=() batch_off=()
+  for _ in 1 2 3 4 5 6 7 8; do
+    rm -rf "$cache/bake"
+    batch_on+=("$(GLIBC_TUNABLES=glibc.malloc.hugetlb=1 wall_ms "$iblab" bake "${maps[@]/#/--env=}" --cache-dir "$cache" --no-errors --json)")
+    rm -rf "$cache/bake"
+    batch_off+=("$(GLIBC_TUNABLES=glibc.malloc.hugetlb=0 wall_ms "$iblab" bake "${maps[@]/#/--env=}" --cache-dir "$cache" --no-errors --json)")
+  done
   echo "transparent huge pages: $(cat /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null || echo unknown)"
-  python3 - "${on[*]}" "${off[*]}" "${on_errors[*]}" "${off_errors[*]}" <<'PY'
+  python3 - "${on[*]}" "${off[*]}" "${on_errors[*]}" "${off_errors[*]}" "${batch_on[*]}" "${batch_off[*]}" <<'PY'
 import statistics, sys
-on, off, on_e, off_e = ([float(x) for x in a.split()] for a in sys.argv[1:])
-for name, a, b in (("--no-errors", on, off), ("with errors", on_e, off_e)):
+on, off, on_e, off_e, batch_on, batch_off = ([float(x) for x in a.split()] for a in sys.argv[1:])
+for name, a, b in (("--no-errors", on, off), ("with errors", on_e, off_e), ("4-map batch, tunable set by hand", batch_on, batch_off)):
     print(f"{name}: huge pages min {min(a):.0f} / median {statistics.median(a):.0f} ms, without {min(b):.0f} / {statistics.median(b):.0f} ms: "
           f"{min(a) / min(b):.2f}x / {statistics.median(a) / statistics.median(b):.2f}x")
 PY

@@ -478,6 +478,31 @@ TEST(Environment, BuiltinSpecsLoadThroughTheSameEntryPoint)
     errorOf([&] { loadEnvironment("builtin:white?width=1024", options); }, "builtin:white");
 }
 
+// -0.0 becomes +0.0 (uncounted) on rows with nothing else to repair, which take the
+// one-pass check, and on rows that do, which take the counting loop: equal-looking maps
+// must hash equally.
+TEST(Environment, NegativeZeroIsClearedOnCleanAndRepairedRows)
+{
+    ImageRGB32F image(8, 4);
+    for (float& v : image.texels) v = 0.5f;
+    image.texels[image.offset(3, 1) + 1] = -0.0f; // a clean row otherwise
+    image.texels[image.offset(2, 2)] = -0.0f;     // a row that also holds a NaN
+    image.texels[image.offset(5, 2) + 2] = std::numeric_limits<float>::quiet_NaN();
+    const TexelRepairReport report = repairTexels(image);
+    EXPECT_FALSE(std::signbit(image.texels[image.offset(3, 1) + 1]));
+    EXPECT_FALSE(std::signbit(image.texels[image.offset(2, 2)]));
+    EXPECT_EQ(report.nanComponents, 1u);
+    EXPECT_EQ(report.repairedComponents(), 1u);
+    EXPECT_EQ(report.repairedTexels, 1u);
+    EXPECT_EQ(image.texels[image.offset(5, 2) + 2], 0.0f);
+    ImageRGB32F positive(8, 4);
+    for (float& v : positive.texels) v = 0.5f;
+    positive.texels[positive.offset(3, 1) + 1] = 0.0f;
+    positive.texels[positive.offset(2, 2)] = 0.0f;
+    positive.texels[positive.offset(5, 2) + 2] = 0.0f;
+    EXPECT_EQ(contentHash(image), contentHash(positive));
+}
+
 TEST(Environment, BuiltinNanIsRepairedAndEveryInvalidTexelCounted)
 {
     // builtin:nan puts `count` texels of each invalid kind (all three components) on

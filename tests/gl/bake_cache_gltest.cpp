@@ -206,6 +206,31 @@ TEST_F(GlTest, ABadMirrorLevelIsReportedAndRebuilt)
     });
 }
 
+// A cache reads each LUT file once: later bakes through the same cache (a batch, the GUI's
+// next environment) upload the image it kept, even once the file is gone.
+TEST_F(GlTest, ALutReadOnceIsKeptForTheNextBakeOfTheSameCache)
+{
+    auto shaders = library();
+    TempDirectory dir("lut-kept");
+    const Environment env = loadEnvironment("builtin:white?width=32");
+    const bake::BakeSettings settings = smallBakeSettings();
+    {
+        bake::BakeCache writer(dir.path());
+        runBake(shaders, env, settings, &writer);
+        ASSERT_TRUE(writer.finishWrites().empty());
+    }
+    bake::BakeCache cache(dir.path());
+    const bake::BakeResult first = runBake(shaders, env, settings, &cache);
+    ASSERT_TRUE(first.lutFromCache[0] && first.lutFromCache[1]);
+    for (GeometryTerm term : bake::kGeometryTerms)
+        ASSERT_TRUE(fs::remove(cache.lutPath(bake::BakeCache::lutKey(settings.lut.size, settings.lut.samples, term))));
+    const bake::BakeResult kept = runBake(shaders, env, settings, &cache);
+    EXPECT_TRUE(kept.lutFromCache[0] && kept.lutFromCache[1]);
+    EXPECT_EQ(bake::read2D(kept.lut(GeometryTerm::SchlickGGX)).texels, bake::read2D(first.lut(GeometryTerm::SchlickGGX)).texels);
+    bake::BakeCache another(dir.path());
+    EXPECT_FALSE(runBake(shaders, env, settings, &another).lutFromCache[0]) << "a new cache reads the files, which are gone";
+}
+
 TEST_F(GlTest, ACorruptLutIsReportedAndRebuilt)
 {
     auto shaders = library();
