@@ -392,8 +392,8 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
         // One map named as one --env keeps the single report scripts read; a directory or
         // several maps make a batch.
         const bool single = o.environments.size() == 1 && maps.size() == 1 && maps.front() == o.environments.front();
-        if (!single) return runBakeBatch(o, settings, maps, processStart);
         restartWithHugePages();
+        if (!single) return runBakeBatch(o, settings, maps, processStart);
         std::unique_ptr<BakeSession> session;
         const ordered_json report =
             bakeMap(o, settings, {.environment = maps.front(), .out = o.out}, startLoading(maps.front()), nullptr, session, processStart);

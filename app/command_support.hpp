@@ -26,15 +26,14 @@ int failCommand(const char* command, const std::string& reason);
 // instead, so that the normal exit runs and LeakSanitizer still checks it.
 int exitWithoutTeardown(int status);
 
-// A bake of one map spends much of its time faulting in fresh memory: the decoded map,
-// llvmpipe's textures, the read-backs (tens of MB, 4 KiB page by page). Where transparent
-// huge pages are in "madvise" mode (the kernel default), glibc's malloc asks for them only
-// when its glibc.malloc.hugetlb tunable is 1, and tunables are read once, when a process
-// starts: so this restarts the process (/proc/self/exe, the same arguments) with the tunable
-// set. `scripts/measure-bake.sh hugepages` measures both ways. A batch does not ask: its maps
-// reuse one another's memory (runBake), and there the huge pages' zeroing cost more than
-// they saved. Returns (doing nothing) when GLIBC_TUNABLES already names the tunable (the
-// restarted process, or a user's choice, =0 to turn it off), or when the exec fails.
+// A bake spends much of its time faulting in fresh memory: the decoded maps, llvmpipe's
+// textures, the read-backs (tens of MB, 4 KiB page by page). Where transparent huge pages
+// are in "madvise" mode (the kernel default), glibc's malloc asks for them only when its
+// glibc.malloc.hugetlb tunable is 1, and tunables are read once, when a process starts: so
+// this restarts the process (/proc/self/exe, the same arguments) with the tunable set.
+// `scripts/measure-bake.sh hugepages` measures one map and a batch both ways. Returns (doing
+// nothing) when GLIBC_TUNABLES already names the tunable (the restarted process, or a user's
+// choice, =0 to turn it off), or when the exec fails.
 void restartWithHugePages();
 // Whether this process runs with glibc.malloc.hugetlb=1 (the bake's report says so).
 bool mallocHugePages();

@@ -63,9 +63,9 @@ TEST_F(Cli, BakeOfADirectoryBakesItsMapsInNameOrder)
     EXPECT_TRUE(one["timings_ms"].contains("total"));
 }
 
-// A bake of one map restarts itself with malloc's huge pages (command_support.hpp); a batch
-// does not, and a GLIBC_TUNABLES that names the tunable is kept as it is.
-TEST_F(Cli, OneMapBakesWithMallocHugePagesABatchWithout)
+// A bake restarts itself with malloc's huge pages (command_support.hpp), one map or a batch;
+// a GLIBC_TUNABLES that names the tunable is kept as it is.
+TEST_F(Cli, BakesRunWithMallocHugePagesUnlessTheTunableIsSet)
 {
     const Result single = run("bake --env 'builtin:sky?width=64'" + kSmallBake);
     ASSERT_EQ(single.exitCode, 0) << single.err;
@@ -78,7 +78,8 @@ TEST_F(Cli, OneMapBakesWithMallocHugePagesABatchWithout)
     const Result batch = run("bake --env 'builtin:sky?width=64' --env 'builtin:white?width=64'" + kSmallBake);
     ASSERT_EQ(batch.exitCode, 0) << batch.err;
     const nlohmann::json j = nlohmann::json::parse(batch.out);
-    for (const nlohmann::json& map : j["maps"]) EXPECT_EQ(map["malloc_huge_pages"], false) << map;
+    ASSERT_EQ(j["maps"].size(), 2u) << batch.out;
+    for (const nlohmann::json& map : j["maps"]) EXPECT_EQ(map["malloc_huge_pages"], true) << map;
 }
 
 } // namespace
