@@ -28,7 +28,28 @@ cp assets/models/*.glb "$build_dir/corpus/gltf/"
 export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
+# A failing run can be silent: the loader sends stderr to a filter while libpng runs, so a
+# report libFuzzer prints there just before exiting is lost. The exit code and the saved
+# input say what happened; CI's root is deleted afterwards, so small inputs are printed.
+explain() {
+  case "$1" in
+    70) echo "a run took longer than -timeout" ;;
+    71) echo "out of memory: one allocation or the RSS went over -rss_limit_mb" ;;
+    77) echo "a sanitizer or libFuzzer reported a bug" ;;
+    *) echo "a crash or a trap (exit $1)" ;;
+  esac
+}
 for target in environment gltf; do
+  status=0
   "$build_dir/tests/fuzz/${target}_fuzz" "$build_dir/corpus/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -seed=1 \
-    -artifact_prefix="$build_dir/crashes/${target}-" -print_final_stats=1
+    -artifact_prefix="$build_dir/crashes/${target}-" -print_final_stats=1 || status=$?
+  if [ "$status" -ne 0 ]; then
+    echo "fuzz.sh: $target failed with exit $status: $(explain "$status")" >&2
+    for input in "$build_dir/crashes/${target}-"*; do
+      [ -f "$input" ] || continue
+      echo "fuzz.sh: failing input $input ($(stat -c %s "$input") bytes)" >&2
+      [ "$(stat -c %s "$input")" -le 4096 ] && { echo "fuzz.sh: base64 of it:" >&2; base64 "$input" >&2; }
+    done
+    exit "$status"
+  fi
 done

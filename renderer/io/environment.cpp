@@ -222,6 +222,12 @@ std::string aspectText(int w, int h)
     return text + formatShort(double(w) / h) + ":1";
 }
 
+// " (2^k)" for a power of two, which is how the limits are written in the docs.
+std::string powerOfTwoText(std::uint64_t n)
+{
+    return std::has_single_bit(n) ? " (2^" + std::to_string(std::countr_zero(n)) + ")" : "";
+}
+
 std::string orFallback(std::string error, const char* fallback) { return error.empty() ? std::string(fallback) : error; }
 
 // OpenEXR 3.1 allocates each header attribute at the size the file claims before reading it,
@@ -344,10 +350,10 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     if (spec.channels < 1)
         throw Error(path, "image has no channels");
     const std::uint64_t texels = std::uint64_t(spec.width) * std::uint64_t(spec.height);
-    if (texels > kMaxEnvironmentTexels)
+    if (texels > options.maxSourceTexels)
         throw Error(path, std::to_string(spec.width) + "x" + std::to_string(spec.height) + " is " +
                               std::to_string(texels) + " texels, more than the limit of " +
-                              std::to_string(kMaxEnvironmentTexels) + " (2^28)");
+                              std::to_string(options.maxSourceTexels) + powerOfTwoText(options.maxSourceTexels));
     // Below this an "environment" is a handful of colours, and 1x1 passes the aspect check
     // by rounding: refuse it rather than bake a cube of 1-texel faces.
     if (spec.width < kMinEnvironmentWidth || spec.height < kMinEnvironmentWidth / 2)
@@ -363,7 +369,7 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     if (tileTexels > kMaxTileTexels)
         throw Error(path, "tiles of " + std::to_string(spec.tileWidth) + "x" + std::to_string(spec.tileHeight) + " are " +
                               std::to_string(tileTexels) + " texels each, more than the limit of " +
-                              std::to_string(kMaxTileTexels) + " (2^22)");
+                              std::to_string(kMaxTileTexels) + powerOfTwoText(kMaxTileTexels));
     if (options.maxWidth < 2 || options.maxWidth % 2 != 0)
         throw Error(path, "invalid size cap maxWidth=" + std::to_string(options.maxWidth) + " (must be even and >= 2)");
 

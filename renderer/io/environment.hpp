@@ -55,11 +55,19 @@ struct TexelRepairReport {
 // file gives no hint of the intended magnitude.
 TexelRepairReport repairTexels(ImageRGB32F& image);
 
+// The default limit on the texels a file may declare (EnvironmentLoadOptions::maxSourceTexels).
+inline constexpr std::uint64_t kMaxEnvironmentTexels = std::uint64_t(1) << 28;
+
 struct EnvironmentLoadOptions {
     // Size cap: inputs wider than this (or taller than maxWidth / 2) are downsampled to
     // maxWidth x maxWidth/2 with an energy-preserving box filter, and a warning. Must be
     // even and >= 2. Builtins wider than the cap are an error instead.
     int maxWidth = 8192;
+    // Texels a file may declare (width x height), checked against its header before
+    // anything is allocated. Some decoders hold the whole image at its stored precision
+    // (OpenImageIO's PNG reader does for interlaced files: 2 GB for 16-bit RGBA at the
+    // default), so a caller with a tighter memory budget (the fuzzer) lowers this.
+    std::uint64_t maxSourceTexels = kMaxEnvironmentTexels;
 };
 
 struct Environment {
@@ -70,8 +78,6 @@ struct Environment {
     std::uint64_t contentHash = 0;     // contentHash(image), keys the on-disk bake cache
 };
 
-// Texel pixel-count limit checked against the file header before anything is allocated.
-inline constexpr std::uint64_t kMaxEnvironmentTexels = std::uint64_t(1) << 28;
 // The smallest file accepted as an environment: 8x4 (a cube of 2x2 faces).
 inline constexpr int kMinEnvironmentWidth = 8;
 // Texels in one tile of a tiled file (real files use 32x32 to 512x512; this is 2048x2048).

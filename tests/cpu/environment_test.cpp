@@ -273,6 +273,20 @@ TEST(Environment, AbsurdHeaderSizeIsRejectedBeforeReading)
     EXPECT_NE(msg.find("40000x20000"), std::string::npos) << msg;
 }
 
+TEST(Environment, TexelLimitIsTheCallersAndNamedInTheError)
+{
+    // 4096x2048 is 2^23 texels: under the default limit, over a caller's 2^22.
+    TempDir dir;
+    const std::string path = dir.file("big.hdr");
+    std::ofstream(path, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2048 +X 4096\n";
+    const std::string truncated = errorOf([&] { loadEnvironment(path); }, "big.hdr");
+    EXPECT_EQ(truncated.find("limit"), std::string::npos) << "the default limit admits 2^23 texels: " << truncated;
+    EnvironmentLoadOptions options;
+    options.maxSourceTexels = std::uint64_t(1) << 22;
+    const std::string refused = errorOf([&] { loadEnvironment(path, options); }, "big.hdr");
+    EXPECT_NE(refused.find("4096x2048 is 8388608 texels, more than the limit of 4194304 (2^22)"), std::string::npos) << refused;
+}
+
 TEST(Environment, NanInfAndNegativeTexelsAreCountedAndZeroed)
 {
     TempDir dir;
