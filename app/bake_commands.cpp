@@ -5,6 +5,7 @@
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -159,37 +160,41 @@ std::future<LoadedEnvironment> startLoading(const std::string& path)
 
 // Bakes one map in the session (made on the first map) and prints its table, or returns its
 // JSON report. `loading` decodes map.environment (startLoading); `decoded` runs once it has,
-// before the bake (a batch starts the next map's decode there). Throws on failure; a file that
-// cannot be loaded is the error reported, even when the context failed too.
+// failed or not, before the bake (a batch starts the next map's decode there). Throws on
+// failure; a file that cannot be loaded is the error reported, even when the context failed too.
 ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& settings, const MapBake& map,
                      std::future<LoadedEnvironment> loading, const std::function<void()>& decoded,
                      std::unique_ptr<BakeSession>& session, Clock::time_point processStart)
 {
+    // The context and the programs while the map is still decoding (the bake's own compile
+    // step then finds them built; in a batch, the first map's already are). A failure here
+    // is held until the decode is over: a file that cannot be loaded is the error reported.
     const auto contextStart = Clock::now();
+    double contextMs = 0.0;
+    double compileMs = 0.0;
+    std::exception_ptr setupError;
     try {
         if (!session) {
             session = std::make_unique<BakeSession>();
             if (!o.noCache) session->cache.emplace(o.cacheDir.empty() ? bake::defaultCacheDirectory() : std::filesystem::path(o.cacheDir));
         }
+        contextMs = millisecondsSince(contextStart);
+        const auto compileStart = Clock::now();
+        bake::BakeJob::compilePrograms(session->shaders, settings, session->cache ? &*session->cache : nullptr);
+        compileMs = millisecondsSince(compileStart);
     } catch (...) {
-        if (decoded) decoded();
-        loading.get(); // its error first, if it has one
-        throw;
+        setupError = std::current_exception();
     }
-    const double contextMs = millisecondsSince(contextStart);
-    // The programs while the map is still decoding (the bake's own compile step then finds
-    // them built); in a batch, the first map's already are.
-    const auto compileStart = Clock::now();
-    bake::BakeJob::compilePrograms(session->shaders, settings, session->cache ? &*session->cache : nullptr);
-    const double compileMs = millisecondsSince(compileStart);
     std::optional<LoadedEnvironment> loaded;
+    std::exception_ptr loadError;
     try {
         loaded = loading.get();
     } catch (...) {
-        if (decoded) decoded();
-        throw;
+        loadError = std::current_exception();
     }
     if (decoded) decoded();
+    if (loadError) std::rethrow_exception(loadError);
+    if (setupError) std::rethrow_exception(setupError);
     auto& [environment, loadMs] = *loaded;
     gl::ShaderLibrary& shaders = session->shaders;
     std::optional<bake::BakeCache>& cache = session->cache;

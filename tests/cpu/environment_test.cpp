@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <unistd.h>
@@ -271,6 +272,56 @@ TEST(Environment, AbsurdHeaderSizeIsRejectedBeforeReading)
     std::ofstream(path, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 20000 +X 40000\n";
     const std::string msg = errorOf([&] { loadEnvironment(path); }, "huge.hdr");
     EXPECT_NE(msg.find("40000x20000"), std::string::npos) << msg;
+}
+
+namespace {
+
+// An EXR header by hand: magic, version 2 (single-part scanline), then each attribute as
+// name, type, declared size and payload.
+std::string exrHeader(const std::vector<std::tuple<std::string, std::string, std::int32_t, std::string>>& attributes)
+{
+    std::string bytes("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+    for (const auto& [name, type, size, payload] : attributes) {
+        bytes += name + '\0' + type + '\0';
+        bytes.append(reinterpret_cast<const char*>(&size), 4);
+        bytes += payload;
+    }
+    return bytes + '\0';
+}
+
+} // namespace
+
+TEST(Environment, ExrAttributesMustEndWhereTheirSizeSays)
+{
+    // OpenEXR reads a channel list to its empty name and a box2i as 16 bytes, whatever size
+    // the attribute declares; the fuzzer built a channel list longer than declared, behind
+    // which OpenEXR found a string claiming 1.8 GB that a walk by the declared sizes skipped.
+    TempDir dir;
+    const std::string channel = std::string("R\0", 2) + std::string(16, '\x01');
+    const std::string huge = "\x72\x65\x61\x70"; // 0x70616572 = 1.88e9 when read as a size
+    struct Case {
+        const char* file;
+        std::string bytes;
+        const char* expected;
+    };
+    const std::vector<Case> cases = {
+        {"overrun.exr", exrHeader({{"channels", "chlist", 10, channel + '\0'}}) + std::string("comments\0string\0", 16) + huge,
+         "attribute 'channels' (chlist) declares 10 bytes but its channel list runs past them"},
+        {"short.exr", exrHeader({{"channels", "chlist", 40, channel + '\0' + std::string(21, '\0')}}),
+         "attribute 'channels' (chlist) declares 40 bytes but its channel list ends before them"},
+        {"box.exr", exrHeader({{"dataWindow", "box2i", 4, std::string(16, '\0')}}),
+         "attribute 'dataWindow' (box2i) declares 4 bytes but its type has 16"},
+        {"preview.exr", exrHeader({{"preview", "preview", 12, std::string("\x40\0\0\0\x40\0\0\0\0\0\0\0", 12)}}),
+         "a 64x64 preview needs 16392"},
+        {"strings.exr", exrHeader({{"multiView", "stringvector", 8, std::string("\x05\0\0\0left", 8)}}),
+         "holds a string of 5 bytes that does not fit"},
+    };
+    for (const Case& c : cases) {
+        const std::string path = dir.file(c.file);
+        std::ofstream(path, std::ios::binary) << c.bytes;
+        const std::string message = errorOf([&] { loadEnvironment(path); }, c.file);
+        EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    }
 }
 
 TEST(Environment, TexelLimitIsTheCallersAndNamedInTheError)
