@@ -324,8 +324,7 @@ SH9Color BakePasses::projectSh9(GLuint equirect, int width, int height)
     std::vector<float> solidAngles(static_cast<std::size_t>(height));
     for (int y = 0; y < height; ++y)
         solidAngles[std::size_t(y)] = float(equirectTexelSolidAngle(y, width, height));
-    gl::Buffer rowSolidAngles = gl::createBuffer();
-    glNamedBufferStorage(rowSolidAngles.id(), GLsizeiptr(solidAngles.size() * sizeof(float)), solidAngles.data(), 0);
+    const gl::Buffer rowSolidAngles = gl::createBufferWith<float>(solidAngles);
     gl::Buffer groupSums = gl::createBuffer();
     const auto bytes = GLsizeiptr(std::size_t(groups) * kSh9Count * sizeof(glm::vec4));
     glNamedBufferStorage(groupSums.id(), bytes, nullptr, 0);
@@ -368,8 +367,7 @@ void bindSource(const gl::ShaderProgram& program, const BakedTexture& environmen
 // A pass's sample table (source_samples.glsl) on storage-buffer binding 0, for one dispatch.
 gl::Buffer bindSampleTable(const std::vector<glm::vec4>& table)
 {
-    gl::Buffer buffer = gl::createBuffer();
-    glNamedBufferStorage(buffer.id(), GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), 0);
+    gl::Buffer buffer = gl::createBufferWith<glm::vec4>(table);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
     return buffer;
 }
@@ -497,10 +495,9 @@ std::vector<glm::vec3> BakePasses::samplePrefiltered(const BakedTexture& prefilt
     if (queries.empty()) return {};
     SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = shaders_.program({kSamplePrefiltered});
-    gl::Buffer in = gl::createBuffer();
+    const gl::Buffer in = gl::createBufferWith<glm::vec4>(queries);
     gl::Buffer out = gl::createBuffer();
     const auto bytes = GLsizeiptr(queries.size() * sizeof(glm::vec4));
-    glNamedBufferStorage(in.id(), bytes, queries.data(), 0);
     glNamedBufferStorage(out.id(), bytes, nullptr, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());

@@ -30,10 +30,8 @@ GpuMesh::GpuMesh(const MeshData& mesh)
         v.uv0 = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[i];
         v.uv1 = mesh.uvs1.empty() ? v.uv0 : mesh.uvs1[i];
     }
-    vertices_ = gl::createBuffer();
-    indices_ = gl::createBuffer();
-    glNamedBufferStorage(vertices_.id(), GLsizeiptr(interleaved.size() * sizeof(Vertex)), interleaved.data(), 0);
-    glNamedBufferStorage(indices_.id(), GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(), 0);
+    vertices_ = gl::createBufferWith<Vertex>(interleaved);
+    indices_ = gl::createBufferWith<std::uint32_t>(mesh.indices);
     indexCount_ = mesh.indices.size();
     byteSize_ = interleaved.size() * sizeof(Vertex) + mesh.indices.size() * sizeof(std::uint32_t);
 

@@ -81,12 +81,11 @@ void ReferenceIntegral::start(const ImageRGB32F& environment, int width, int hei
     if (slicing.tileSize < 1 || slicing.rowsPerSlice < 0) throw std::invalid_argument("reference slicing: tile size >= 1 and rows per slice >= 0");
     if (environment.width != environmentWidth_ || environment.height != environmentHeight_ || !environment_) {
         environment_ = createFloatTexture(GL_RGB32F, environment.width, environment.height);
-        rowSolidAngles_ = gl::createBuffer();
         // In double, as the CPU reference computes them, and only then rounded: the
         // difference of cosines near the poles loses most of its digits in float.
         std::vector<float> solidAngles;
         for (int y = 0; y < environment.height; ++y) solidAngles.push_back(float(equirectTexelSolidAngle(y, environment.width, environment.height)));
-        glNamedBufferStorage(rowSolidAngles_.id(), GLsizeiptr(solidAngles.size() * sizeof(float)), solidAngles.data(), 0);
+        rowSolidAngles_ = gl::createBufferWith<float>(solidAngles);
         environmentWidth_ = environment.width;
         environmentHeight_ = environment.height;
     }

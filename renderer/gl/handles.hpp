@@ -4,6 +4,7 @@
 // count, which the soak test compares against its baseline.
 #include <array>
 #include <cstddef>
+#include <span>
 #include <utility>
 
 #include <epoxy/gl.h>
@@ -75,5 +76,14 @@ Framebuffer createFramebuffer();
 Renderbuffer createRenderbuffer();
 VertexArray createVertexArray();
 Query createQuery(GLenum target);
+
+// An immutable buffer (no storage flags) holding a copy of values.
+template <typename T>
+Buffer createBufferWith(std::span<const T> values)
+{
+    Buffer buffer = createBuffer();
+    glNamedBufferStorage(buffer.id(), GLsizeiptr(values.size_bytes()), values.data(), 0);
+    return buffer;
+}
 
 } // namespace iblab::gl
