@@ -308,11 +308,14 @@ void checkExrAttributeSizes(const std::string& path, std::uintmax_t fileSize)
             }
             if (in.tellg() != end) throw mismatch("its channel list ends before them");
         } else if (type == "preview") {
+            // Width and height (unsigned 32-bit each, so their product fits 64 bits), then
+            // 4 bytes a pixel.
+            if (size < 8) throw mismatch("a preview starts with 8 bytes of width and height");
             const std::uint64_t width = std::uint32_t(readInt());
             const std::uint64_t height = std::uint32_t(readInt());
-            if (8 + 4 * width * height != std::uint64_t(size))
-                throw mismatch("a " + std::to_string(width) + "x" + std::to_string(height) + " preview needs " +
-                               std::to_string(8 + 4 * width * height));
+            if (width * height != std::uint64_t(size - 8) / 4 || (size - 8) % 4 != 0)
+                throw mismatch("a " + std::to_string(width) + "x" + std::to_string(height) + " preview holds " +
+                               std::to_string(width * height) + " pixels of 4 bytes after them");
         } else if (type == "stringvector") {
             // Length-prefixed strings until the size is used up.
             while (in.tellg() < end) {

@@ -312,7 +312,10 @@ TEST(Environment, ExrAttributesMustEndWhereTheirSizeSays)
         {"box.exr", exrHeader({{"dataWindow", "box2i", 4, std::string(16, '\0')}}),
          "attribute 'dataWindow' (box2i) declares 4 bytes but its type has 16"},
         {"preview.exr", exrHeader({{"preview", "preview", 12, std::string("\x40\0\0\0\x40\0\0\0\0\0\0\0", 12)}}),
-         "a 64x64 preview needs 16392"},
+         "a 64x64 preview holds 4096 pixels of 4 bytes after them"},
+        // 4 x 1380655685 x 3340214413 = 2^64 + 4: in 64-bit arithmetic 8 + 4 w h wraps to 12.
+        {"wrap.exr", exrHeader({{"preview", "preview", 12, std::string("\x45\x22\x4b\x52\x8d\xa0\x17\xc7\0\0\0\0", 12)}}),
+         "a 1380655685x3340214413 preview holds 4611686018427387905 pixels"},
         {"strings.exr", exrHeader({{"multiView", "stringvector", 8, std::string("\x05\0\0\0left", 8)}}),
          "holds a string of 5 bytes that does not fit"},
     };
