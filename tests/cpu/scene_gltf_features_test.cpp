@@ -8,12 +8,14 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "gltf_test_files.hpp"
+#include "malformed_images.hpp"
 
 using namespace iblab;
 using namespace iblab::testing;
@@ -102,6 +104,19 @@ TEST(GltfTextures, OversizedImagesAreDownsampledOrRefused)
     m = loadGltfModel(path, options);
     EXPECT_TRUE(m.textures.empty());
     EXPECT_TRUE(anyWarningContains(m, {"'big.png'", "texture budget"}));
+}
+
+TEST(GltfTextures, TextureWithAChunkLongerThanItsFileIsSkippedBeforeDecoding)
+{
+    // Texture bytes are decoded from memory: libpng would allocate and zero the claimed
+    // 1.97 GB for the text chunk before noticing that 7 bytes follow.
+    TempDir dir;
+    std::ofstream(dir.file("text-chunk.png"), std::ios::binary) << iblab::testing::pngClaimingAHugeTextChunk();
+    GltfBuilder b = triangle();
+    addTexturedMaterial(b, "text-chunk.png");
+    const ModelData m = loadGltfModel(writeGltf(dir, b));
+    EXPECT_TRUE(m.textures.empty());
+    EXPECT_TRUE(anyWarningContains(m, {"'text-chunk.png'", "corrupt PNG: chunk 'tEXt' claims 1970828288 bytes, more than the 7 left"}));
 }
 
 // ---- format features ----------------------------------------------------------------

@@ -15,6 +15,7 @@ foreach(test scene_gltf_test scene_gltf_robustness_test scene_gltf_features_test
                                              IBLAB_SHARED_ASSETS="${PROJECT_SOURCE_DIR}/../shared/assets")
   target_link_libraries(${test} PRIVATE nlohmann_json::nlohmann_json OpenImageIO::OpenImageIO)
 endforeach()
+target_link_libraries(scene_gltf_features_test PRIVATE ZLIB::ZLIB) # malformed_images.hpp writes PNG CRCs
 
 # The one-triangle model, its .gltf/.glb writers and the load-error checks that the
 # robustness and features tests share (gltf_test_files.hpp).

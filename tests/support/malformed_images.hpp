@@ -59,20 +59,38 @@ inline void appendBigEndian32(std::string& out, std::uint32_t value)
     for (int shift = 24; shift >= 0; shift -= 8) out += char((value >> shift) & 0xffu);
 }
 
-// A PNG whose IHDR says 0 x 0: well-formed chunks with correct CRCs, so only the size is wrong.
-inline void writeZeroSizePng(const std::filesystem::path& path)
+// A PNG signature and an IHDR chunk (8-bit RGB) with its CRC.
+inline std::string pngStart(std::uint32_t width, std::uint32_t height)
 {
     std::string body = "IHDR";
-    appendBigEndian32(body, 0); // width
-    appendBigEndian32(body, 0); // height
+    appendBigEndian32(body, width);
+    appendBigEndian32(body, height);
     body += std::string("\x08\x02\x00\x00\x00", 5); // 8-bit RGB, deflate, no filter, no interlace
     std::string png = "\x89PNG\r\n\x1a\n";
     appendBigEndian32(png, 13);
     png += body;
     appendBigEndian32(png, std::uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
-    png += std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
-    std::ofstream(path, std::ios::binary) << png;
+    return png;
 }
+
+// A PNG whose IHDR says 0 x 0: well-formed chunks with correct CRCs, so only the size is wrong.
+inline void writeZeroSizePng(const std::filesystem::path& path)
+{
+    std::ofstream(path, std::ios::binary) << pngStart(0, 0) + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+}
+
+} // namespace malformed_detail
+
+// A 16x8 PNG whose text chunk claims 1970828288 bytes and holds 7 (what the fuzzer found:
+// libpng allocates and zeroes a chunk at its claimed length before reading it).
+inline std::string pngClaimingAHugeTextChunk()
+{
+    std::string png = malformed_detail::pngStart(16, 8);
+    malformed_detail::appendBigEndian32(png, 0x75787400u);
+    return png + "tEXtComment";
+}
+
+namespace malformed_detail {
 
 } // namespace malformed_detail
 
@@ -91,6 +109,7 @@ inline std::vector<MalformedImage> writeMalformedImages(const std::filesystem::p
     writeBytes(folder / "bad-magic.exr", bytes);
     std::ofstream(folder / "zero.hdr", std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 0\n";
     writeZeroSizePng(folder / "zero.png");
+    std::ofstream(folder / "text-chunk.png", std::ios::binary) << pngClaimingAHugeTextChunk();
     writeFloatImage(folder / "one-texel.exr", 1, 1);
     writeFloatImage(folder / "wide.exr", 48, 16);
     std::ofstream(folder / "huge.hdr", std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32768 +X 65536\n";
@@ -102,6 +121,7 @@ inline std::vector<MalformedImage> writeMalformedImages(const std::filesystem::p
         {"bad-magic.exr", "cannot read as an image"},
         {"zero.hdr", "no pixels (0x0)"},
         {"zero.png", "cannot read as an image"},
+        {"text-chunk.png", "corrupt PNG: chunk 'tEXt' claims 1970828288 bytes, more than the 7 left"},
         {"one-texel.exr", "too small for an environment: 1x1"},
         {"wide.exr", "3:1, expected 2:1"},
         {"huge.hdr", "65536x32768 is 2147483648 texels, more than the limit"},
