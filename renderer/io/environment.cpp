@@ -6,9 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <map>
 #include <memory>
 #include <numeric>
 #include <mutex>
@@ -231,111 +229,6 @@ std::string powerOfTwoText(std::uint64_t n)
 
 std::string orFallback(std::string error, const char* fallback) { return error.empty() ? std::string(fallback) : error; }
 
-// OpenEXR 3.1 allocates each header attribute at the size the file claims before reading it,
-// so a 41-byte file claiming a 1.8 GB string attribute makes it allocate 1.8 GB (found by
-// scripts/fuzz.sh; tests/fuzz/corpus/environment/exr-attribute-claims-gigabytes). Walk the
-// attribute list first (name, type, int32 size, payload; an empty name ends a header) and
-// refuse any size that the rest of the file cannot hold. Multi-part files list several
-// headers, each ended by an empty name, and the list by one more.
-// The walk must step through the header exactly as OpenEXR does, or a later attribute it
-// reads is one this walk never saw (tests/fuzz/corpus/environment/exr-channel-list-overruns-
-// its-size): OpenEXR reads the types it knows by their content and ignores the declared
-// size. So a fixed-size type must declare its own size, a channel list must end where its
-// size says, and so must a preview image and a string vector.
-void checkExrAttributeSizes(const std::string& path, std::uintmax_t fileSize)
-{
-    std::ifstream in(path, std::ios::binary);
-    char magic[4] = {};
-    std::uint32_t version = 0;
-    if (!in.read(magic, 4) || std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0)
-        return; // not an EXR: nothing to check
-    if (!in.read(reinterpret_cast<char*>(&version), 4))
-        throw Error(path, "truncated EXR header");
-    const bool multiPart = (version & 0x1000u) != 0;
-    auto readName = [&](std::string& name) {
-        name.clear();
-        for (char c; in.get(c);) {
-            if (c == '\0') return true;
-            if (name.size() >= 255) throw Error(path, "corrupt EXR header: a name longer than 255 bytes");
-            name += c;
-        }
-        throw Error(path, "truncated EXR header");
-    };
-    auto readInt = [&] {
-        std::int32_t value = 0;
-        if (!in.read(reinterpret_cast<char*>(&value), 4))
-            throw Error(path, "truncated EXR header");
-        return value;
-    };
-    // The bytes OpenEXR reads for a value of a type it knows, where that is fixed.
-    static const std::map<std::string, std::int32_t, std::less<>> kFixedSizes = {
-        {"box2i", 16},   {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
-        {"double", 8},   {"envmap", 1}, {"float", 4},           {"int", 4},          {"keycode", 28},
-        {"lineOrder", 1}, {"m33f", 36}, {"m33d", 72},           {"m44f", 64},        {"m44d", 128},
-        {"rational", 8}, {"tiledesc", 9}, {"timecode", 8},      {"v2i", 8},          {"v2f", 8},
-        {"v2d", 16},     {"v3i", 12},   {"v3f", 12},            {"v3d", 24}};
-    for (std::string name, type;;) {
-        readName(name);
-        if (name.empty()) {
-            // The end of a header. A single-part file has one; a multi-part list ends with an
-            // empty header, i.e. a second empty name in a row.
-            if (!multiPart || in.peek() == '\0') return;
-            continue;
-        }
-        readName(type);
-        const std::int32_t size = readInt();
-        const std::uintmax_t position = std::uintmax_t(in.tellg());
-        const std::uintmax_t left = fileSize - std::min(fileSize, position);
-        if (size < 0 || std::uintmax_t(size) > left)
-            throw Error(path, "corrupt EXR header: attribute '" + name + "' claims " + std::to_string(size) + " bytes, more than the " +
-                              std::to_string(left) + " left in the file");
-        auto mismatch = [&](const std::string& what) {
-            return Error(path, "corrupt EXR header: attribute '" + name + "' (" + type + ") declares " + std::to_string(size) +
-                                   " bytes but " + what);
-        };
-        const std::streamoff end = std::streamoff(position) + size;
-        if (const auto fixed = kFixedSizes.find(type); fixed != kFixedSizes.end()) {
-            if (size != fixed->second)
-                throw mismatch("its type has " + std::to_string(fixed->second));
-        } else if (type == "chlist") {
-            // Channels until an empty name: each a name and 16 bytes (type, linear, reserved,
-            // x and y sampling).
-            for (std::string channel;;) {
-                readName(channel);
-                if (channel.empty()) break;
-                in.seekg(16, std::ios::cur);
-                if (in.tellg() > end) throw mismatch("its channel list runs past them");
-            }
-            if (in.tellg() != end) throw mismatch("its channel list ends before them");
-        } else if (type == "preview") {
-            // Width and height (unsigned 32-bit each, so their product fits 64 bits), then
-            // 4 bytes a pixel.
-            if (size < 8) throw mismatch("a preview starts with 8 bytes of width and height");
-            const std::uint64_t width = std::uint32_t(readInt());
-            const std::uint64_t height = std::uint32_t(readInt());
-            if (width * height != std::uint64_t(size - 8) / 4 || (size - 8) % 4 != 0)
-                throw mismatch("a " + std::to_string(width) + "x" + std::to_string(height) + " preview holds " +
-                               std::to_string(width * height) + " pixels of 4 bytes after them");
-        } else if (type == "stringvector") {
-            // Length-prefixed strings until the size is used up.
-            while (in.tellg() < end) {
-                const std::int32_t length = readInt();
-                if (length < 0 || in.tellg() + std::streamoff(length) > end)
-                    throw mismatch("holds a string of " + std::to_string(length) + " bytes that does not fit");
-                in.seekg(length, std::ios::cur);
-            }
-            if (in.tellg() != end) throw mismatch("its last string length runs past them");
-        } else if (type == "floatvector" && size % 4 != 0) {
-            throw mismatch("a float vector is a multiple of 4 bytes");
-        } else if (type == "idmanifest" && size < 8) {
-            throw mismatch("an ID manifest starts with its uncompressed size"); // OpenEXR allocates size - 4 or - 8
-        }
-        // Strings, float vectors and types OpenEXR does not know are read at their size.
-        in.seekg(end);
-        if (!in) throw Error(path, "truncated EXR header");
-    }
-}
-
 // libpng prints "libpng error: ..." to stderr itself although OpenImageIO installs an error
 // handler: the handler returns, so libpng falls back to its default one, which prints before
 // it unwinds. OpenImageIO reports the same text through geterror(), which our one-line error
@@ -394,7 +287,6 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0 && !ec)
         throw Error(path, "empty file (0 bytes)");
 
-    checkExrAttributeSizes(path, fs::file_size(path, ec));
     std::string openError;
     const std::unique_ptr<ImageReader> in = imageCodec().openFile(path, openError);
     if (!in)
