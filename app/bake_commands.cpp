@@ -384,6 +384,8 @@ int runBakeBatch(const BakeCommandOptions& o, const bake::BakeSettings& settings
 
 int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
 {
+    // First, so that nothing below runs twice (the settings, the directory listing).
+    restartWithHugePages();
     // Each map's textures and read-backs are the same few sizes (MBs each). From the heap
     // rather than their own mappings, and kept there once freed, the next map of a batch
     // reuses the last one's memory instead of faulting in fresh pages: `measure-bake.sh
@@ -397,7 +399,6 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
         // One map named as one --env keeps the single report scripts read; a directory or
         // several maps make a batch.
         const bool single = o.environments.size() == 1 && maps.size() == 1 && maps.front() == o.environments.front();
-        restartWithHugePages();
         if (!single) return runBakeBatch(o, settings, maps, processStart);
         std::unique_ptr<BakeSession> session;
         const ordered_json report =

@@ -83,7 +83,7 @@ using ByteReader = std::function<bool(std::uintmax_t offset, std::size_t count, 
 std::string exrHeaderProblem(std::uintmax_t size, const ByteReader& read)
 {
     std::uint8_t magic[4] = {};
-    if (!read(0, 4, magic) || std::memcmp(magic, "\x76\x2f\x31\x01", 4) != 0)
+    if (!read(0, 4, magic) || std::memcmp(magic, kExrMagic, 4) != 0)
         return ""; // not an EXR: nothing to check
     struct Truncated {};
     struct Corrupt {

@@ -21,6 +21,9 @@
 
 namespace iblab {
 
+// The first four bytes of every OpenEXR file.
+inline constexpr char kExrMagic[4] = {'\x76', '\x2f', '\x31', '\x01'};
+
 enum class ImageFileKind { OpenExr, RadianceHdr, Other };
 
 // By the first bytes: OpenEXR's magic number, or Radiance's "#?RADIANCE\n" / "#?RGBE\n".
