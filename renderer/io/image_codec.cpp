@@ -224,9 +224,23 @@ std::string fileHeaderProblem(const std::string& path)
     std::error_code ec;
     const std::uintmax_t size = fs::file_size(path, ec);
     if (!in || ec) return ""; // the decoder reports what cannot be opened
+    // The walks read names a byte at a time: served from one block (a header is a few KB; a
+    // PNG's chunk heads are a block's read apart), so that opening a file costs a read or
+    // two, not a system call per byte (the bake cache opens a dozen files per hit).
+    std::vector<std::uint8_t> block;
+    std::uintmax_t blockStart = 0;
     return headerProblem(size, [&](std::uintmax_t offset, std::size_t count, std::uint8_t* out) {
-        in.clear();
-        return bool(in.seekg(std::streamoff(offset)).read(reinterpret_cast<char*>(out), std::streamsize(count)));
+        if (offset < blockStart || offset + count > blockStart + block.size()) {
+            constexpr std::size_t kBlockBytes = 64 * 1024;
+            if (offset >= size) return false;
+            blockStart = offset;
+            block.resize(std::size_t(std::min<std::uintmax_t>(std::max(kBlockBytes, count), size - offset)));
+            in.clear();
+            if (!in.seekg(std::streamoff(offset)).read(reinterpret_cast<char*>(block.data()), std::streamsize(block.size()))) return false;
+            if (count > block.size()) return false;
+        }
+        std::memcpy(out, block.data() + (offset - blockStart), count);
+        return true;
     });
 }
 
