@@ -127,11 +127,13 @@ void printTable(const bake::BakeResult& r, const std::optional<bake::BakeErrors>
 }
 
 // What the maps of one `iblab bake` share: the context, the programs compiled in it, and
-// the cache, whose LUTs every map after the first takes from memory.
+// the cache, whose LUTs every map after the first takes from memory (with --no-cache too:
+// a cache without a root keeps them in memory only).
 struct BakeSession {
+    explicit BakeSession(std::filesystem::path cacheRoot) : cache(std::move(cacheRoot)) {}
     HeadlessGl gl{/*debugContext=*/true};
     gl::ShaderLibrary shaders{shaderDirectory()};
-    std::optional<bake::BakeCache> cache;
+    bake::BakeCache cache;
 };
 
 struct MapBake {
@@ -174,13 +176,13 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     double compileMs = 0.0;
     std::exception_ptr setupError;
     try {
-        if (!session) {
-            session = std::make_unique<BakeSession>();
-            if (!o.noCache) session->cache.emplace(o.cacheDir.empty() ? bake::defaultCacheDirectory() : std::filesystem::path(o.cacheDir));
-        }
+        if (!session)
+            session = std::make_unique<BakeSession>(o.noCache          ? std::filesystem::path()
+                                                    : o.cacheDir.empty() ? bake::defaultCacheDirectory()
+                                                                         : std::filesystem::path(o.cacheDir));
         contextMs = millisecondsSince(contextStart);
         const auto compileStart = Clock::now();
-        bake::BakeJob::compilePrograms(session->shaders, settings, session->cache ? &*session->cache : nullptr);
+        bake::BakeJob::compilePrograms(session->shaders, settings, &session->cache);
         compileMs = millisecondsSince(compileStart);
     } catch (...) {
         setupError = std::current_exception();
@@ -197,7 +199,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     if (setupError) std::rethrow_exception(setupError);
     auto& [environment, loadMs] = *loaded;
     gl::ShaderLibrary& shaders = session->shaders;
-    std::optional<bake::BakeCache>& cache = session->cache;
+    bake::BakeCache& cache = session->cache;
     const std::size_t glErrorsBefore = session->gl.debug.errorCount();
 
     // --repeat bakes again in the same process, without the cache, to time warm runs
@@ -206,9 +208,8 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // The pixels are moved into the job when nothing reads them after it (the errors and
     // --repeat do): a copy is 6 MB of fresh pages for a 1024x512 map, a few ms.
     const bool pixelsNeededAfter = !o.noErrors || o.repeat > 1;
-    bake::BakeResult result = bake::BakeJob(shaders, pixelsNeededAfter ? Environment(environment) : std::move(environment), settings,
-                                            cache ? &*cache : nullptr)
-                                  .runToCompletion();
+    bake::BakeResult result =
+        bake::BakeJob(shaders, pixelsNeededAfter ? Environment(environment) : std::move(environment), settings, &cache).runToCompletion();
     std::vector<double> totals{result.totalMilliseconds};
     for (int i = 1; i < o.repeat; ++i) {
         result = bake::BakeJob(shaders, environment, settings).runToCompletion();
@@ -216,7 +217,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     }
     std::optional<bake::BakeErrors> errors;
     bake::AccuracyOptions accuracy;
-    if (cache) accuracy.referenceCacheDirectory = cache->root() / "reference";
+    if (cache.enabled()) accuracy.referenceCacheDirectory = cache.root() / "reference";
     if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, shaders, accuracy);
 
     if (!map.out.empty()) {
@@ -238,8 +239,8 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     const auto waitStart = Clock::now();
     std::vector<std::string> notes = result.notes;
     if (errors) notes.insert(notes.end(), errors->notes.begin(), errors->notes.end());
-    if (cache && map.waitForWrites)
-        for (std::string& note : cache->finishWrites())
+    if (map.waitForWrites)
+        for (std::string& note : cache.finishWrites())
             notes.push_back(std::move(note));
     const double cacheWriteWaitMs = millisecondsSince(waitStart);
     for (const std::string& note : notes)
@@ -270,7 +271,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
                      {"cache_write_wait", cacheWriteWaitMs},
                      {"process", millisecondsSince(processStart)}};
     // The writes' own time, on their thread (a batch reports its total instead).
-    if (cache && map.waitForWrites) j["other_ms"]["cache_write"] = cache->writeMilliseconds();
+    if (cache.enabled() && map.waitForWrites) j["other_ms"]["cache_write"] = cache.writeMilliseconds();
     if (totals.size() > 1) {
         j["repeat_totals_ms"] = totals;
         j["repeat_min_total_ms"] = *std::min_element(totals.begin(), totals.end());
@@ -366,7 +367,7 @@ int runBakeBatch(const BakeCommandOptions& o, const bake::BakeSettings& settings
     }
     const auto waitStart = Clock::now();
     std::vector<std::string> notes;
-    if (session && session->cache) notes = session->cache->finishWrites();
+    if (session) notes = session->cache.finishWrites();
     const double cacheWriteWaitMs = millisecondsSince(waitStart);
     for (const std::string& note : notes)
         std::fprintf(stderr, "iblab bake: %s\n", note.c_str());
@@ -376,7 +377,7 @@ int runBakeBatch(const BakeCommandOptions& o, const bake::BakeSettings& settings
         j["failed"] = failed;
         j["notes"] = notes;
         j["other_ms"] = {{"cache_write_wait", cacheWriteWaitMs}, {"process", millisecondsSince(processStart)}};
-        if (session && session->cache) j["other_ms"]["cache_write"] = session->cache->writeMilliseconds();
+        if (session && session->cache.enabled()) j["other_ms"]["cache_write"] = session->cache.writeMilliseconds();
         std::printf("%s\n", j.dump(2).c_str());
     }
     return exitWithoutTeardown(failed > 0 ? 1 : 0);
@@ -544,7 +545,7 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_option("--lut-geometry", o->lutGeometry, "LUT geometry terms: " + enumChoicesText<GeometryTerm>() + ", both or none");
     c->add_option("--out", o->out, "Write the results to DIR (EXR + JSON, see docs/bake.md)");
     c->add_option("--cache-dir", o->cacheDir, "Cache directory (default $IBLAB_CACHE_DIR, $XDG_CACHE_HOME/iblab or ~/.cache/iblab)");
-    c->add_flag("--no-cache", o->noCache, "Neither read nor write the cache");
+    c->add_flag("--no-cache", o->noCache, "Neither read nor write the cache's files (a batch still bakes its LUTs once)");
     c->add_flag("--no-errors", o->noErrors, "Skip the comparison with the exact references");
     c->add_option("--repeat", o->repeat, "Bake N times in this process (the later ones without the cache) and report each total")
         ->check(CLI::Range(1, 100));

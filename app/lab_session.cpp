@@ -110,7 +110,7 @@ ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& setting
     }
     // Not what the record said (the file was rewritten in place): bake what was decoded.
     withdrawEarlyBake();
-    job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), loaded, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
+    job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), loaded, bakeSettings_, &cache_);
     environment_ = std::make_shared<const Environment>(std::move(loaded));
     return {text, false, std::move(notes)};
 }
@@ -300,7 +300,7 @@ void LabSession::setBakeSettings(const bake::BakeSettings& settings)
     bakeSettings_ = settings;
     // The furnace bake reads the LUT of the session's settings: make it again on next use.
     renderer_.setFurnaceBake(nullptr);
-    if (environment_) job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), *environment_, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
+    if (environment_) job_ = std::make_unique<bake::BakeJob>(renderer_.shaders(), *environment_, bakeSettings_, &cache_);
 }
 
 void LabSession::ensureFurnaceBake()
@@ -309,7 +309,7 @@ void LabSession::ensureFurnaceBake()
     // A uniform environment needs no resolution: 64x32 keeps the bake to milliseconds,
     // while the LUT (which decides the furnace's answer) keeps the session's settings.
     const Environment white = iblab::loadEnvironment("builtin:white?width=64");
-    bake::BakeJob job(renderer_.shaders(), white, bakeSettings_, cache_.enabled() ? &cache_ : nullptr);
+    bake::BakeJob job(renderer_.shaders(), white, bakeSettings_, &cache_);
     renderer_.setFurnaceBake(std::make_shared<bake::BakeResult>(job.runToCompletion()));
 }
 

@@ -203,20 +203,21 @@ void BakeCache::rememberSource(const std::string& spec, const SourceRecord& reco
 
 bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes)
 {
-    if (!enabled())
-        return false;
-    const fs::path path = lutPath(lutKey(size, samples, term));
-    for (std::string& note : settleWrites(path))
-        notes.push_back(std::move(note));
-    if (const auto kept = lutImages_.find(path); kept != lutImages_.end()) {
+    const std::string key = lutKey(size, samples, term);
+    if (const auto kept = lutImages_.find(key); kept != lutImages_.end()) {
         out = create2DTexture(GL_RGBA16F, size);
         upload2D(out, kept->second);
         return true;
     }
+    if (!enabled())
+        return false;
+    const fs::path path = lutPath(key);
+    for (std::string& note : settleWrites(path))
+        notes.push_back(std::move(note));
     if (!fs::exists(path))
         return false;
     try {
-        const Image2D& image = lutImages_[path] = readLutExr(path, size);
+        const Image2D& image = lutImages_[key] = readLutExr(path, size);
         out = create2DTexture(GL_RGBA16F, size);
         upload2D(out, image);
         return true;
@@ -230,10 +231,12 @@ bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& 
 
 void BakeCache::storeLut(const BakedTexture& lut, int samples, GeometryTerm term)
 {
+    const std::string key = lutKey(lut.size, samples, term);
+    const Image2D& kept = lutImages_[key] = read2D(lut);
     if (!enabled())
         return;
-    auto image = std::make_shared<Image2D>(read2D(lut));
-    const fs::path path = lutPath(lutKey(lut.size, samples, term));
+    auto image = std::make_shared<Image2D>(kept);
+    const fs::path path = lutPath(key);
     writeInBackground(path, [path, image, samples, term, compression = exrCompression_] {
         std::error_code ec;
         fs::create_directories(path.parent_path(), ec);

@@ -46,7 +46,7 @@ double BakeResult::phaseMilliseconds(BakePhase phase) const
 }
 
 BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const BakeSettings& settings, BakeCache* cache)
-    : passes_(shaders), cache_(cache && cache->enabled() ? cache : nullptr)
+    : passes_(shaders), cache_(cache)
 {
     validate(settings);
     if (environment.image.empty())
@@ -126,7 +126,7 @@ void BakeJob::plan()
     steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost, [this, equirectLevels] {
                           passes_.compileFor(result_.settings, equirectLevels, compilesLut(result_.settings, cache_));
                       }});
-    if (cache_)
+    if (diskCache())
         steps_.push_back({BakePhase::CacheLookup, StepGroup::None, sourceTexels, [this] {
                               const MipBuilder buildMips = [this](const BakedTexture& t) { passes_.generateMips(t); };
                               if (cache_->loadBake(result_, buildMips, result_.notes)) {
@@ -213,7 +213,7 @@ void BakeJob::plan()
 
     planLuts();
 
-    if (cache_)
+    if (diskCache())
         steps_.push_back({BakePhase::CacheStore, StepGroup::Environment, sourceTexels, [this] { cache_->storeBake(result_); }});
 
     for (const Step& step : steps_)

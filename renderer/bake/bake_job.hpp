@@ -36,8 +36,9 @@ namespace iblab::bake {
 class BakeJob {
 public:
     // Keeps the environment's pixels: a copy (the caller may load another one meanwhile), or
-    // moved in by a caller that needs them no longer. cache may be null (no cache); it must
-    // outlive the job. Throws iblab::Error for invalid settings.
+    // moved in by a caller that needs them no longer. cache may be null (no cache), or
+    // without a root (its LUTs in memory only, bake_cache.hpp); it must outlive the job.
+    // Throws iblab::Error for invalid settings.
     BakeJob(gl::ShaderLibrary& shaders, Environment environment, const BakeSettings& settings, BakeCache* cache = nullptr);
     // A job for a map whose pixels are not decoded yet, from what the cache recorded of its
     // file (BakeCache::findSource): it only reads the cache (the bake's entry and the LUTs),
@@ -79,6 +80,9 @@ private:
     static StepGroup lutGroup(GeometryTerm term);
     // The LUTs' program only when no cache could have them.
     static bool compilesLut(const BakeSettings& settings, const BakeCache* cache);
+    // The bake's own entry is looked up and stored only in a cache with files; the LUTs in
+    // any cache (bake_cache.hpp).
+    bool diskCache() const { return cache_ && cache_->enabled(); }
     struct Step {
         BakePhase phase;
         StepGroup group;

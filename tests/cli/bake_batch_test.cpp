@@ -63,6 +63,21 @@ TEST_F(Cli, BakeOfADirectoryBakesItsMapsInNameOrder)
     EXPECT_TRUE(one["timings_ms"].contains("total"));
 }
 
+// --no-cache leaves the cache's files alone, but a batch still bakes its LUTs once.
+TEST_F(Cli, ABatchWithoutTheCacheBakesTheLutsOnce)
+{
+    const Result r = run("bake --env 'builtin:sky?width=64' --env 'builtin:white?width=64' --no-cache" + kSmallBake);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["maps"].size(), 2u) << r.out;
+    for (const char* term : {"schlick-ggx", "height-correlated-smith"}) {
+        EXPECT_EQ(j["maps"][0]["lut_from_cache"][term], false) << j["maps"][0];
+        EXPECT_EQ(j["maps"][1]["lut_from_cache"][term], true) << j["maps"][1];
+    }
+    EXPECT_FALSE(j["other_ms"].contains("cache_write")) << j["other_ms"];
+    EXPECT_FALSE(fs::exists(dir / "cache")) << "--no-cache writes no file";
+}
+
 // A bake restarts itself with malloc's huge pages (command_support.hpp), one map or a batch;
 // a GLIBC_TUNABLES that names the tunable is kept as it is.
 TEST_F(Cli, BakesRunWithMallocHugePagesUnlessTheTunableIsSet)

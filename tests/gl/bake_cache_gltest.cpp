@@ -243,12 +243,39 @@ TEST_F(GlTest, ACorruptLutIsReportedAndRebuilt)
     const fs::path lut = cache.lutPath(bake::BakeCache::lutKey(settings.lut.size, settings.lut.samples, GeometryTerm::SchlickGGX));
     ASSERT_TRUE(fs::exists(lut));
     std::ofstream(lut, std::ios::trunc) << "not an EXR";
-    const bake::BakeResult result = runBake(shaders, env, settings, &cache);
+    // A new cache (the next process): the one that stored the LUT keeps it in memory.
+    bake::BakeCache reader(dir.path());
+    const bake::BakeResult result = runBake(shaders, env, settings, &reader);
     EXPECT_FALSE(result.lutFromCache[0]);
     EXPECT_TRUE(result.lutFromCache[1]);
     ASSERT_EQ(result.notes.size(), 1u);
     EXPECT_NE(result.notes[0].find(lut.string()), std::string::npos) << result.notes[0];
-    EXPECT_TRUE(runBake(shaders, env, settings, &cache).lutFromCache[0]); // stored again
+    ASSERT_TRUE(reader.finishWrites().empty());
+    bake::BakeCache next(dir.path());
+    EXPECT_TRUE(runBake(shaders, env, settings, &next).lutFromCache[0]); // stored again
+}
+
+// Without a root (--no-cache) a cache touches no files, bakes each environment, and still
+// bakes the LUTs only once: a batch's later maps and the GUI's next environment upload them.
+TEST_F(GlTest, ACacheWithoutARootKeepsOnlyTheLutsAndOnlyInMemory)
+{
+    auto shaders = library();
+    bake::BakeCache memoryOnly{fs::path()};
+    ASSERT_FALSE(memoryOnly.enabled());
+    const Environment env = loadEnvironment("builtin:sky?width=32");
+    const bake::BakeSettings settings = smallBakeSettings();
+    const bake::BakeResult first = runBake(shaders, env, settings, &memoryOnly);
+    EXPECT_FALSE(first.lutFromCache[0] || first.lutFromCache[1]);
+    const bake::BakeResult second = runBake(shaders, env, settings, &memoryOnly);
+    EXPECT_TRUE(second.lutFromCache[0] && second.lutFromCache[1]);
+    EXPECT_FALSE(second.fromCache) << "the environment's results are not kept";
+    EXPECT_EQ(second.phaseMilliseconds(bake::BakePhase::CacheLookup), 0.0);
+    EXPECT_EQ(second.phaseMilliseconds(bake::BakePhase::CacheStore), 0.0);
+    expectSameResults(first, second);
+    bake::BakeSettings otherLut = settings;
+    otherLut.lut.samples *= 2;
+    EXPECT_FALSE(runBake(shaders, env, otherLut, &memoryOnly).lutFromCache[0]) << "kept by the LUT's own settings";
+    EXPECT_TRUE(memoryOnly.finishWrites().empty());
 }
 
 TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
