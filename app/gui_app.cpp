@@ -158,6 +158,10 @@ struct RenderedState {
     std::uint64_t contentRevision = 0;
     bool referenceComplete = false;   // of the error view
     float referenceMethodProgress = 0.0f; // a side drawn with the reference method shows each step
+    // A frame drawn during a drag, scroll or edit renders fewer pixels; once the input stops,
+    // the same settings want the full resolution again (else the blurred frame stayed, and the
+    // error view kept the shaded preview it draws at another size than its reference).
+    float resolutionScale = 1.0f;
     bool operator==(const RenderedState&) const = default;
 };
 
@@ -204,7 +208,6 @@ struct GuiApp::Impl {
     std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
     Clock::time_point start = Clock::now();
     Clock::time_point previousFrame = Clock::now();
-    float previousScale = 1.0f;
     bool frameWhenReady = false;
     bool isIdle = false;
     bool heldForLoad = false; // the last frame drew nothing new: a map decodes, nothing else runs
@@ -415,9 +418,9 @@ void GuiApp::Impl::frame()
     const bool capturing = pendingCapture.has_value();
     Renderer::Options renderOptions;
     if (interacting && !capturing && stats.renderMs > 33.0)
-        renderOptions.resolutionScale = std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(previousScale * previousScale))), 0.25f, 1.0f);
+        renderOptions.resolutionScale =
+            std::clamp(float(std::sqrt(33.0 / stats.renderMs * double(stats.resolutionScale * stats.resolutionScale))), 0.25f, 1.0f);
     renderOptions.accumulate = !interacting;
-    previousScale = renderOptions.resolutionScale;
     // The reference (of the error view, or of a side drawn with the reference method), one
     // budgeted slice of work per idle frame (a drag would restart it every frame; it resumes
     // when the drag ends).
@@ -432,7 +435,7 @@ void GuiApp::Impl::frame()
     // error view waits for its reference, and the reference method shows each step of it.
     const bool referencePending = referenceShown && !panels.compare.reference.complete;
     const RenderedState current{settings, viewWidth, viewHeight, renderer.contentRevision(), errorView && panels.compare.reference.complete,
-                                referenceMethodSide(settings) ? panels.compare.reference.progress : 0.0f};
+                                referenceMethodSide(settings) ? panels.compare.reference.progress : 0.0f, renderOptions.resolutionScale};
     const int framesToConverge = renderer.lastFrameWasSampled() && !keepsExactSampleCount(settings) ? kMaxAccumulatedFrames : 1;
     // The same image again: nothing it shows has changed (a load or bake that lands moves the
     // content revision, and a frame follows then), so a decode that runs meanwhile keeps
@@ -448,10 +451,10 @@ void GuiApp::Impl::frame()
         renderer.renderFrame(settings, viewWidth, viewHeight, renderOptions);
         renderTimer.end();
         if (errorView) panels.compare.error = renderer.measureError(settings);
+        stats.resolutionScale = renderOptions.resolutionScale; // of the frame on screen
     }
     if (const std::optional<double> renderMs = renderTimer.latestMilliseconds()) stats.renderMs = *renderMs;
     rendered = current;
-    stats.resolutionScale = renderOptions.resolutionScale;
     stats.accumulatedFrames = renderer.accumulatedFrames();
     stats.width = viewWidth;
     stats.height = viewHeight;
