@@ -103,6 +103,7 @@ ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& setting
         early_->decoded = true;
         environment_ = std::make_shared<const Environment>(std::move(loaded));
         if (early_->shown) {
+            bakeStatusAfterDecode_ = ui::StatusLine{early_->bakeStatus, false};
             rememberCurrent();
             early_.reset();
         }
@@ -139,6 +140,7 @@ std::optional<ui::StatusLine> LabSession::finishBake()
     bake_ = result;
     renderer_.setBake(bake_);
     if (early_ && !early_->decoded) {
+        early_->bakeStatus = text;
         text += "; reading " + shortName(early_->spec);
     } else {
         rememberCurrent();
@@ -235,6 +237,7 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
         }
         try {
             finished.environment = finishLoad(pendingLoad_.get(), settings);
+            finished.bake = std::exchange(bakeStatusAfterDecode_, std::nullopt);
         } catch (const Error& e) {
             withdrawEarlyBake();
             switchInProgress_.reset();

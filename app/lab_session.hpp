@@ -144,8 +144,11 @@ private:
         bool jobRunning = true;  // job_ is the early job
         bool shown = false;      // its bake is bake_ (environment_ is still the previous one)
         bool decoded = false;    // the file decoded to contentHash: environment_ is its own
+        std::string bakeStatus;  // shown with "; reading FILE" until the decode lands
     };
     std::optional<EarlyBake> early_;
+    // The shown early bake's status line once its file has decoded (the next pump reports it).
+    std::optional<ui::StatusLine> bakeStatusAfterDecode_;
 };
 
 } // namespace iblab::app

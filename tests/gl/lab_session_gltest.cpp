@@ -180,7 +180,10 @@ TEST_F(EarlyBakeTest, TheBakeIsShownBeforeTheFileDecodes)
 
     session.requestEnvironment(mapA.string());
     // One pump reads the bake; the decode waits for the frame that shows it.
-    session.pump(settings, std::chrono::seconds(10));
+    const app::LabSession::Finished early = session.pump(settings, std::chrono::seconds(10));
+    ASSERT_TRUE(early.bake);
+    EXPECT_NE(early.bake->text.find("(from cache)"), std::string::npos) << early.bake->text;
+    EXPECT_NE(early.bake->text.find("; reading a.exr"), std::string::npos) << early.bake->text;
     ASSERT_TRUE(session.bake());
     EXPECT_EQ(session.bake()->contentHash, hashA);
     EXPECT_TRUE(session.bake()->fromCache);
@@ -193,7 +196,10 @@ TEST_F(EarlyBakeTest, TheBakeIsShownBeforeTheFileDecodes)
     EXPECT_TRUE(session.lastSwitch()->fromCache);
 
     const std::uint64_t shown = renderer.contentRevision();
-    pumpUntilIdle(session, settings);
+    const app::LabSession::Finished decoded = pumpUntilIdle(session, settings);
+    // The status no longer says the file is being read (it did until the app closed).
+    ASSERT_TRUE(decoded.bake);
+    EXPECT_EQ(decoded.bake->text, early.bake->text.substr(0, early.bake->text.find("; reading")));
     EXPECT_EQ(session.environment()->source, mapA.string());
     EXPECT_EQ(session.environment()->contentHash, hashA);
     EXPECT_EQ(session.bake()->contentHash, hashA);
