@@ -326,6 +326,14 @@ struct GuiApp::Impl {
             settings.camera.fovDegrees = defaults.fovDegrees;
             requests.frameScene = true;
         }
+        // The renderer draws the sphere for a model scene without a model: say why, until
+        // another scene is chosen.
+        static const std::string noModel = "no model loaded: type a .gltf / .glb path and press Load model, or drop the file on "
+                                           "the window (the sphere stands in meanwhile)";
+        if (requests.sceneChanged && settings.scene.kind == SceneKind::Model && settings.scene.modelPath.empty())
+            panels.sceneStatus = {noModel};
+        else if (requests.sceneChanged && panels.sceneStatus.text == noModel)
+            panels.sceneStatus = {};
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
             const bool startFraming = frameWhenReady && !requests.sceneChanged && !requests.frameScene;
             const auto cameraBefore = settings.camera;
