@@ -32,6 +32,9 @@ LabSession::~LabSession()
 
 void LabSession::requestEnvironment(const std::string& spec)
 {
+    // The map already on its way, asked for again (Enter in the path field, then the Load
+    // button): one load, timed from the first request.
+    if ((pendingLoad_.valid() || decodeDeferred_) && spec == pendingSpec_ && !queuedSpec_) return;
     // The user waits from their latest request, queued or not.
     switchRequested_ = std::chrono::steady_clock::now();
     switchInProgress_ = SwitchTiming{.environment = spec};

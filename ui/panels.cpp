@@ -145,9 +145,12 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
         for (const auto& name : state.catalog.builtins)
             if (combo.entry(name.c_str(), name == settings.source)) requests.loadEnvironment = name;
     }
-    inputTextWithHint("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath, sizeof state.environmentPath);
+    // Enter in a path field loads it, as the button beside it does.
+    const bool pathEntered = inputTextWithHint("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath,
+                                               sizeof state.environmentPath, ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SameLine();
-    if (button("Load") && state.environmentPath[0] != '\0') requests.loadEnvironment = std::string(state.environmentPath);
+    const bool loadClicked = button("Load");
+    if ((loadClicked || pathEntered) && state.environmentPath[0] != '\0') requests.loadEnvironment = std::string(state.environmentPath);
     sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
     sliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
     drawStatus(state.environmentStatus);
@@ -401,9 +404,11 @@ void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requ
                                                                 : "Sampled method at the Sampling panel's N; try builtin:lights.");
         ImGui::PopStyleColor();
     }
-    inputTextWithHint("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath);
+    const bool pathEntered = inputTextWithHint("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath,
+                                               ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SameLine();
-    if (button("Load model") && state.modelPath[0] != '\0') requests.loadModel = std::string(state.modelPath);
+    const bool loadClicked = button("Load model");
+    if ((loadClicked || pathEntered) && state.modelPath[0] != '\0') requests.loadModel = std::string(state.modelPath);
     if (settings.kind == SceneKind::Model && !settings.modelPath.empty()) {
         inputText("##export", state.exportPath, sizeof state.exportPath);
         ImGui::SameLine();

@@ -139,9 +139,9 @@ bool inputText(const char* label, char* buffer, std::size_t size, ImGuiInputText
     return recorded(ImGui::InputText(label, buffer, size, flags), label, "input");
 }
 
-bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::size_t size)
+bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::size_t size, ImGuiInputTextFlags flags)
 {
-    return recorded(ImGui::InputTextWithHint(label, hint, buffer, size), label, "input");
+    return recorded(ImGui::InputTextWithHint(label, hint, buffer, size, flags), label, "input");
 }
 
 bool colourEdit3(const char* label, float colour[3])

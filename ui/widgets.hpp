@@ -105,7 +105,7 @@ bool sliderFloat(const char* label, float* value, float min, float max, const ch
 bool sliderInt(const char* label, int* value, int min, int max, const char* format = "%d", ImGuiSliderFlags flags = 0);
 bool inputInt(const char* label, int* value, int step = 1, int stepFast = 10);
 bool inputText(const char* label, char* buffer, std::size_t size, ImGuiInputTextFlags flags = 0);
-bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::size_t size);
+bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::size_t size, ImGuiInputTextFlags flags = 0);
 bool colourEdit3(const char* label, float colour[3]);
 // An invisible button of `size` (a chart or a curve), tracked as `kind`.
 bool canvas(const char* label, ImVec2 size, std::string_view kind);

@@ -140,6 +140,23 @@ TEST_F(LabSessionTest, RequestsDuringALoadAreQueuedAndTheNewestWins)
     EXPECT_TRUE(session.bake());
 }
 
+// Enter in the path field and then the Load button ask for the same map twice: it loads once
+// (the second request used to queue a second load, which threw the first one's result away).
+TEST_F(LabSessionTest, AMapAskedForAgainWhileItLoadsLoadsOnce)
+{
+    Renderer renderer(shaderDirectory());
+    app::LabSession session(renderer, testing::smallBakeSettings());
+    FrameSettings settings;
+    session.requestEnvironment("builtin:sky?width=64");
+    session.requestEnvironment("builtin:sky?width=64");
+    session.waitForLoad(std::chrono::seconds(30));
+    const app::LabSession::Finished finished = session.pump(settings, std::chrono::seconds(30));
+    ASSERT_TRUE(finished.environment) << "the first load's result was used";
+    EXPECT_FALSE(finished.environment->isError) << finished.environment->text;
+    EXPECT_EQ(session.environment()->source, "builtin:sky?width=64");
+    pumpUntilIdle(session, settings);
+}
+
 // A map whose bake is cached from an earlier run: its bake is read from the cache's record
 // of the file and shown first, then the file decodes and must be what the record said.
 class EarlyBakeTest : public LabSessionTest {
