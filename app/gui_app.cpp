@@ -96,6 +96,18 @@ std::string lowerExtension(const std::string& path)
     return extension;
 }
 
+// A failed load keeps the environment on screen, so the error line keeps that environment's
+// own line and notes under it: they are still true of what is shown.
+void showEnvironmentStatus(ui::StatusLine& line, ui::StatusLine status)
+{
+    if (status.isError && !line.text.empty()) {
+        // After another error, its notes are already the kept environment's.
+        if (!line.isError) status.notes.push_back("still showing " + line.text);
+        status.notes.insert(status.notes.end(), line.notes.begin(), line.notes.end());
+    }
+    line = std::move(status);
+}
+
 void handleDrop(const std::string& path, ui::UiRequests& requests, ui::PanelState& panels)
 {
     const std::string extension = lowerExtension(path);
@@ -106,7 +118,8 @@ void handleDrop(const std::string& path, ui::UiRequests& requests, ui::PanelStat
     else if (extension == ".json")
         requests.loadPreset = path;
     else
-        panels.environmentStatus = {path + ": cannot open this kind of file (drop .exr, .hdr, .gltf, .glb or a .json preset)", true};
+        showEnvironmentStatus(panels.environmentStatus,
+                              {path + ": cannot open this kind of file (drop .exr, .hdr, .gltf, .glb or a .json preset)", true});
 }
 
 // Left drag orbits; right or middle drag, or Shift + left drag, pans; the wheel zooms
@@ -385,7 +398,7 @@ void GuiApp::Impl::frame()
     for (const std::string& error : renderer.reloadShaders()) std::fprintf(stderr, "iblab: %s\n", error.c_str());
 
     const LabSession::Finished finished = session.pump(settings, kBackgroundBudgetPerFrame);
-    if (finished.environment) panels.environmentStatus = *finished.environment;
+    if (finished.environment) showEnvironmentStatus(panels.environmentStatus, *finished.environment);
     if (finished.bake) panels.bakeStatus = *finished.bake;
     panels.activity = {session.activity(), session.progress()};
     study.advance(panels.study, kBackgroundBudgetPerFrame);
@@ -412,7 +425,7 @@ void GuiApp::Impl::frame()
 
     actOn(requests, viewWidth, viewHeight);
     const LabSession::Finished switched = session.showRequestedRecent(settings);
-    if (switched.environment) panels.environmentStatus = *switched.environment;
+    if (switched.environment) showEnvironmentStatus(panels.environmentStatus, *switched.environment);
     if (switched.bake) panels.bakeStatus = *switched.bake;
     if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
 
@@ -460,9 +473,11 @@ void GuiApp::Impl::frame()
         renderTimer.end();
         if (errorView) panels.compare.error = renderer.measureError(settings);
         stats.resolutionScale = renderOptions.resolutionScale; // of the frame on screen
+        // Only a frame drawn: a held one is still the older state's (a load that then fails
+        // changes no content, and the view stayed as it was before the request).
+        rendered = current;
     }
     if (const std::optional<double> renderMs = renderTimer.latestMilliseconds()) stats.renderMs = *renderMs;
-    rendered = current;
     stats.accumulatedFrames = renderer.accumulatedFrames();
     stats.width = viewWidth;
     stats.height = viewHeight;
