@@ -10,8 +10,10 @@ namespace {
 // lights") and its shading code (perceptualRoughnessToLod, DFG with energy compensation,
 // SH irradiance); glTF-Sample-Viewer's ibl_sampler.js and ibl.glsl (getIBLRadianceGGX uses
 // k_S = F0 + (max(1 - roughness, F0) - F0) (1 - n.v)^5, the roughness-aware Fresnel, on the
-// LUT). iblab is the lab's own default: the exact F0 A + B, energy compensation on, and the
-// fitted lobe's reads instead of the split sum's one.
+// LUT). iblab is the lab's own default, what the GUI and `render` start with: the exact
+// F0 A + B, the fitted lobe's reads instead of the split sum's one, and no energy
+// compensation (the exact references it is measured against are single-scattering; the
+// Sampling panel's checkbox adds it).
 // Where the cube is read: Filament's getReflectedVector leans R towards N by alpha^2
 // (common/specular_lobe.glsl); LearnOpenGL's and the Sample Viewer's ibl code read at R.
 constexpr std::array kConventions{
@@ -21,7 +23,7 @@ constexpr std::array kConventions{
                      SpecularDirection::Filament},
     ConventionPreset{"gltf-viewer", "glTF Sample Viewer", "gltf-viewer", GeometryTerm::HeightCorrelatedSmith, true, false,
                      DiffuseSource::IrradianceCube, SpecularDirection::Reflection},
-    ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::IrradianceCube,
+    ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, false, DiffuseSource::IrradianceCube,
                      SpecularDirection::Reflection, ShadingMethod::FittedLobe},
 };
 

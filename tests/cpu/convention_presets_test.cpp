@@ -86,7 +86,16 @@ TEST(ConventionPresets, ApplyingOneSetsTheSplitSumShadingItUses)
     // iblab's own convention is its default shading, the fitted lobe.
     applyConvention(preset("iblab"), sampling);
     EXPECT_EQ(sampling.method, ShadingMethod::FittedLobe);
-    EXPECT_EQ(sampling.method, SamplingSettings{}.method);
+}
+
+// "iblab default" in the Conventions panel puts back what the lab starts with: every choice a
+// convention makes is the default's (it turned energy compensation on, which the start has off).
+TEST(ConventionPresets, IblabsOwnIsWhatTheLabStartsWith)
+{
+    SamplingSettings sampling;
+    applyConvention(preset("iblab"), sampling);
+    EXPECT_EQ(sampling, SamplingSettings{});
+    EXPECT_EQ(conventionBakeSettings(preset("iblab")).prefilter, bake::defaultPreset().prefilter);
 }
 
 } // namespace
