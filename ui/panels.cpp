@@ -390,7 +390,7 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
     ImGui::PopID();
 }
 
-void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests)
+void drawScenePanel(SceneSettings& settings, ShadingMethod method, PanelState& state, UiRequests& requests)
 {
     Section section("Scene", true);
     if (!section) return;
@@ -399,10 +399,17 @@ void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requ
     if (settings.kind == SceneKind::Counting || settings.kind == SceneKind::Sweep) {
         if (sliderInt("Spheres", &settings.countingSpheres, 2, 16)) requests.sceneChanged = true;
         tooltip(settings.kind == SceneKind::Counting ? "Sphere i uses N = i samples" : "Roughness from 0 (left) to 1 (right)");
-        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-        ImGui::TextWrapped(settings.kind == SceneKind::Counting ? "Sampled method, N = 1..k: try builtin:lights, forced mip 0, metallic 1."
-                                                                : "Sampled method at the Sampling panel's N; try builtin:lights.");
-        ImGui::PopStyleColor();
+        // Only the sampled method counts samples: under any other every counting sphere is the
+        // same, whatever its label says.
+        if (settings.kind == SceneKind::Counting && method != ShadingMethod::Sampled) {
+            drawWarning("Only the sampled method counts samples: choose Method sampled to see N = 1..k (try builtin:lights, "
+                        "forced mip 0, metallic 1).");
+        } else {
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped(settings.kind == SceneKind::Counting ? "Sampled method, N = 1..k: try builtin:lights, forced mip 0, metallic 1."
+                                                                    : "Sampled method at the Sampling panel's N; try builtin:lights.");
+            ImGui::PopStyleColor();
+        }
     }
     const bool pathEntered = inputTextWithHint("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath,
                                                ImGuiInputTextFlags_EnterReturnsTrue);
@@ -572,7 +579,7 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     ImGui::PushItemWidth(std::floor(ImGui::GetWindowWidth() * 0.55f));
     drawStatsOverlay(stats);
     drawEnvironmentPanel(settings.environment, state, requests);
-    drawScenePanel(settings.scene, state, requests);
+    drawScenePanel(settings.scene, settings.sampling.method, state, requests);
     drawMaterialPanel(settings.material, settings.scene);
     drawSamplingPanel(settings.sampling, sceneDemandsExactSampleCount(settings.scene), state.compare.reference);
     drawConventionPanel(state, requests);

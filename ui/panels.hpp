@@ -159,7 +159,7 @@ void drawConventionPanel(PanelState& state, UiRequests& requests);
 // roughness the panel warns that the heatmap is not the method's error there.
 void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling, const CompareState& state,
                       std::optional<float> sceneMinRoughness = std::nullopt);
-void drawScenePanel(SceneSettings& settings, PanelState& state, UiRequests& requests);
+void drawScenePanel(SceneSettings& settings, ShadingMethod method, PanelState& state, UiRequests& requests);
 void drawViewPanel(ViewSettings& settings);
 void drawPresetPanel(PanelState& state, UiRequests& requests);
 void drawCapturePanel(PanelState& state, UiRequests& requests);
