@@ -96,6 +96,9 @@ std::string lowerExtension(const std::string& path)
     return extension;
 }
 
+constexpr const char* kNoModelStatus =
+    "no model loaded: type a .gltf / .glb path and press Load model, or drop the file on the window (the sphere stands in meanwhile)";
+
 // A failed load keeps the environment on screen, so the error line keeps that environment's
 // own line and notes under it: they are still true of what is shown.
 void showEnvironmentStatus(ui::StatusLine& line, ui::StatusLine status)
@@ -341,11 +344,9 @@ struct GuiApp::Impl {
         }
         // The renderer draws the sphere for a model scene without a model: say why, until
         // another scene is chosen.
-        static const std::string noModel = "no model loaded: type a .gltf / .glb path and press Load model, or drop the file on "
-                                           "the window (the sphere stands in meanwhile)";
         if (requests.sceneChanged && settings.scene.kind == SceneKind::Model && settings.scene.modelPath.empty())
-            panels.sceneStatus = {noModel};
-        else if (requests.sceneChanged && panels.sceneStatus.text == noModel)
+            panels.sceneStatus = {kNoModelStatus};
+        else if (requests.sceneChanged && panels.sceneStatus.text == kNoModelStatus)
             panels.sceneStatus = {};
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
             const bool startFraming = frameWhenReady && !requests.sceneChanged && !requests.frameScene;
