@@ -244,6 +244,11 @@ struct GuiApp::Impl {
         if (const ConventionPreset* convention = findConvention(options.convention)) {
             applyConvention(*convention, settings.sampling);
             panels.convention = convention->name;
+        } else if (const ConventionPreset* own = findConvention("iblab")) {
+            // The start is iblab's own convention, unless the command line changed its choices.
+            SamplingSettings asOwn = settings.sampling;
+            applyConvention(*own, asOwn);
+            if (asOwn == settings.sampling) panels.convention = own->name;
         }
         panels.catalog = session.catalog();
         std::snprintf(panels.capture.directory, sizeof panels.capture.directory, "%s", std::filesystem::current_path().string().c_str());
