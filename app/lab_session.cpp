@@ -33,8 +33,10 @@ LabSession::~LabSession()
 void LabSession::requestEnvironment(const std::string& spec)
 {
     // The map already on its way, asked for again (Enter in the path field, then the Load
-    // button): one load, timed from the first request.
-    if ((pendingLoad_.valid() || decodeDeferred_) && spec == pendingSpec_ && !queuedSpec_) return;
+    // button): one load and one bake, timed from the first request.
+    const bool decoding = (pendingLoad_.valid() || decodeDeferred_) && spec == pendingSpec_;
+    const bool baking = job_ && !pendingLoad_.valid() && spec == currentSpec_;
+    if ((decoding || baking) && !queuedSpec_) return;
     // The user waits from their latest request, queued or not.
     switchRequested_ = std::chrono::steady_clock::now();
     switchInProgress_ = SwitchTiming{.environment = spec};

@@ -155,6 +155,16 @@ TEST_F(LabSessionTest, AMapAskedForAgainWhileItLoadsLoadsOnce)
     EXPECT_FALSE(finished.environment->isError) << finished.environment->text;
     EXPECT_EQ(session.environment()->source, "builtin:sky?width=64");
     pumpUntilIdle(session, settings);
+
+    // Asked for again once decoded, while it bakes: the bake goes on, nothing decodes again.
+    session.requestEnvironment("builtin:sun?width=256");
+    session.waitForLoad(std::chrono::seconds(30));
+    session.pump(settings, std::chrono::microseconds(1)); // the decode lands, the bake starts
+    ASSERT_EQ(session.environment()->source, "builtin:sun?width=256");
+    ASSERT_NE(session.activity().find("baking"), std::string::npos) << session.activity();
+    session.requestEnvironment("builtin:sun?width=256");
+    EXPECT_EQ(session.activity().find("loading"), std::string::npos) << session.activity();
+    pumpUntilIdle(session, settings);
 }
 
 // A map whose bake is cached from an earlier run: its bake is read from the cache's record
