@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
+#include <string>
 
 #include <imgui.h>
 
@@ -37,6 +39,17 @@ void drawWarning(const char* text)
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
     ImGui::TextWrapped("%s", text);
     ImGui::PopStyleColor();
+}
+
+// A path field and the button beside it: Enter in the field does what the button does. The
+// typed path, when either asks for it (an empty field asks for nothing).
+std::optional<std::string> pathField(const char* id, const char* hint, char* path, std::size_t size, const char* buttonLabel)
+{
+    const bool entered = inputTextWithHint(id, hint, path, size, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    const bool clicked = button(buttonLabel);
+    if ((entered || clicked) && path[0] != '\0') return std::string(path);
+    return std::nullopt;
 }
 
 // The live curve: displayed value (after sRGB encoding, what lands on screen) against
@@ -145,12 +158,8 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
         for (const auto& name : state.catalog.builtins)
             if (combo.entry(name.c_str(), name == settings.source)) requests.loadEnvironment = name;
     }
-    // Enter in a path field loads it, as the button beside it does.
-    const bool pathEntered = inputTextWithHint("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath,
-                                               sizeof state.environmentPath, ImGuiInputTextFlags_EnterReturnsTrue);
-    ImGui::SameLine();
-    const bool loadClicked = button("Load");
-    if ((loadClicked || pathEntered) && state.environmentPath[0] != '\0') requests.loadEnvironment = std::string(state.environmentPath);
+    if (auto path = pathField("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath, sizeof state.environmentPath, "Load"))
+        requests.loadEnvironment = std::move(*path);
     sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
     sliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
     drawStatus(state.environmentStatus);
@@ -411,11 +420,8 @@ void drawScenePanel(SceneSettings& settings, ShadingMethod method, PanelState& s
             ImGui::PopStyleColor();
         }
     }
-    const bool pathEntered = inputTextWithHint("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath,
-                                               ImGuiInputTextFlags_EnterReturnsTrue);
-    ImGui::SameLine();
-    const bool loadClicked = button("Load model");
-    if ((loadClicked || pathEntered) && state.modelPath[0] != '\0') requests.loadModel = std::string(state.modelPath);
+    if (auto path = pathField("##model", ".gltf / .glb path", state.modelPath, sizeof state.modelPath, "Load model"))
+        requests.loadModel = std::move(*path);
     if (settings.kind == SceneKind::Model && !settings.modelPath.empty()) {
         inputText("##export", state.exportPath, sizeof state.exportPath);
         ImGui::SameLine();

@@ -33,7 +33,6 @@
 namespace iblab {
 namespace {
 
-
 // OpenImageIO's float -> uint8 conversion: clamp to [0, 1], scale, round to nearest.
 void toUInt8(const std::vector<float>& values, void* out)
 {

@@ -90,10 +90,6 @@ inline std::string pngClaimingAHugeTextChunk()
     return png + "tEXtComment";
 }
 
-namespace malformed_detail {
-
-} // namespace malformed_detail
-
 // Writes every malformed image into folder and lists them with the problem to expect.
 inline std::vector<MalformedImage> writeMalformedImages(const std::filesystem::path& folder)
 {
