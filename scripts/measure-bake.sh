@@ -9,6 +9,8 @@
 #                                           # rounds (ROUNDS=N); IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
 #   scripts/measure-bake.sh hugepages       # the bake with and without malloc's huge pages (app/main.cpp)
+#   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms), minimum and median of ROUNDS
+#                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved
 # Every time is the minimum of 3 interleaved runs (cmgen: of ROUNDS, default 7, since the
 # processes differ by less than a shared machine's noise in 3); process times are wall clock around the
 # whole process (start, context, load, bake, errors, cache writes, exit).
@@ -16,7 +18,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 iblab=${IBLAB:-build/app/iblab}
 mode=tutorial
-case "${1:-}" in batch | cmgen | writes | hugepages) mode=$1; shift ;; esac
+case "${1:-}" in batch | cmgen | writes | hugepages | phases) mode=$1; shift ;; esac
 cache=$(mktemp -d)
 trap 'rm -rf "$cache"' EXIT
 # Wall time of one process in ms (stdout and stderr discarded; a failure stops the script).
@@ -257,7 +259,55 @@ for name, a, b in (("--no-errors", on, off), ("with errors", on_e, off_e), ("4-m
 PY
 }
 
+# Each phase of one map's bake as the report's timings_ms gives it (steady clock from a step's
+# submission to its fence), default preset, LUTs cached, no bake cached, --no-errors; ROUNDS
+# processes (default 8), minimum and median per phase: the phases are tens of milliseconds, in
+# which a shared machine's noise is large, so a change is compared on the minimum, with the
+# older build interleaved run for run.
+measure_phases() {
+  local map=${1:-assets/environments/courtyard.exr}
+  local baseline=${IBLAB_BASELINE:-} rounds=${ROUNDS:-8}
+  local builds=("$iblab")
+  [ -n "$baseline" ] && builds+=("$baseline")
+  local reports=()
+  for build in "${builds[@]}"; do
+    "$build" bake --env "$map" --cache-dir "$cache/$(echo "$build" | md5sum | cut -c1-8)" --no-errors > /dev/null # the LUTs, once
+    reports+=("$(mktemp -p "$cache")")
+  done
+  for _ in $(seq "$rounds"); do
+    for i in "${!builds[@]}"; do
+      local dir="$cache/$(echo "${builds[$i]}" | md5sum | cut -c1-8)"
+      rm -rf "$dir/bake"
+      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors --json | python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)["timings_ms"]))' >> "${reports[$i]}"
+    done
+  done
+  python3 - "$map" "$rounds" "${builds[@]}" -- "${reports[@]}" <<'PY'
+import json, statistics, sys
+args = sys.argv[1:]
+map_name, rounds = args[0], args[1]
+split = args.index("--")
+builds, reports = args[2:split], args[split + 1:]
+runs = [[json.loads(line) for line in open(r)] for r in reports]
+print(f"{map_name}, {rounds} processes per build, ms per phase, minimum (median):")
+phases = [k for k in runs[0][0] if k != "total"] + ["total"]
+print("| phase | " + " | ".join(builds) + (" | ratio of minima |" if len(builds) > 1 else " |"))
+print("|---" * (len(builds) + 1 + (len(builds) > 1)) + "|")
+for phase in phases:
+    cells = []
+    for r in runs:
+        values = [run.get(phase, 0.0) for run in r]
+        cells.append(f"{min(values):.1f} ({statistics.median(values):.1f})")
+    row = f"| {phase} | " + " | ".join(cells)
+    if len(builds) > 1:
+        a = min(run.get(phase, 0.0) for run in runs[0])
+        b = min(run.get(phase, 0.0) for run in runs[1])
+        row += f" | {a / b:.2f}x" if b >= 1.0 else " | -"
+    print(row + " |")
+PY
+}
+
 case $mode in
+  phases) measure_phases "$@" ;;
   tutorial) measure_tutorial "$@" ;;
   hugepages) measure_hugepages ;;
   batch) measure_batch ;;

@@ -197,13 +197,16 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
     switch (settings.irradiance) {
     case IrradianceMethod::None: break;
     case IrradianceMethod::Riemann: shaders_.program({kIrradianceRiemann}); break;
-    case IrradianceMethod::Importance: shaders_.program({kIrradianceImportance}); break;
+    case IrradianceMethod::Importance:
+        sampleTableProgram(kIrradianceImportance, sampleTableCapacity(settings.importance.samples));
+        break;
     case IrradianceMethod::Moments:
         shaders_.program({kIrradianceMomentsBuild}, {{"FORMAT", imageFormatName(format)}});
         momentsProgram(settings.moments.sourceFaceSize);
         break;
     }
-    shaders_.program({kPrefilter});
+    for (int level = 1; level < settings.prefilter.levels; ++level)
+        sampleTableProgram(kPrefilter, sampleTableCapacity(prefilterSamples(settings.prefilter, level)));
     if (lut)
         shaders_.program({kBrdfLut});
 }
@@ -214,6 +217,21 @@ const gl::ShaderProgram& BakePasses::momentsProgram(int groupsPerEdge)
 }
 
 const gl::ShaderProgram& BakePasses::cubeProgram(const char* file) { return shaders_.program({file}); }
+
+int BakePasses::sampleTableCapacity(int sampleCount) const
+{
+    // GL_MAX_UNIFORM_BLOCK_SIZE is at least 16 KB (1024 entries); llvmpipe and the desktop
+    // drivers allow 64 KB.
+    GLint maxBlockBytes = 0;
+    glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &maxBlockBytes);
+    const int capacity = std::min(maxUniformTableEntries_, int(maxBlockBytes / GLint(sizeof(glm::vec4))));
+    return sampleCount <= capacity ? capacity : 0;
+}
+
+const gl::ShaderProgram& BakePasses::sampleTableProgram(const char* file, int capacity)
+{
+    return shaders_.program({file}, {{"SAMPLE_TABLE_CAPACITY", std::to_string(capacity)}});
+}
 
 int BakePasses::equirectLevelsForCube(int width, int height, int faceSize)
 {
@@ -364,11 +382,26 @@ void bindSource(const gl::ShaderProgram& program, const BakedTexture& environmen
     glBindTextureUnit(1, environment.id());
 }
 
-// A pass's sample table (source_samples.glsl) on storage-buffer binding 0, for one dispatch.
-gl::Buffer bindSampleTable(const std::vector<glm::vec4>& table)
+struct SampleTableUniforms {
+    explicit SampleTableUniforms(const gl::ShaderProgram& p) : sampleCount(p, "uSampleCount") {}
+    gl::Uniform<int> sampleCount;
+};
+
+// A pass's sample table (source_samples.glsl) on binding 0 of the kind `program` was built
+// for (sampleTableDefines), for one dispatch. A uniform block is padded to its declared
+// size: GL leaves reads undefined where the bound range is shorter than the block.
+gl::Buffer bindSampleTable(const gl::ShaderProgram& program, int capacity, const std::vector<glm::vec4>& table)
 {
-    gl::Buffer buffer = gl::createBufferWith<glm::vec4>(table);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+    program.uniforms<SampleTableUniforms>().sampleCount.set(int(table.size()));
+    if (capacity == 0) {
+        gl::Buffer buffer = gl::createBufferWith<glm::vec4>(table);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+        return buffer;
+    }
+    std::vector<glm::vec4> padded(std::size_t(capacity), glm::vec4(0.0f));
+    std::copy(table.begin(), table.end(), padded.begin());
+    gl::Buffer buffer = gl::createBufferWith<glm::vec4>(padded);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffer.id());
     return buffer;
 }
 
@@ -391,8 +424,9 @@ void BakePasses::irradianceImportance(const BakedTexture& environment, const Bak
                                       const ImportanceIrradianceSettings& settings, bool exactTexelSolidAngle)
 {
     SeamlessCubeScope seamless;
-    const gl::ShaderProgram& program = cubeProgram(kIrradianceImportance);
-    const gl::Buffer table = bindSampleTable(cosineSampleTable(settings.samples, settings.mipBias));
+    const int capacity = sampleTableCapacity(settings.samples);
+    const gl::ShaderProgram& program = sampleTableProgram(kIrradianceImportance, capacity);
+    const gl::Buffer table = bindSampleTable(program, capacity, cosineSampleTable(settings.samples, settings.mipBias));
     bindSource(program, environment, settings.mipFiltering, exactTexelSolidAngle);
     dispatchCube(program, out, slice);
 }
@@ -444,13 +478,15 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     if (copyMirrorLevel(environment, out, slice, settings))
         return;
     SeamlessCubeScope seamless;
-    const gl::ShaderProgram& program = cubeProgram(kPrefilter);
+    const int sampleCount = prefilterSamples(settings, slice.level);
+    const int capacity = sampleTableCapacity(sampleCount);
+    const gl::ShaderProgram& program = sampleTableProgram(kPrefilter, capacity);
     const float roughness = prefilterMipRoughness(settings, slice.level);
-    const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, prefilterSamples(settings, slice.level), settings.mipBias);
+    const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias);
     float weightSum = 0.0f;
     for (const glm::vec4& sample : samples)
         weightSum += sample.z;
-    const gl::Buffer table = bindSampleTable(samples);
+    const gl::Buffer table = bindSampleTable(program, capacity, samples);
     const PrefilterUniforms& uniforms = program.uniforms<PrefilterUniforms>();
     uniforms.roughness.set(roughness);
     uniforms.weightSum.set(weightSum);

@@ -39,7 +39,17 @@ float storeMax(GLenum internalFormat);
 
 class BakePasses {
 public:
-    explicit BakePasses(gl::ShaderLibrary& shaders) : shaders_(shaders) {}
+    // Sample tables of up to this many entries are read from a uniform block, larger ones
+    // from a storage buffer (source_samples.glsl says why); 4096 entries fill the 64 KB block
+    // that llvmpipe and the desktop drivers allow.
+    static constexpr int kUniformTableEntries = 4096;
+
+    // maxUniformTableEntries: kUniformTableEntries, or fewer where the driver's uniform
+    // blocks are smaller; 0 keeps every table in a storage buffer (tests compare the two).
+    explicit BakePasses(gl::ShaderLibrary& shaders, int maxUniformTableEntries = kUniformTableEntries)
+        : shaders_(shaders), maxUniformTableEntries_(maxUniformTableEntries)
+    {
+    }
 
     // Compiles the programs a bake with these settings runs (Mesa caches compiled shaders on
     // disk: the first run on a machine is cold, later ones warm), the BRDF LUT's only with
@@ -98,6 +108,10 @@ public:
 private:
     const gl::ShaderProgram& cubeProgram(const char* file);
     const gl::ShaderProgram& momentsProgram(int groupsPerEdge);
+    // The uniform block's entries (source_samples.glsl's SAMPLE_TABLE_CAPACITY) for a table of
+    // sampleCount entries, or 0 when it needs a storage buffer.
+    int sampleTableCapacity(int sampleCount) const;
+    const gl::ShaderProgram& sampleTableProgram(const char* file, int capacity);
     // The prefilter's mirror level as a texel copy (mirrorSourceLevel); false: nothing done.
     bool copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                          const PrefilterSettings& settings);
@@ -105,6 +119,7 @@ private:
     void dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const;
 
     gl::ShaderLibrary& shaders_;
+    int maxUniformTableEntries_;
 };
 
 } // namespace iblab::bake

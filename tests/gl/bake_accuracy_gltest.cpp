@@ -146,6 +146,52 @@ TEST_F(GlTest, PrefilteredMipsMatchTheExactReference)
     }
 }
 
+// The sample tables are read from a uniform block where they fit and from a storage buffer
+// where they do not (source_samples.glsl): the same numbers either way, so the same texels.
+TEST_F(GlTest, SampleTablesGiveTheSameTexelsFromAUniformBlockAndAStorageBuffer)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = smallBakeSettings(bake::IrradianceMethod::Importance);
+    const bake::BakeResult result = runBake(shaders, loadEnvironment("builtin:studio?width=128"), settings);
+    bake::BakePasses uniformTables(shaders);
+    bake::BakePasses storageTables(shaders, 0);
+    const GLenum format = result.prefiltered.internalFormat;
+    struct Outputs {
+        bake::BakedTexture prefiltered;
+        bake::BakedTexture irradiance;
+    };
+    auto bakeWith = [&](bake::BakePasses& passes) {
+        Outputs out{bake::createCubeTexture(format, settings.prefilter.faceSize, settings.prefilter.levels),
+                    bake::createCubeTexture(format, settings.importance.faceSize, 1)};
+        for (int level = 1; level < settings.prefilter.levels; ++level) {
+            const int size = out.prefiltered.levelSize(level);
+            passes.prefilter(result.environmentCube, out.prefiltered, {.level = level, .faceCount = 6, .rowCount = size},
+                             settings.prefilter, settings.exactTexelSolidAngle);
+        }
+        passes.irradianceImportance(result.environmentCube, out.irradiance, {.faceCount = 6, .rowCount = settings.importance.faceSize},
+                                    settings.importance, settings.exactTexelSolidAngle);
+        return out;
+    };
+    const Outputs fromUniformBlocks = bakeWith(uniformTables);
+    const Outputs fromStorageBuffers = bakeWith(storageTables);
+    auto expectSame = [](const bake::BakedTexture& a, const bake::BakedTexture& b, int level, const char* what) {
+        const bake::CubeImage imageA = bake::readCubeLevel(a, level);
+        const bake::CubeImage imageB = bake::readCubeLevel(b, level);
+        double largest = 0.0;
+        for (std::size_t i = 0; i < imageA.texels.size(); ++i) {
+            ASSERT_EQ(imageA.texels[i], imageB.texels[i]) << what << " level " << level << " texel " << i;
+            largest = std::max(largest, double(imageA.texels[i].r));
+        }
+        ASSERT_GT(largest, 0.1) << what << " level " << level << ": the pass wrote nothing";
+    };
+    for (int level = 1; level < settings.prefilter.levels; ++level)
+        expectSame(fromUniformBlocks.prefiltered, fromStorageBuffers.prefiltered, level, "prefiltered");
+    expectSame(fromUniformBlocks.irradiance, fromStorageBuffers.irradiance, 0, "irradiance");
+    // And the same as the bake itself computed.
+    for (int level = 1; level < settings.prefilter.levels; ++level)
+        expectSame(fromUniformBlocks.prefiltered, result.prefiltered, level, "prefiltered against the bake's");
+}
+
 // The lookup shading makes (sample_prefiltered.comp) reads mip m at exactly the roughness the
 // bake put there, in either layout: at a texel centre it returns that texel, and halfway in
 // lod between two mips it returns their mean. A shader and a bake that disagreed on the layout

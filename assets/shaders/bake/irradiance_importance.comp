@@ -16,7 +16,7 @@ void main()
         return;
     mat3 frame = tangentFrame(outputTexelDirection(texel));
     vec3 sum = vec3(0.0);
-    int count = sourceSamples.length();
+    int count = uSampleCount;
     for (int i = 0; i < count; ++i) {
         vec4 s = sourceSamples[i];
         sum += readSource(s.w, frame * s.xyz);
