@@ -1,9 +1,12 @@
 #include "ibl/sh.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
@@ -105,6 +108,42 @@ SH9Color applyWindow(const SH9Color& coeffs, ShWindow window, double width)
     return out;
 }
 
+namespace {
+
+// findMinimum's starting grid, 32 x 16 equirect texel centres (an 11-degree spacing), and its
+// compass's 8 headings: the same for every call, so their trigonometry is done once. The
+// window search calls findMinimum up to 42 times per bake, and a map that needs the search
+// (sunrise.exr) spent 8 ms there, on the bake's critical path.
+constexpr int kMinimumGridW = 32;
+constexpr int kMinimumGridH = 16;
+
+const std::vector<glm::dvec3>& minimumSearchGrid()
+{
+    static const std::vector<glm::dvec3> grid = [] {
+        std::vector<glm::dvec3> g;
+        for (int y = 0; y < kMinimumGridH; ++y)
+            for (int x = 0; x < kMinimumGridW; ++x)
+                g.push_back(equirectTexelDirection(x, y, kMinimumGridW, kMinimumGridH));
+        return g;
+    }();
+    return grid;
+}
+
+const std::array<glm::dvec2, 8>& compassHeadings()
+{
+    static const std::array<glm::dvec2, 8> headings = [] {
+        std::array<glm::dvec2, 8> h;
+        for (int k = 0; k < 8; ++k) {
+            const double a = 2.0 * kPi * k / 8.0;
+            h[std::size_t(k)] = glm::dvec2(std::cos(a), std::sin(a));
+        }
+        return h;
+    }();
+    return headings;
+}
+
+} // namespace
+
 ShMinimum findMinimum(const SH9Color& coeffs)
 {
     // SH9 is a quadratic c + b.d + d^T A d restricted to the sphere, which has at most one
@@ -112,8 +151,18 @@ ShMinimum findMinimum(const SH9Color& coeffs)
     // Starting from the best point of an 11-degree grid therefore lands in the global basin
     // unless the two minima are within the grid's sampling error of each other, in which case
     // either answer is within that error of the true minimum.
-    constexpr int kGridW = 32;
-    constexpr int kGridH = 16;
+    // The grid pass serves the three channels at once (evaluate gives all three).
+    glm::dvec3 gridBest(std::numeric_limits<double>::infinity());
+    std::array<glm::dvec3, 3> gridBestDir;
+    gridBestDir.fill(glm::dvec3(0.0, 1.0, 0.0));
+    for (const glm::dvec3& d : minimumSearchGrid()) {
+        const glm::dvec3 v = evaluate(coeffs, d);
+        for (int ch = 0; ch < 3; ++ch)
+            if (v[ch] < gridBest[ch]) {
+                gridBest[ch] = v[ch];
+                gridBestDir[std::size_t(ch)] = d;
+            }
+    }
     ShMinimum result;
     for (int ch = 0; ch < 3; ++ch) {
         auto f = [&](glm::dvec3 d) { return evaluate(coeffs, d)[ch]; };
@@ -125,25 +174,15 @@ ShMinimum findMinimum(const SH9Color& coeffs)
         for (const glm::dvec3& c : coeffs.c)
             magnitude += std::abs(c[ch]);
         const double noise = 16.0 * std::numeric_limits<double>::epsilon() * 1.1 * magnitude;
-        double best = std::numeric_limits<double>::infinity();
-        glm::dvec3 bestDir(0.0, 1.0, 0.0);
-        for (int y = 0; y < kGridH; ++y)
-            for (int x = 0; x < kGridW; ++x) {
-                const glm::dvec3 d = equirectTexelDirection(x, y, kGridW, kGridH);
-                const double v = f(d);
-                if (v < best) {
-                    best = v;
-                    bestDir = d;
-                }
-            }
+        double best = gridBest[ch];
+        glm::dvec3 bestDir = gridBestDir[std::size_t(ch)];
         // Compass search in the tangent plane, re-projected onto the sphere.
-        double step = kPi / kGridH;
+        double step = kPi / kMinimumGridH;
         while (step > 1e-9) {
             const Frame frame = tangentFrame(bestDir);
             bool improved = false;
-            for (int k = 0; k < 8; ++k) {
-                const double a = 2.0 * kPi * k / 8.0;
-                const glm::dvec3 d = glm::normalize(bestDir + step * (std::cos(a) * frame.t + std::sin(a) * frame.b));
+            for (const glm::dvec2& heading : compassHeadings()) {
+                const glm::dvec3 d = glm::normalize(bestDir + step * (heading.x * frame.t + heading.y * frame.b));
                 const double v = f(d);
                 if (v < best - noise) {
                     best = v;
