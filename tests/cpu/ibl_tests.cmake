@@ -7,3 +7,5 @@ iblab_add_cpu_test(reference_test ${CMAKE_CURRENT_SOURCE_DIR}/reference_test.cpp
 iblab_add_cpu_test(brdf_lut_test ${CMAKE_CURRENT_SOURCE_DIR}/brdf_lut_test.cpp)
 iblab_add_cpu_test(tonemap_test ${CMAKE_CURRENT_SOURCE_DIR}/tonemap_test.cpp)
 iblab_add_cpu_test(error_metrics_test ${CMAKE_CURRENT_SOURCE_DIR}/error_metrics_test.cpp)
+# The committed fitted-lobe table: no steps between neighbouring cells (the rings of rough spheres).
+iblab_add_cpu_test(lobe_table_smoothness_test ${CMAKE_CURRENT_SOURCE_DIR}/lobe_table_smoothness_test.cpp)

@@ -64,7 +64,7 @@ struct StudyOptions {
     int size = 16;
     double minRoughness = 0.15;
     std::string out;
-    std::string init; // fit --taps 3: the one-tap table to start from
+    std::string init; // fit: the table to start from (one-tap, or for --taps 3 and 4 a Fresnel split)
     unsigned seed = 14;
     // Also the dielectric's specular alone, so that a read that only the dielectric's
     // diffuse hides (a dark dielectric would show it) is not rewarded.
@@ -72,6 +72,12 @@ struct StudyOptions {
     // Weigh every map alike: per cell, each map's squared error over the split sum's there
     // (the bar is a ratio per map), instead of the sum over all samples.
     bool perMapRatio = false;
+    // After the cells are fitted alone, `smoothPasses` passes re-fit each against its
+    // objective plus `smooth` times its squared distance from the lines through its
+    // neighbours (the table's second differences; fit.cpp, Smoother), in the objective's
+    // units. 0: cells fitted alone, as before.
+    double smooth = 0.0;
+    int smoothPasses = 4;
 };
 
 int evalCommand(const StudyOptions& options);
