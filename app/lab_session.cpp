@@ -332,9 +332,14 @@ ui::StatusLine LabSession::loadModel(const std::string& path, FrameSettings& set
         std::string text = shortName(path) + ": " + std::to_string(model.instances.size()) + " primitives, " +
                            std::to_string(model.materials.size()) + " materials, " + std::to_string(model.textures.size()) + " textures";
         for (const auto& warning : model.warnings) text += "; " + warning;
+        modelLine_ = text;
         return {text, false};
     } catch (const Error& e) {
-        return {e.what(), true};
+        // The model on screen stays: say which, as a failed environment load does (the error
+        // replaced its line, and with it the only sign of what was still shown).
+        ui::StatusLine status{e.what(), true};
+        if (settings.scene.kind == SceneKind::Model && !modelLine_.empty()) status.notes.push_back("still showing " + modelLine_);
+        return status;
     }
 }
 

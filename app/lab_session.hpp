@@ -126,6 +126,7 @@ private:
     std::shared_ptr<const bake::BakeResult> bake_;
     std::unique_ptr<bake::BakeJob> job_;
     std::vector<PbrMaterial> modelMaterials_; // of the loaded model, for export
+    std::string modelLine_;                   // its status line, kept under a failed load's error
     std::string pendingSpec_;
     std::optional<std::string> queuedSpec_; // asked for while pendingLoad_ runs
     std::future<Environment> pendingLoad_;
