@@ -300,17 +300,23 @@ std::optional<float> smoothestRoughness(const FrameSettings& settings)
     return std::nullopt;
 }
 
-// "sampled N=16" or "splitsum", the divider's labels.
-void drawMetricsTable(const char* id, const ErrorMetrics& m)
+// The error view's numbers for one side. Without metrics (being computed) the rows stay, each with "...": the table vanishing for
+// those frames made the panel shorter, and a panel scrolled to its end (where the Compare
+// section usually is) jumped under the mouse after every change and stayed moved.
+void drawMetricsTable(const char* id, const ErrorMetrics* metrics)
 {
     if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_SizingStretchProp)) return;
-    auto row = [](const char* name, const char* format, double value) {
+    auto row = [pending = metrics == nullptr](const char* name, const char* format, double value) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(name);
         ImGui::TableNextColumn();
-        ImGui::Text(format, value);
+        if (pending)
+            ImGui::TextDisabled("...");
+        else
+            ImGui::Text(format, value);
     };
+    const ErrorMetrics m = metrics ? *metrics : ErrorMetrics{};
     row("relative RMSE", "%.4f", m.relativeRmse);
     row("mean relative error", "%.4f", m.meanRelative);
     row("99th percentile", "%.4f", m.p99Relative);
@@ -377,12 +383,12 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
             }
         }
     }
-    if (errorView && state.error.valid) {
+    if (errorView) {
         ImGui::TextUnformatted(view.split ? "A (left)" : "Frame");
-        drawMetricsTable("##errorA", state.error.left);
-        if (state.error.right) {
+        drawMetricsTable("##errorA", state.error.valid ? &state.error.left : nullptr);
+        if (view.split) {
             ImGui::TextUnformatted("B (right)");
-            drawMetricsTable("##errorB", *state.error.right);
+            drawMetricsTable("##errorB", state.error.valid && state.error.right ? &*state.error.right : nullptr);
         }
     }
     ImGui::Separator();
