@@ -19,18 +19,18 @@ inline std::string rangeHint(const FieldRange& range)
 }
 
 // Applies `text` to the field of `target`, turning a bad value or one outside the field's
-// range into CLI11's validation error (which names the option).
+// range into CLI11's validation error, which names the option once ("--metallic:
+// material.metallic: must be 0..1, got -1.0"; the range's own error named it again).
 template <typename Settings>
 void applyFieldText(const Field<Settings>& field, Settings& target, const std::string& text)
 {
     Settings candidate = target;
     try {
         setFieldFromText(field, candidate, text);
-        FieldTable<Settings> one{field};
-        validateRanges(one, candidate, field.cli);
     } catch (const std::exception& e) {
         throw CLI::ValidationError(field.cli, e.what());
     }
+    if (const std::optional<std::string> problem = rangeProblem(field, candidate)) throw CLI::ValidationError(field.cli, *problem);
     target = std::move(candidate);
 }
 

@@ -303,19 +303,27 @@ inline std::string rangeText(const FieldRange& range)
     return text;
 }
 
-// Throws iblab::Error(what, "<key>: must be 1..4096, got 0") for the first number outside
-// its range (NaN and infinities are outside every range).
+// "<key>: must be 1..4096, got 0" when the field is a number outside its range (NaN and
+// infinities are outside every range), nullopt otherwise.
+template <typename Settings>
+std::optional<std::string> rangeProblem(const Field<Settings>& field, const Settings& settings)
+{
+    const std::optional<double> value = fieldNumber(field, settings);
+    if (!value) return std::nullopt;
+    const bool inRange = *value >= field.range.min && *value <= field.range.max &&
+                         (!field.range.powerOfTwo || (*value == std::floor(*value) && std::has_single_bit(std::uint64_t(*value))));
+    if (std::isfinite(*value) && (inRange || (field.range.special && *value == *field.range.special))) return std::nullopt;
+    // JSON, which fieldText writes, has no NaN or infinity: it would say "got null".
+    const std::string got = std::isnan(*value) ? "nan" : std::isinf(*value) ? (*value > 0 ? "inf" : "-inf") : fieldText(field, settings);
+    return field.key + ": " + rangeText(field.range) + ", got " + got;
+}
+
+// Throws iblab::Error(what, rangeProblem) for the first number outside its range.
 template <typename Settings>
 void validateRanges(const FieldTable<Settings>& table, const Settings& settings, std::string_view what)
 {
-    for (const auto& field : table) {
-        const std::optional<double> value = fieldNumber(field, settings);
-        if (!value) continue;
-        const bool inRange = *value >= field.range.min && *value <= field.range.max &&
-                             (!field.range.powerOfTwo || (*value == std::floor(*value) && std::has_single_bit(std::uint64_t(*value))));
-        const bool ok = std::isfinite(*value) && (inRange || (field.range.special && *value == *field.range.special));
-        if (!ok) throw Error(std::string(what), field.key + ": " + rangeText(field.range) + ", got " + fieldText(field, settings));
-    }
+    for (const auto& field : table)
+        if (const std::optional<std::string> problem = rangeProblem(field, settings)) throw Error(std::string(what), *problem);
 }
 
 } // namespace iblab

@@ -113,6 +113,23 @@ TEST_F(Cli, BadOptionsExitWithUsageError)
     }
 }
 
+// A value outside a setting's range names the option once and says what it got: the range
+// check's message repeated the option ("--metallic: --metallic: material.metallic: ...") and
+// wrote NaN as JSON's "null".
+TEST_F(Cli, OutOfRangeValuesNameTheOptionOnceAndTheValue)
+{
+    const std::pair<const char*, const char*> cases[] = {
+        {"render --metallic -1 -o a.png", "iblab: --metallic: material.metallic: must be 0..1, got -1.0 (see --help)"},
+        {"render --roughness nan -o a.png", "iblab: --roughness: material.roughness: must be 0..1, got nan (see --help)"},
+        {"render --samples 0 -o a.png", "iblab: --samples: sampling.samples: must be 1..1024, got 0 (see --help)"},
+    };
+    for (const auto& [arguments, message] : cases) {
+        const Result r = run(arguments);
+        EXPECT_EQ(r.exitCode, 2) << arguments;
+        EXPECT_EQ(r.err, std::string(message) + "\n") << arguments;
+    }
+}
+
 TEST_F(Cli, UnwritableOutputFailsWithOneLine)
 {
     const Result r = run("render --env builtin:white --width 8 --height 8 -o no/such/dir/a.png");
