@@ -428,6 +428,12 @@ void GuiApp::Impl::frame()
     ImGui::Render();
     ui::itemRegistry().endFrame();
     platform.setCursor(ImGui::GetMouseCursor());
+    // A value typed into a slider stays inside the setting's range, as on the command line
+    // and in presets: ImGui kept -5 for a roughness, and a preset saved then would not load.
+    clampToRanges(frameSettingsFields(), settings);
+    // A distance of 0 (typed, or from a preset) is the range's special value, "frame the
+    // scene", as --distance 0 is; taken literally it put the camera at the sphere's centre.
+    if (settings.camera.distance == 0.0f) requests.frameScene = true;
 
     actOn(requests, viewWidth, viewHeight);
     const LabSession::Finished switched = session.showRequestedRecent(settings);

@@ -4,6 +4,7 @@
 // key), the command line (app/field_options.hpp), validation and the UI's tooltips and
 // ranges all read the same description, so a setting is added in one table row; its
 // default stays where it belongs, in the struct's member initialiser.
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -324,6 +325,38 @@ void validateRanges(const FieldTable<Settings>& table, const Settings& settings,
 {
     for (const auto& field : table)
         if (const std::optional<std::string> problem = rangeProblem(field, settings)) throw Error(std::string(what), *problem);
+}
+
+// Moves every number outside its field's range to the nearest end of it (NaN to the lower
+// end) and returns whether any moved. For edits that bypass the text checks: ImGui keeps a
+// value typed into a slider (Ctrl+click) as typed, -5 for a roughness or 1e30 for metallic.
+// Power-of-two fields (sizes) have no nearest end that is valid: they are left to
+// validateRanges.
+template <typename Settings>
+bool clampToRanges(const FieldTable<Settings>& table, Settings& settings)
+{
+    bool moved = false;
+    for (const auto& field : table) {
+        if (field.range.powerOfTwo || !rangeProblem(field, settings)) continue;
+        auto clampNumber = [&field](auto& value) {
+            using T = std::decay_t<decltype(value)>;
+            const double v = double(value);
+            const double clamped = std::isnan(v) ? field.range.min : std::clamp(v, field.range.min, field.range.max);
+            value = T(clamped);
+        };
+        std::visit(
+            [&](const auto& ref) {
+                using Ref = std::decay_t<decltype(ref)>;
+                if constexpr (std::is_same_v<Ref, std::function<int&(Settings&)>> || std::is_same_v<Ref, std::function<float&(Settings&)>> ||
+                              std::is_same_v<Ref, std::function<double&(Settings&)>> ||
+                              std::is_same_v<Ref, std::function<std::int64_t&(Settings&)>>) {
+                    clampNumber(ref(settings));
+                    moved = true;
+                }
+            },
+            field.ref);
+    }
+    return moved;
 }
 
 } // namespace iblab

@@ -1,5 +1,6 @@
 // Lab settings are the preset format and the screenshot metadata: every field must survive
 // a round trip, and a bad preset must say which key is wrong.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -135,6 +136,33 @@ TEST(Settings, BadValuesNameTheKey)
     EXPECT_NE(messageOf(R"({"view": {"error_space": "log"}})").find("settings.view.error_space"), std::string::npos);
     EXPECT_NE(messageOf("{not json").find("not JSON"), std::string::npos);
     EXPECT_NE(messageOf("[1, 2]").find("object"), std::string::npos);
+}
+
+// The GUI's slider edits are bounded by the same ranges the command line and presets check.
+TEST(Settings, ClampToRangesMovesNumbersToTheNearestEndOfTheirRange)
+{
+    FrameSettings s;
+    s.material.roughness = -5.0f;
+    s.material.metallic = 1e30f;
+    s.material.specular = std::numeric_limits<float>::quiet_NaN();
+    s.camera.pitchDegrees = 120.0f;
+    s.sampling.samples = 0;
+    s.sampling.forcedMip = -1;   // the special value "auto", outside 0..16 but valid
+    s.camera.distance = 0.0f;    // the special value "frame the scene"
+    s.view.msaaSamples = 3;      // power-of-two fields have no nearest valid end: left as they are
+    EXPECT_TRUE(clampToRanges(frameSettingsFields(), s));
+    EXPECT_EQ(s.material.roughness, 0.0f);
+    EXPECT_EQ(s.material.metallic, 1.0f);
+    EXPECT_EQ(s.material.specular, 0.0f);
+    EXPECT_EQ(s.camera.pitchDegrees, 89.0f);
+    EXPECT_EQ(s.sampling.samples, 1);
+    EXPECT_EQ(s.sampling.forcedMip, -1);
+    EXPECT_EQ(s.camera.distance, 0.0f);
+    EXPECT_EQ(s.view.msaaSamples, 3);
+
+    FrameSettings defaults;
+    EXPECT_FALSE(clampToRanges(frameSettingsFields(), defaults));
+    EXPECT_EQ(toJsonText(defaults), toJsonText(FrameSettings{}));
 }
 
 } // namespace
