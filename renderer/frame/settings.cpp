@@ -159,6 +159,9 @@ FrameSettings frameSettingsFromJsonText(const std::string& text)
     if (!j.is_object()) throw std::runtime_error("settings: expected a JSON object");
     FrameSettings s;
     fromJson(frameSettingsFields(), j, s, "settings");
+    // A hand-edited preset is checked as the command line is: roughness -5 loaded as typed.
+    for (const auto& field : frameSettingsFields())
+        if (const std::optional<std::string> problem = rangeProblem(field, s)) throw std::runtime_error("settings." + *problem);
     return s;
 }
 

@@ -134,6 +134,8 @@ TEST(Settings, BadValuesNameTheKey)
     EXPECT_NE(messageOf(R"({"tone_map": {"operator": "filmic"}})").find("settings.tone_map.operator"), std::string::npos);
     EXPECT_NE(messageOf(R"({"view": {"compare": {"method": "magic"}}})").find("settings.view.compare.method"), std::string::npos);
     EXPECT_NE(messageOf(R"({"view": {"error_space": "log"}})").find("settings.view.error_space"), std::string::npos);
+    EXPECT_EQ(messageOf(R"({"material": {"roughness": -5}})"), "settings.material.roughness: must be 0..1, got -5.0");
+    EXPECT_EQ(messageOf(R"({"view": {"msaa_samples": 3}})"), "settings.view.msaa_samples: must be a power of two in 1..8, got 3");
     EXPECT_NE(messageOf("{not json").find("not JSON"), std::string::npos);
     EXPECT_NE(messageOf("[1, 2]").find("object"), std::string::npos);
 }
