@@ -428,8 +428,8 @@ void GuiApp::Impl::frame()
     ImGui::Render();
     ui::itemRegistry().endFrame();
     platform.setCursor(ImGui::GetMouseCursor());
-    // A value typed into a slider stays inside the setting's range, as on the command line
-    // and in presets: ImGui kept -5 for a roughness, and a preset saved then would not load.
+    // A value typed into a slider stays inside the setting's range, which the command line
+    // and presets check: ImGui keeps a Ctrl+click value as typed, -5 for a roughness.
     clampToRanges(frameSettingsFields(), settings);
     // A distance of 0 (typed, or from a preset) is the range's special value, "frame the
     // scene", as --distance 0 is; taken literally it put the camera at the sphere's centre.

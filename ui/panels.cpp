@@ -300,9 +300,10 @@ std::optional<float> smoothestRoughness(const FrameSettings& settings)
     return std::nullopt;
 }
 
-// The error view's numbers for one side. Without metrics (being computed) the rows stay, each with "...": the table vanishing for
-// those frames made the panel shorter, and a panel scrolled to its end (where the Compare
-// section usually is) jumped under the mouse after every change and stayed moved.
+// The error view's numbers for one side. Without metrics (being computed) the rows stay,
+// each with "...": the table vanishing for those frames made the panel shorter, and a panel
+// scrolled to its end (where the Compare section usually is) jumped under the mouse after
+// every change and stayed moved.
 void drawMetricsTable(const char* id, const ErrorMetrics* metrics)
 {
     if (!ImGui::BeginTable(id, 2, ImGuiTableFlags_SizingStretchProp)) return;
