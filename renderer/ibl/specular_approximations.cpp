@@ -52,6 +52,7 @@ const LobeFitTable& fittedLobeTable()
         t.taps = kLobeFitTaps;
         t.nvSize = kLobeFitNvSize;
         t.roughnessSize = kLobeFitRoughnessSize;
+        t.minFittedRoughness = kLobeFitMinRoughness;
         const std::size_t n = std::size_t(t.nvSize) * std::size_t(t.roughnessSize) * std::size_t(t.planes());
         if (sizeof(kLobeFitCells) / sizeof(float) != 4 * n) throw std::logic_error("specular_lobe_fit.inc: the cell count does not match its layout");
         for (std::size_t i = 0; i < n; ++i)

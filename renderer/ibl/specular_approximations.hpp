@@ -63,6 +63,9 @@ struct LobeFitTable {
     int taps = 1; // the layout
     int nvSize = 0;
     int roughnessSize = 0;
+    // Rows below it were not fitted and keep the split sum's read at R (accuracy_study fit
+    // --min-roughness), so the step up to the first fitted row is by design.
+    double minFittedRoughness = 0.0;
     std::vector<glm::vec4> cells; // [(plane * roughnessSize + row) * nvSize + col], row = roughness
     int planes() const { return shared::lobeFitPlanes(taps); }
     bool empty() const { return cells.empty(); }

@@ -16,10 +16,6 @@
 namespace iblab {
 namespace {
 
-// accuracy_study fit's --min-roughness: the rows below it are not fitted (they keep the split
-// sum's read at R), so a step up to the first fitted row is the table's design, not a fault.
-constexpr double kMinFittedRoughness = 0.15;
-
 // Layout 4's texels (specular_lobe.glsl): (t_A, r_A, t_B, r_B) and (t_A2, r_A2, w_A2, -).
 std::string parameterName(int plane, int k)
 {
@@ -41,7 +37,7 @@ struct Roughness {
 Roughness tableRoughness(const LobeFitTable& t)
 {
     auto fitted = [&](int col, int row) {
-        return col >= 0 && row >= 0 && col < t.nvSize && row < t.roughnessSize && (row + 0.5) / t.roughnessSize >= kMinFittedRoughness;
+        return col >= 0 && row >= 0 && col < t.nvSize && row < t.roughnessSize && (row + 0.5) / t.roughnessSize >= t.minFittedRoughness;
     };
     Roughness r;
     auto note = [](Worst& worst, double value, const std::string& what, int col, int row, const char* axis) {

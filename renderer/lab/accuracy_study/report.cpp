@@ -57,7 +57,8 @@ void printEvaluation(const std::vector<std::string>& methodNames, const std::vec
 
 LobeFitTable readLobeTable(const std::string& path)
 {
-    // The .inc format fit writes: three "constexpr int" lines, then the numbers.
+    // The .inc format fit writes: three "constexpr int" lines, the minimum fitted roughness,
+    // then the numbers.
     std::ifstream f(path);
     if (!f) throw std::runtime_error("cannot read " + path);
     std::stringstream ss;
@@ -72,6 +73,9 @@ LobeFitTable readLobeTable(const std::string& path)
     t.taps = intAfter("kLobeFitTaps");
     t.nvSize = intAfter("kLobeFitNvSize");
     t.roughnessSize = intAfter("kLobeFitRoughnessSize");
+    // Written since the table was smoothed; an older --init table leaves it at 0.
+    if (const auto at = text.find("kLobeFitMinRoughness"); at != std::string::npos)
+        t.minFittedRoughness = std::stod(text.substr(text.find('=', at) + 1));
     std::string body = text.substr(text.find('{', text.find("kLobeFitCells")) + 1);
     for (char& c : body)
         if (c == 'f' || c == ',' || c == '}' || c == ';') c = ' ';
@@ -105,6 +109,7 @@ std::string lobeTableInclude(const LobeFitTable& table, const StudyOptions& a)
       << "constexpr int kLobeFitTaps = " << a.taps << ";\n"
       << "constexpr int kLobeFitNvSize = " << a.size << ";\n"
       << "constexpr int kLobeFitRoughnessSize = " << a.size << ";\n"
+      << "constexpr float kLobeFitMinRoughness = " << a.minRoughness << "f;\n"
       << "constexpr float kLobeFitCells[] = {\n";
     char buf[64];
     for (int plane = 0; plane < table.planes(); ++plane)
