@@ -9,6 +9,9 @@
 
 #include <unistd.h>
 
+#include <epoxy/gl.h>
+
+#include "gl/pass_timer.hpp"
 #include "io/error.hpp"
 
 namespace iblab::app {
@@ -16,6 +19,23 @@ namespace iblab::app {
 double millisecondsSince(std::chrono::steady_clock::time_point start)
 {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+GpuTimeQuery::GpuTimeQuery()
+{
+    if (gl::isSoftwareRenderer()) return;
+    query_ = gl::createQuery(GL_TIME_ELAPSED);
+    glBeginQuery(GL_TIME_ELAPSED, query_->id());
+}
+
+std::optional<double> GpuTimeQuery::finish()
+{
+    if (!query_) return std::nullopt;
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 nanoseconds = 0;
+    glGetQueryObjectui64v(query_->id(), GL_QUERY_RESULT, &nanoseconds);
+    query_.reset();
+    return double(nanoseconds) * 1e-6;
 }
 
 int failCommand(const char* command, const std::string& reason)

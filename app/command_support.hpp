@@ -2,17 +2,32 @@
 // What every headless sub-command shares: its GL context with KHR_debug, its clock, and
 // its one-line failure.
 #include <chrono>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "gl/debug_output.hpp"
+#include "gl/handles.hpp"
 #include "ibl/error_metrics.hpp"
 #include "gl/headless_context.hpp"
 
 namespace iblab::app {
 
 double millisecondsSince(std::chrono::steady_clock::time_point start);
+
+// GPU time of the commands issued between construction and finish(), by GL_TIME_ELAPSED, on
+// hardware renderers; llvmpipe's timer queries time the submission, not its deferred work,
+// so there finish() answers nothing and the callers' steady-clock times stand alone.
+class GpuTimeQuery {
+public:
+    GpuTimeQuery();
+    // Ends the query and waits for its result; once.
+    std::optional<double> finish();
+
+private:
+    std::optional<gl::Query> query_;
+};
 
 // Prints "iblab COMMAND: reason" on stderr as ONE line (driver logs and nested errors are
 // folded) and returns the exit status 1.
