@@ -208,7 +208,8 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // (llvmpipe loads each shader variant's machine code on its first dispatch in a
     // process, Mesa's disk cache or not); the result and timings are the last run's.
     // The pixels are moved into the job when nothing reads them after it (the errors and
-    // --repeat do): a copy is 6 MB of fresh pages for a 1024x512 map, a few ms.
+    // --repeat do, and --export when it prefilters again): a copy is 6 MB of fresh pages for a
+    // 1024x512 map, a few ms.
     const bool pixelsNeededAfter = !o.noErrors || o.repeat > 1 || o.exportFormat;
     bake::BakeResult result =
         bake::BakeJob(shaders, pixelsNeededAfter ? Environment(environment) : std::move(environment), settings, &cache).runToCompletion();

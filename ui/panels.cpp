@@ -165,7 +165,9 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
     drawStatus(state.environmentStatus);
     static const char* const engines[] = {"filament", "khronos", "bevy"};
     ImGui::SetNextItemWidth(90.0f);
-    ImGui::Combo("##engine", &state.bakeExportFormat, engines, 3);
+    if (Combo combo("##engine", engines[state.bakeExportFormat]); combo)
+        for (int i = 0; i < 3; ++i)
+            if (combo.entry(engines[i], i == state.bakeExportFormat)) state.bakeExportFormat = i;
     ImGui::SameLine();
     inputText("##bakeexport", state.bakeExportPath, sizeof state.bakeExportPath);
     ImGui::SameLine();

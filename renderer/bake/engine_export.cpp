@@ -146,6 +146,10 @@ ExportReport exportForEngine(gl::ShaderLibrary& shaders, const Environment& envi
 {
     const auto start = std::chrono::steady_clock::now();
     ExportReport report;
+    // The directory first: a path that cannot be written fails before a new prefilter is paid for.
+    std::error_code ec;
+    std::filesystem::create_directories(directory, ec);
+    if (ec) throw Error(directory.string(), "cannot create the directory: " + ec.message());
     const BakeSettings wanted = engineBakeSettings(format, bake.settings);
     BakeResult rebaked;
     const BakeResult* use = &bake;
@@ -158,9 +162,6 @@ ExportReport exportForEngine(gl::ShaderLibrary& shaders, const Environment& envi
         report.reprefiltered = true;
     }
     const EngineLayout layout = engineLayout(format, wanted.prefilter.faceSize);
-    std::error_code ec;
-    std::filesystem::create_directories(directory, ec);
-    if (ec) throw Error(directory.string(), "cannot create the directory: " + ec.message());
     const auto write1 = [&](const std::filesystem::path& p, const ktx::KtxTexture& t) {
         ktx::writeKtx1(p.string(), t);
         report.files.push_back(p);
