@@ -163,6 +163,16 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
     sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
     sliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
     drawStatus(state.environmentStatus);
+    static const char* const engines[] = {"filament", "khronos", "bevy"};
+    ImGui::SetNextItemWidth(90.0f);
+    if (Combo combo("##engine", engines[state.bakeExportFormat]); combo)
+        for (int i = 0; i < 3; ++i)
+            if (combo.entry(engines[i], i == state.bakeExportFormat)) state.bakeExportFormat = i;
+    ImGui::SameLine();
+    inputText("##bakeexport", state.bakeExportPath, sizeof state.bakeExportPath);
+    ImGui::SameLine();
+    if (button("Export")) requests.exportBake = engines[state.bakeExportFormat];
+    tooltip("Write the current bake as that engine loads it into the directory (docs/engine-export.md)");
     if (!state.activity.text.empty()) ImGui::ProgressBar(state.activity.progress, ImVec2(-1.0f, 0.0f), state.activity.text.c_str());
     drawStatus(state.bakeStatus);
 }
