@@ -15,6 +15,7 @@
 #include "field_options.hpp"
 #include "frame/conventions.hpp"
 #include "io/builtin_environments.hpp"
+#include "io/environment.hpp"
 #include "io/image_codec.hpp"
 #include "gui_app.hpp"
 #include "headless_render.hpp"
@@ -33,7 +34,7 @@ std::optional<glm::vec3> parseColour(const std::string& text)
             const std::string hex = text.substr(1 + std::size_t(c) * 2, 2);
             if (hex.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) return std::nullopt;
             const float encoded = float(std::stoi(hex, nullptr, 16)) / 255.0f;
-            colour[c] = encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+            colour[c] = srgbToLinear(encoded);
         }
         return colour;
     }

@@ -12,9 +12,20 @@
 #include <epoxy/gl.h>
 
 #include "gl/pass_timer.hpp"
+#include "frame/camera.hpp"
 #include "io/error.hpp"
 
 namespace iblab::app {
+
+void frameAtStart(Renderer& renderer, FrameSettings& settings, float aspect)
+{
+    const SceneInfo scene = renderer.sceneInfo(settings);
+    const bool model = settings.scene.kind == SceneKind::Model;
+    const CameraSettings defaults;
+    if (model && settings.camera.yawDegrees == defaults.yawDegrees && settings.camera.pitchDegrees == defaults.pitchDegrees)
+        homeView(settings.camera, true);
+    frameScene(settings.camera, scene.centre, scene.halfExtents, model, aspect);
+}
 
 double millisecondsSince(std::chrono::steady_clock::time_point start)
 {

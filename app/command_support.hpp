@@ -11,8 +11,13 @@
 #include "gl/handles.hpp"
 #include "ibl/error_metrics.hpp"
 #include "gl/headless_context.hpp"
+#include "frame/renderer.hpp"
 
 namespace iblab::app {
+
+// --distance 0: frames the scene the renderer holds for these settings (frameScene), a model
+// from its home view unless --yaw or --pitch moved the camera from its default orientation.
+void frameAtStart(Renderer& renderer, FrameSettings& settings, float aspect);
 
 double millisecondsSince(std::chrono::steady_clock::time_point start);
 

@@ -66,10 +66,7 @@ int runCompare(const CompareOptions& o)
             const Environment& environment = harness.loadEnvironment(environments[row]);
             settings.environment.source = environment.source;
             harness.bake(bake::defaultPreset());
-            if (settings.camera.distance <= 0.0f) {
-                const SceneInfo scene = renderer.sceneInfo(settings);
-                frameBox(settings.camera, scene.centre, scene.halfExtents, 1.0f);
-            }
+            if (settings.camera.distance <= 0.0f) frameAtStart(renderer, settings, 1.0f);
             const std::string mapName = std::filesystem::path(environment.source).filename().string();
 
             FrameSettings truth = settings;

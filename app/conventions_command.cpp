@@ -66,10 +66,7 @@ int runConventions(const ConventionsOptions& o)
         // measured against the reference over the pixels that reference resolves.
         lab::Harness harness(renderer);
         settings.environment.source = harness.loadEnvironment(settings.environment.source).source;
-        if (settings.camera.distance <= 0.0f) {
-            const SceneInfo scene = renderer.sceneInfo(settings);
-            frameBox(settings.camera, scene.centre, scene.halfExtents, float(o.width) / float(o.height));
-        }
+        if (settings.camera.distance <= 0.0f) frameAtStart(renderer, settings, float(o.width) / float(o.height));
         OffscreenOverlay overlay;
 
         const int width = o.width, height = o.height;

@@ -141,7 +141,9 @@ struct CameraInput {
             camera.pitchDegrees = std::clamp(camera.pitchDegrees + io.MouseDelta.y * 0.3f, -89.0f, 89.0f);
             camera.yawDegrees = std::remainder(camera.yawDegrees, 360.0f);
         }
-        if (io.MouseWheel != 0.0f) camera.distance = std::clamp(camera.distance * std::pow(0.9f, io.MouseWheel), 0.05f, 500.0f);
+        // Within the distance's range (frame/settings.cpp): a model in millimetres or in
+        // kilometres zooms as far as one in metres.
+        if (io.MouseWheel != 0.0f) camera.distance = std::clamp(camera.distance * std::pow(0.9f, io.MouseWheel), 1e-5f, 1e6f);
     }
 };
 
@@ -201,6 +203,13 @@ std::size_t plottedPoints(const std::vector<ui::ParetoChart>& charts)
     return count;
 }
 
+// Whether the last frame drew a tooltip (ImGui's window for them is "##Tooltip_00").
+bool tooltipShown()
+{
+    const ImGuiWindow* window = ImGui::FindWindowByName("##Tooltip_00");
+    return window && window->Active;
+}
+
 } // namespace
 
 struct GuiApp::Impl {
@@ -226,6 +235,7 @@ struct GuiApp::Impl {
     Clock::time_point start = Clock::now();
     Clock::time_point previousFrame = Clock::now();
     bool frameWhenReady = false;
+    bool startsAtDefaultOrientation = true; // no --yaw or --pitch: a model starts from its home view
     bool isIdle = false;
     bool heldForLoad = false; // the last frame drew nothing new: a map decodes, nothing else runs
     bool sleepWhenIdle = false;
@@ -256,6 +266,7 @@ struct GuiApp::Impl {
         // The environment loads on a worker thread and bakes in slices: the window is up at once.
         session.requestEnvironment(settings.environment.source);
         frameWhenReady = settings.camera.distance <= 0.0f;
+        startsAtDefaultOrientation = settings.camera.yawDegrees == CameraSettings{}.yawDegrees && settings.camera.pitchDegrees == CameraSettings{}.pitchDegrees;
         if (frameWhenReady) settings.camera.distance = 3.5f;
         if (settings.scene.kind == SceneKind::Model) panels.sceneStatus = session.loadModel(settings.scene.modelPath, settings);
         stats.renderer = gl::describeCurrentContext();
@@ -310,6 +321,10 @@ struct GuiApp::Impl {
 
     void actOn(ui::UiRequests& requests, int viewWidth, int viewHeight)
     {
+        if (requests.countingSetup) {
+            requests.loadEnvironment = applyCountingSetup(settings);
+            requests.frameScene = true;
+        }
         if (requests.loadEnvironment) session.requestEnvironment(*requests.loadEnvironment);
         if (requests.loadModel) {
             panels.sceneStatus = session.loadModel(*requests.loadModel, settings);
@@ -320,11 +335,10 @@ struct GuiApp::Impl {
             }
         }
         if (requests.loadPreset) {
-            panels.presetStatus = loadPreset(*requests.loadPreset, settings, session);
-            if (!panels.presetStatus.isError) savedSettings = settings;
+            panels.presetStatus = loadPreset(*requests.loadPreset, settings, savedSettings, session, panels.convention);
         }
         if (requests.savePreset) {
-            panels.presetStatus = savePreset(*requests.savePreset, settings);
+            panels.presetStatus = savePreset(*requests.savePreset, settings, session.bakeSettings());
             if (!panels.presetStatus.isError) savedSettings = settings;
         }
         if (requests.exportModel) panels.sceneStatus = session.exportModel(*requests.exportModel, settings);
@@ -342,24 +356,25 @@ struct GuiApp::Impl {
         if (requests.startAutoQuality) study.startAutoQuality(session, settings, panels.study);
         if (requests.applyAutoQuality) study.applyAutoQuality(session, settings, panels);
         if (requests.axisView) setAxisView(settings.camera, *requests.axisView);
-        if (requests.resetCamera) {
-            const CameraSettings defaults;
-            settings.camera.yawDegrees = defaults.yawDegrees;
-            settings.camera.pitchDegrees = defaults.pitchDegrees;
-            settings.camera.fovDegrees = defaults.fovDegrees;
-            requests.frameScene = true;
-        }
-        // The renderer draws the sphere for a model scene without a model: say why, until
-        // another scene is chosen.
-        if (requests.sceneChanged && settings.scene.kind == SceneKind::Model && settings.scene.modelPath.empty())
-            panels.sceneStatus = {kNoModelStatus};
-        else if (requests.sceneChanged && panels.sceneStatus.text == kNoModelStatus)
+        // A new scene, a new model and Reset show the scene from its home view; Frame, F and
+        // a double-click keep the orientation the user chose.
+        const bool home = requests.resetCamera || requests.sceneChanged || (requests.loadModel && !panels.sceneStatus.isError);
+        if (home) requests.frameScene = true;
+        // The model's line belongs to the model scene: another scene clears it, and coming back
+        // to the model shows it again (the sphere kept the model's line). Without a model the
+        // renderer draws the sphere: say why.
+        if (requests.sceneChanged && settings.scene.kind == SceneKind::Model)
+            panels.sceneStatus = settings.scene.modelPath.empty() || session.modelLine().empty() ? ui::StatusLine{kNoModelStatus}
+                                                                                                   : ui::StatusLine{session.modelLine()};
+        else if (requests.sceneChanged)
             panels.sceneStatus = {};
         if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
             const bool startFraming = frameWhenReady && !requests.sceneChanged && !requests.frameScene;
             const auto cameraBefore = settings.camera;
             const SceneInfo scene = renderer.sceneInfo(settings);
-            frameBox(settings.camera, scene.centre, scene.halfExtents, float(viewWidth) / float(viewHeight));
+            const bool model = settings.scene.kind == SceneKind::Model;
+            if (home || (startFraming && startsAtDefaultOrientation)) homeView(settings.camera, model);
+            frameScene(settings.camera, scene.centre, scene.halfExtents, model, float(viewWidth) / float(viewHeight));
             // The start's own framing (once the first bake is in) is not an edit of the
             // user's: what counts as saved moves with it, so that quitting does not ask.
             if (startFraming && savedSettings.camera == cameraBefore) savedSettings.camera = settings.camera;
@@ -367,7 +382,7 @@ struct GuiApp::Impl {
         }
         if (requests.quit) {
             if (*requests.quit == ui::QuitChoice::SaveAndQuit) {
-                panels.presetStatus = savePreset(panels.presetPath, settings);
+                panels.presetStatus = savePreset(panels.presetPath, settings, session.bakeSettings());
                 quit = !panels.presetStatus.isError; // a failed save keeps the app and says why
                 if (quit) savedSettings = settings;
             } else if (*requests.quit == ui::QuitChoice::Quit) {
@@ -595,6 +610,7 @@ nlohmann::json GuiApp::state() const
         {"ui",
          {{"popups", popups},
           {"want_text_input", ImGui::GetIO().WantTextInput},
+          {"tooltip", tooltipShown()},
           {"mouse", {ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}}}},
         {"labels", labels},
     };

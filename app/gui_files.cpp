@@ -6,39 +6,51 @@
 #include "io/builtin_environments.hpp"
 #include "io/error.hpp"
 #include "io/atomic_file.hpp"
+#include "preset_json.hpp"
 
 namespace iblab::app {
 
-ui::StatusLine savePreset(const std::string& path, const FrameSettings& settings)
+ui::StatusLine savePreset(const std::string& path, const FrameSettings& settings, const bake::BakeSettings& bake)
 {
     try {
-        writeTextFileAtomic(path, toJsonText(settings) + "\n");
+        writeTextFileAtomic(path, presetJsonText(settings, bake, path) + "\n");
         return {"saved " + path, false};
     } catch (const Error& e) {
         return {e.what(), true};
     }
 }
 
-// A preset replaces every setting; its environment and model load like a user's choice.
-ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, LabSession& session)
+// A preset replaces every setting; its environment and model load like a user's choice, and
+// bake settings other than the session's bake the environment again with them.
+ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, FrameSettings& saved, LabSession& session, std::string& convention)
 {
-    FrameSettings loaded;
+    Preset loaded;
     try {
-        loaded = frameSettingsFromJsonText(readTextFile(path));
+        loaded = readPreset(path);
     } catch (const Error& e) {
         return {e.what(), true};
     } catch (const std::exception& e) {
         return {path + ": " + e.what(), true};
     }
-    const std::string environment = loaded.environment.source;
-    loaded.environment.source = settings.environment.source; // until the new one has loaded
-    settings = loaded;
+    const std::string environment = loaded.settings.environment.source;
+    loaded.settings.environment.source = settings.environment.source; // until the new one has loaded
+    settings = loaded.settings;
+    ui::StatusLine status{"loaded " + path, false};
+    if (loaded.bake && toJsonText(*loaded.bake) != toJsonText(session.bakeSettings())) {
+        session.setBakeSettings(*loaded.bake);
+        status.text += "; its bake settings differ from the current ones: baking again";
+    }
+    convention = matchingConvention(session.bakeSettings(), settings.sampling);
     if (!environment.empty()) session.requestEnvironment(environment);
     if (settings.scene.kind == SceneKind::Model && !settings.scene.modelPath.empty()) {
         const ui::StatusLine model = session.loadModel(settings.scene.modelPath, settings);
         if (model.isError) return model;
     }
-    return {"loaded " + path, false};
+    // The preset's environment counts as saved while it loads: the session names it in the
+    // settings once shown, which made a preset look edited as soon as its map arrived.
+    saved = settings;
+    if (!environment.empty()) saved.environment.source = environment;
+    return status;
 }
 
 // A screenshot name nobody has used: iblab-<environment>-<date>-<time>[-n].<ext> in

@@ -9,9 +9,13 @@
 
 namespace iblab::app {
 
-ui::StatusLine savePreset(const std::string& path, const FrameSettings& settings);
-// A preset replaces every setting; its environment and model load like a user's choice.
-ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, LabSession& session);
+// A preset holds the frame and bake settings and the paths of its files (preset_json.hpp).
+ui::StatusLine savePreset(const std::string& path, const FrameSettings& settings, const bake::BakeSettings& bake);
+// A preset replaces every setting; its environment and model load like a user's choice, and
+// its bake settings, where they differ, bake the environment again (the status says so).
+// `convention` becomes the convention the loaded settings are, or ""; `saved`, on success,
+// what counts as saved (the preset, its environment included while that loads).
+ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, FrameSettings& saved, LabSession& session, std::string& convention);
 // A screenshot name nobody has used: iblab-<environment>-<date>-<time>[-n].<ext> in
 // `directory`, or `requested` (made unique the same way) when the user typed one. A capture
 // never overwrites a file.

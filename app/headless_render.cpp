@@ -58,10 +58,7 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
             sceneStatus = model.text;
         }
         if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
-        if (settings.camera.distance <= 0.0f) {
-            const SceneInfo scene = renderer.sceneInfo(settings);
-            frameBox(settings.camera, scene.centre, scene.halfExtents, float(job.width) / float(job.height));
-        }
+        if (settings.camera.distance <= 0.0f) frameAtStart(renderer, settings, float(job.width) / float(job.height));
 
         // The error view and the reference method need the reference of this very frame: run
         // it to completion first.

@@ -6,6 +6,7 @@
 
 #include "asset_paths.hpp"
 #include "command_support.hpp"
+#include "preset_json.hpp"
 #include "io/builtin_environments.hpp"
 #include "io/error.hpp"
 #include "io/image_writer.hpp"
@@ -368,7 +369,8 @@ ui::StatusLine LabSession::exportModel(const std::string& outPath, const FrameSe
 
 ui::StatusLine LabSession::capture(const std::string& path, const FrameSettings& settings) const
 {
-    const std::string settingsJson = toJsonText(settings);
+    // What the frame was drawn with, bake included: loaded as a preset, it draws the same.
+    const std::string settingsJson = presetJsonText(settings, bakeSettings_, path);
     const std::string extension = std::filesystem::path(path).extension().string();
     try {
         if (extension == ".png") {

@@ -67,6 +67,8 @@ public:
 
     // Loads a .gltf/.glb for SceneKind::Model; on failure the current scene stays.
     ui::StatusLine loadModel(const std::string& path, FrameSettings& settings);
+    // The loaded model's status line ("material_spheres.glb: 3 primitives, ..."), or "".
+    const std::string& modelLine() const { return modelLine_; }
 
     // Writes a copy of the loaded glTF whose materials carry the material panel's factors.
     ui::StatusLine exportModel(const std::string& outPath, const FrameSettings& settings) const;

@@ -20,6 +20,9 @@ packages=(
   libxxhash-dev
   # Tests: GoogleTest; zlib for the CRCs of the malformed-PNG corpus the tests write.
   libgtest-dev zlib1g-dev
+  # Tests: the Khronos glTF samples that model_framing_gltest draws (models from millimetres
+  # to hundreds of units across; the tests skip with a message without them).
+  assimp-testmodels
   # OpenGL through Mesa: EGL headers (headless), the EGL and GLX vendors, llvmpipe's driver.
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   # The GUI tests drive a real GLFW window on a private X server (tests/gui/with-xvfb.sh).

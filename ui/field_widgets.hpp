@@ -24,7 +24,7 @@ const Field<Settings>& fieldRow(const FieldTable<Settings>& table, std::string_v
 
 inline void fieldTooltip(std::string_view help)
 {
-    if (!help.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("%.*s", int(help.size()), help.data());
+    if (!help.empty() && tooltipWanted()) ImGui::SetTooltip("%.*s", int(help.size()), help.data());
 }
 
 template <typename Settings>

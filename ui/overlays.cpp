@@ -58,10 +58,15 @@ void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 
             char value[8];
             std::snprintf(value, sizeof value, "%.2f", t);
             const float x = left + t * (right - left), y = bottom - t * (bottom - top);
+            // The end labels stay within the tile's span: centred on its tick, the last x label
+            // reached past the view's right edge and the top y label into the tile's title.
+            const ImVec2 size = ImGui::CalcTextSize(value);
+            const float labelX = i == 0 ? x : i == 4 ? x - size.x : x - 0.5f * size.x;
+            const float labelY = i == 0 ? y - size.y : i == 4 ? y : y - 0.5f * size.y;
             draw->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 5.0f), text);
-            draw->AddText(ImVec2(x - 12.0f, bottom + 6.0f), text, value);
+            draw->AddText(ImVec2(labelX, bottom + 6.0f), text, value);
             draw->AddLine(ImVec2(left - 5.0f, y), ImVec2(left, y), text);
-            draw->AddText(ImVec2(left - 40.0f, y - 7.0f), text, value);
+            draw->AddText(ImVec2(left - 8.0f - size.x, labelY), text, value);
         }
     }
     if (!probeText.empty() && !ImGui::GetIO().WantCaptureMouse) ImGui::SetTooltip("%s", probeText.c_str());
@@ -83,6 +88,14 @@ void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigi
 void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 viewOrigin, float viewHeight)
 {
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
+    // What the numbers are: a bare number over each sphere said nothing to a newcomer.
+    if (!readings.empty()) {
+        const char* caption = "Furnace: the share of a white environment each sphere reflects (luminance; 1 = all)";
+        const ImVec2 size = ImGui::CalcTextSize(caption);
+        const ImVec2 at(viewOrigin.x + 10.0f, viewOrigin.y + viewHeight - size.y - 10.0f);
+        draw->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2), IM_COL32(0, 0, 0, 160));
+        draw->AddText(at, IM_COL32(255, 255, 255, 255), caption);
+    }
     for (const SphereReading& r : readings) {
         char text[32];
         std::snprintf(text, sizeof text, "%.3f", 0.2126f * r.radiance.r + 0.7152f * r.radiance.g + 0.0722f * r.radiance.b);

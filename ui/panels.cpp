@@ -139,7 +139,7 @@ bool enumCombo(const char* label, Enum& value, const std::array<Enum, N>& values
 
 void tooltip(const char* text)
 {
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+    if (tooltipWanted()) ImGui::SetTooltip("%s", text);
 }
 
 } // namespace
@@ -427,6 +427,11 @@ void drawScenePanel(SceneSettings& settings, ShadingMethod method, PanelState& s
         tooltip(settings.kind == SceneKind::Counting ? "Sphere i uses N = i samples" : "Roughness from 0 (left) to 1 (right)");
         // Only the sampled method counts samples: under any other every counting sphere is the
         // same, whatever its label says.
+        if (settings.kind == SceneKind::Counting) {
+            if (button("Set up for counting")) requests.countingSetup = true;
+            tooltip("One point light (builtin:lights), the sampled method at mip 0 on a metal, seen close from the front: "
+                    "sphere i shows exactly i reflections");
+        }
         if (settings.kind == SceneKind::Counting && method != ShadingMethod::Sampled) {
             drawWarning("Only the sampled method counts samples: choose Method sampled to see N = 1..k (try builtin:lights, "
                         "forced mip 0, metallic 1).");
@@ -532,7 +537,8 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
     ImGui::TextUnformatted("Auto quality");
     AutoQualityState& autoQuality = study.autoQuality;
     ImGui::TextWrapped("The cheapest settings whose 99th-percentile error after tone mapping stays within the target, measured on this "
-                       "environment and scene.");
+                       "environment and scene. 20 steps: 99% of the pixels within 20 of 255 levels of the reference, a difference "
+                       "seen side by side rather than at a glance.");
     sliderFloat("Target", &autoQuality.targetSteps, 0.25f, 64.0f, "p99 %.2f 8-bit steps", ImGuiSliderFlags_Logarithmic);
     ImGui::BeginDisabled(study.running);
     if (button("Choose")) requests.startAutoQuality = true;
@@ -561,12 +567,22 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
     }
 }
 
+constexpr float kMinPanelWidth = 260.0f;
+
 void drawStudyChartWindow(StudyState& study)
 {
     if (study.charts.empty() || !study.chartOpen) return;
     ImGui::SetNextWindowSize(ImVec2(760, 480), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 780, 20), ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Study: speed against accuracy", &study.chartOpen)) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(std::max(display.x, 1.0f), std::max(display.y, 1.0f)));
+    const bool open = ImGui::Begin("Study: speed against accuracy", &study.chartOpen);
+    // The window stays on screen: a window shrunk under it pushed it off, where it stayed
+    // after the window grew back.
+    const ImVec2 position = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    const ImVec2 inside(std::clamp(position.x, 0.0f, std::max(0.0f, display.x - size.x)), std::clamp(position.y, 0.0f, std::max(0.0f, display.y - size.y)));
+    if (inside.x != position.x || inside.y != position.y) ImGui::SetWindowPos(inside);
+    if (!open) {
         ImGui::End();
         return;
     }
@@ -592,11 +608,18 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab)) && !ImGui::GetIO().WantTextInput) state.showPanels = !state.showPanels;
     if (!state.showPanels) return;
     // Docked at the left, full height; only its width is the user's to drag.
+    // A small window keeps most of its width for the view: the panel takes at most 45% of it
+    // (a fixed 420 px left 220 px of a 640 px window), and its preferred width returns when
+    // the window grows again.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float maxWidth = std::min(900.0f, std::max(kMinPanelWidth, 0.45f * display.x));
+    const float setWidth = std::clamp(state.preferredPanelWidth, kMinPanelWidth, maxWidth);
     ImGui::SetNextWindowPos(ImVec2(0, 0));
-    ImGui::SetNextWindowSize(ImVec2(state.panelWidth, ImGui::GetIO().DisplaySize.y));
-    ImGui::SetNextWindowSizeConstraints(ImVec2(260, ImGui::GetIO().DisplaySize.y), ImVec2(900, ImGui::GetIO().DisplaySize.y));
+    ImGui::SetNextWindowSize(ImVec2(setWidth, display.y));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(kMinPanelWidth, display.y), ImVec2(maxWidth, display.y));
     ImGui::Begin("iblab", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
     state.panelWidth = ImGui::GetWindowWidth();
+    if (state.panelWidth != setWidth) state.preferredPanelWidth = state.panelWidth; // dragged by the user
     // Controls take a little over half the width and their labels the rest, so that labels
     // stay inside the panel at its default width.
     ImGui::PushItemWidth(std::floor(ImGui::GetWindowWidth() * 0.55f));

@@ -59,6 +59,7 @@ struct UiRequests {
     std::optional<std::string> applyConvention; // conventions.hpp: rebake and set the shading as that viewer does
     bool frameScene = false;
     bool sceneChanged = false;                  // the scene kind changed: frame it
+    bool countingSetup = false;                 // the counting strip's one-click setup (frame/settings.hpp)
     bool startStudy = false;                    // a quick bench sweep on the current environment and scene
     bool stopStudy = false;
     bool startAutoQuality = false;              // measure the auto candidates on the current environment and scene
@@ -97,7 +98,7 @@ struct CompareState {
 
 // The auto quality mode's choice as the Study panel shows it (bench/auto_quality.hpp).
 struct AutoQualityState {
-    float targetSteps = 1.0f;      // 99th-percentile display error, 8-bit steps after tone mapping
+    float targetSteps = 20.0f;     // 99th-percentile display error, 8-bit steps after tone mapping (bench::kDefaultAutoTargetSteps says why 20)
     bool running = false;          // measuring its candidates (the StudyState's progress and chart follow it)
     bool haveChoice = false;
     bool applied = false;          // the choice is what the view bakes and shades with
@@ -139,6 +140,7 @@ struct PanelState {
     int bakeExportFormat = 0;               // index into filament, khronos, bevy
     bool showPanels = true;
     float panelWidth = 420.0f; // the control window is docked at the left; the view takes the rest
+    float preferredPanelWidth = 420.0f; // the width the user chose, shown where the window allows
     ViewRect viewRect;
     QuitDialogState quitDialog;
     bool unsavedChanges = false; // settings differ from the last saved or loaded preset

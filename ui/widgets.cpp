@@ -1,6 +1,13 @@
 #include "ui/widgets.hpp"
 
+#include <imgui_internal.h>
+
+#include "ibl/tonemap.hpp"
+#include "io/environment.hpp"
+
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <utility>
 
 namespace iblab::ui {
@@ -144,15 +151,47 @@ bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::s
     return recorded(ImGui::InputTextWithHint(label, hint, buffer, size, flags), label, "input");
 }
 
+bool tooltipWanted()
+{
+    constexpr float kRestSeconds = 0.5f;
+    static ImGuiID used = 0;
+    const ImGuiID id = ImGui::GetItemID();
+    const bool hovered = ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled);
+    if (id != 0 && ImGui::IsItemActive()) used = id;
+    if (!hovered) {
+        if (id != 0 && used == id) used = 0;
+        return false;
+    }
+    if (used == id && id != 0) return false;
+    // Text has no id, a disabled control is never the hovered id: nothing to drag there.
+    const ImGuiContext& g = *ImGui::GetCurrentContext();
+    if (id == 0 || g.HoveredId != id) return true;
+    return g.HoveredIdNotActiveTimer >= kRestSeconds;
+}
+
+std::string srgbHex(const float linear[3])
+{
+    char text[8];
+    int bytes[3];
+    for (int c = 0; c < 3; ++c) bytes[c] = int(std::lround(255.0f * std::clamp(srgbOetf(std::clamp(linear[c], 0.0f, 1.0f)), 0.0f, 1.0f)));
+    std::snprintf(text, sizeof text, "#%02X%02X%02X", bytes[0], bytes[1], bytes[2]);
+    return text;
+}
+
 bool colourEdit3(const char* label, float colour[3])
 {
-    // The three component fields get paths of their own ("Base colour/R"), placed as
-    // ImGui's ColorEdit4 lays them out: equal widths, inner spacing between, the swatch after.
+    // The fields edit the linear values the settings hold (as --base-color r,g,b reads them).
+    // The swatch and its picker show the colour as the display does, sRGB-encoded, so that the
+    // picker's hex is what --base-color #rrggbb reads: ImGui's own swatch drew the linear
+    // values as display colours, and its picker wrote their hex.
     const ImGuiStyle& style = ImGui::GetStyle();
-    const float inputsWidth = ImGui::CalcItemWidth() - (ImGui::GetFrameHeight() + style.ItemInnerSpacing.x);
+    const float square = ImGui::GetFrameHeight();
+    const float inputsWidth = ImGui::CalcItemWidth() - (square + style.ItemInnerSpacing.x);
     const float componentWidth = std::max(1.0f, float(int((inputsWidth - 2.0f * style.ItemInnerSpacing.x) / 3.0f)));
     const ImVec2 origin = ImGui::GetCursorScreenPos();
-    const bool changed = recorded(ImGui::ColorEdit3(label, colour, ImGuiColorEditFlags_Float), label, "colour");
+    ImGui::SetNextItemWidth(inputsWidth);
+    bool changed = recorded(ImGui::ColorEdit3(label, colour, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_NoSmallPreview | ImGuiColorEditFlags_NoLabel),
+                            label, "colour");
     ItemRegistry& registry = itemRegistry();
     registry.pushScope(label);
     const char* names[] = {"R", "G", "B"};
@@ -160,7 +199,28 @@ bool colourEdit3(const char* label, float colour[3])
         const float x = origin.x + float(c) * (componentWidth + style.ItemInnerSpacing.x);
         registry.recordRect(names[c], "part", ImVec2(x, origin.y), ImVec2(x + componentWidth, origin.y + ImGui::GetFrameHeight()));
     }
+    ImGui::PushID(label);
+    float display[3];
+    for (int c = 0; c < 3; ++c) display[c] = srgbOetf(std::clamp(colour[c], 0.0f, 1.0f));
+    ImGui::SameLine(0.0f, style.ItemInnerSpacing.x);
+    if (recorded(ImGui::ColorButton("swatch", ImVec4(display[0], display[1], display[2], 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(square, square)),
+                 "swatch", "button"))
+        ImGui::OpenPopup("picker");
+    if (tooltipWanted()) ImGui::SetTooltip("%s in sRGB (as --base-color #rrggbb reads it); the fields are linear", srgbHex(colour).c_str());
+    if (ImGui::BeginPopup("picker")) {
+        if (ImGui::ColorPicker3("##sRGB", display, ImGuiColorEditFlags_DisplayRGB | ImGuiColorEditFlags_DisplayHex)) {
+            for (int c = 0; c < 3; ++c) colour[c] = srgbToLinear(display[c]);
+            changed = true;
+        }
+        ImGui::EndPopup();
+    }
+    ImGui::PopID();
     registry.popScope();
+    const std::string visible = visibleLabel(label);
+    if (!visible.empty()) {
+        ImGui::SameLine(0.0f, style.ItemInnerSpacing.x);
+        ImGui::TextUnformatted(visible.c_str());
+    }
     return changed;
 }
 

@@ -106,7 +106,15 @@ bool sliderInt(const char* label, int* value, int min, int max, const char* form
 bool inputInt(const char* label, int* value, int step = 1, int stepFast = 10);
 bool inputText(const char* label, char* buffer, std::size_t size, ImGuiInputTextFlags flags = 0);
 bool inputTextWithHint(const char* label, const char* hint, char* buffer, std::size_t size, ImGuiInputTextFlags flags = 0);
+// Whether the item just drawn should show its tooltip: once the mouse has rested on it for
+// half a second, never while it is dragged or typed into (the tooltip covered the value),
+// and not again after it was used until the mouse has left it.
+bool tooltipWanted();
+// Linear r, g, b fields, and a swatch whose picker edits the colour in sRGB (its hex is what
+// --base-color #rrggbb reads); the swatch is the part "swatch".
 bool colourEdit3(const char* label, float colour[3]);
+// The linear colour's sRGB hex, "#F9D1C2".
+std::string srgbHex(const float linear[3]);
 // An invisible button of `size` (a chart or a curve), tracked as `kind`.
 bool canvas(const char* label, ImVec2 size, std::string_view kind);
 // A full-width progress bar showing `overlay`, tracked as `label` of kind "progress" (shown,

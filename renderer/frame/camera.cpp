@@ -21,10 +21,23 @@ glm::mat4 cameraView(const CameraSettings& camera)
     return glm::lookAt(cameraPosition(camera), camera.target, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
-glm::mat4 cameraProjection(const CameraSettings& camera, float aspect)
+ClipPlanes clipPlanesFor(const CameraSettings& camera, glm::vec3 centre, float radius)
+{
+    // 2% slack on either side keeps the sphere's own surface from being clipped by rounding.
+    // The depth buffer is 32-bit float; a far / near ratio up to 1e4 keeps depth steps
+    // far below any scene's detail, and the near plane never reaches the camera.
+    constexpr float kMaxRatio = 1e4f;
+    radius = std::max(radius, 1e-6f);
+    const float toCentre = glm::length(cameraPosition(camera) - centre);
+    const float farPlane = 1.02f * (toCentre + radius);
+    const float nearPlane = std::max(0.98f * (toCentre - radius), farPlane / kMaxRatio);
+    return {nearPlane, farPlane};
+}
+
+glm::mat4 cameraProjection(const CameraSettings& camera, float aspect, ClipPlanes planes)
 {
     const float fov = glm::radians(std::clamp(camera.fovDegrees, 1.0f, 170.0f));
-    return glm::perspective(fov, aspect, 0.01f, 100.0f);
+    return glm::perspective(fov, aspect, planes.nearPlane, planes.farPlane);
 }
 
 glm::vec2 clipToPixel(const glm::vec4& clip, int width, int height)
@@ -48,6 +61,31 @@ void frameBox(CameraSettings& camera, glm::vec3 centre, glm::vec3 halfExtents, f
     const float tanHorizontal = tanVertical * aspect;
     camera.target = centre;
     camera.distance = 1.08f * std::max(halfRight / tanHorizontal, halfUp / tanVertical) + halfDepth;
+}
+
+void frameSphere(CameraSettings& camera, glm::vec3 centre, float radius, float aspect)
+{
+    // The sphere's angular radius, asin(r / d), is within the half field of view of the
+    // narrower axis; 15% margin leaves air around the model as a viewer does.
+    constexpr float kMargin = 1.15f;
+    const float tanVertical = std::tan(0.5f * glm::radians(std::clamp(camera.fovDegrees, 1.0f, 170.0f)));
+    const float halfAngle = std::atan(std::min(tanVertical, tanVertical * aspect));
+    camera.target = centre;
+    camera.distance = kMargin * std::max(radius, 1e-6f) / std::sin(halfAngle);
+}
+
+void frameScene(CameraSettings& camera, glm::vec3 centre, glm::vec3 halfExtents, bool model, float aspect)
+{
+    if (model) frameSphere(camera, centre, glm::length(halfExtents), aspect);
+    else frameBox(camera, centre, halfExtents, aspect);
+}
+
+void homeView(CameraSettings& camera, bool model)
+{
+    const CameraSettings defaults;
+    camera.yawDegrees = model ? -35.0f : defaults.yawDegrees;
+    camera.pitchDegrees = model ? -25.0f : defaults.pitchDegrees;
+    camera.fovDegrees = defaults.fovDegrees;
 }
 
 void panCamera(CameraSettings& camera, glm::vec2 dragPixels, float viewHeight)

@@ -137,7 +137,9 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
     const GpuScene& scene = sceneSlot.ensure(settings.scene);
     const bool rotating = !keepsExactSampleCount(settings);
     if (!rotating) sampleRotation = glm::vec2(0.0f);
-    const glm::mat4 viewProjection = cameraProjection(settings.camera, aspect) * cameraView(settings.camera);
+    // The depth range follows the scene: a fixed far plane hid models measured in hundreds of units.
+    const ClipPlanes planes = clipPlanesFor(settings.camera, scene.bounds.center(), scene.bounds.radius());
+    const glm::mat4 viewProjection = cameraProjection(settings.camera, aspect, planes) * cameraView(settings.camera);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);

@@ -56,8 +56,8 @@ const FieldTable<MaterialSettings>& materialSettingsFields()
     using S = MaterialSettings;
     constexpr CliForm value = CliForm::Value;
     static const FieldTable<S> fields{
-        {"override_model", "Override the model's factors", "On: the sliders replace a glTF model's base colour, metallic and roughness factors; off (--model-material): the model's own materials",
-         fieldRef<S>([](S& s) -> auto& { return s.overrideModel; }), {}, "--model-material", CliForm::NegatedFlag},
+        {"override_model", "Override the model's factors", "On (--override-model): the sliders replace a glTF model's base colour, metallic and roughness factors; off (the default): the model's own materials",
+         fieldRef<S>([](S& s) -> auto& { return s.overrideModel; }), {}, "--override-model", CliForm::Flag},
         // --base-color also takes #rrggbb (app/cli.cpp).
         {"base_color", "Base colour", "Base colour: r,g,b (linear, 0..1) or #rrggbb (sRGB)",
          fieldRef<S>([](S& s) -> auto& { return s.baseColor; }), {}, "--base-color"},
@@ -99,7 +99,7 @@ FieldTable<FrameSettings> makeFrameFields()
          {1, 170}, "--fov", value},
         // --distance 0 frames the scene (app/cli.cpp).
         {"camera.distance", "Distance", "Camera distance from its target", fieldRef<S>([](S& s) -> auto& { return s.camera.distance; }),
-         {0.01, 1e6, 0, "frame the scene"}, "--distance"},
+         {1e-5, 1e6, 0, "frame the scene"}, "--distance"},
         {"camera.target", "Target", "The point the camera orbits", fieldRef<S>([](S& s) -> auto& { return s.camera.target; })},
     };
     appendNested(fields, materialSettingsFields(), [](S& s) -> MaterialSettings& { return s.material; }, "material.", "");
@@ -144,6 +144,20 @@ const FieldTable<FrameSettings>& frameSettingsFields()
 {
     static const FieldTable<FrameSettings> fields = makeFrameFields();
     return fields;
+}
+
+std::string applyCountingSetup(FrameSettings& s)
+{
+    s.scene.kind = SceneKind::Counting;
+    s.environment.yawDegrees = 180.0f;
+    s.sampling.method = ShadingMethod::Sampled;
+    s.sampling.forcedMip = 0;
+    s.material.metallic = 1.0f;
+    s.material.roughness = 0.5f;
+    s.camera.yawDegrees = 0.0f;
+    s.camera.pitchDegrees = 0.0f;
+    s.camera.fovDegrees = 10.0f;
+    return "builtin:lights?count=1&elevation=20";
 }
 
 std::string toJsonText(const FrameSettings& s, int indent) { return toJson(frameSettingsFields(), s).dump(indent); }

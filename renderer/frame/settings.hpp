@@ -38,7 +38,7 @@ struct CameraSettings {
 
 // The material the sliders edit. With overrideModel off, a glTF keeps its own factors.
 struct MaterialSettings {
-    bool overrideModel = true;
+    bool overrideModel = false; // a model shows its own materials first, in the GUI and on the command line
     glm::vec3 baseColor{0.95f, 0.64f, 0.54f}; // linear; copper-ish, so metals show colour
     float metallic = 1.0f;
     float roughness = 0.3f; // perceptual; alpha = roughness^2
@@ -214,6 +214,12 @@ bool sceneDemandsExactSampleCount(const SceneSettings& scene);
 const FieldTable<FrameSettings>& frameSettingsFields();
 const FieldTable<SamplingSettings>& samplingSettingsFields();
 const FieldTable<MaterialSettings>& materialSettingsFields();
+
+// The counting strip set up so that each sphere's reflections can be counted: one small
+// light (builtin:lights, behind the camera), the sampled method reading mip 0 (each sample a
+// sharp reflection), a half-rough metal (the samples spread apart), a narrow field of view
+// from the front. Returns the environment to load. As the README's counting example.
+std::string applyCountingSetup(FrameSettings& settings);
 
 // JSON text of the settings (screenshot metadata and sidecars, lab presets).
 std::string toJsonText(const FrameSettings& settings, int indent = 2);

@@ -206,11 +206,6 @@ private:
 
 enum class Encoding { Linear, Srgb, Gamma };
 
-float srgbToLinear(float v)
-{
-    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-
 // "1536x512 is 3:1", or "1000x431 is 2.32:1" when the reduced ratio is not small.
 std::string aspectText(int w, int h)
 {
@@ -436,11 +431,22 @@ Environment loadBuiltin(const std::string& specText, const EnvironmentLoadOption
 
 } // namespace
 
+float srgbToLinear(float v)
+{
+    return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
 std::string TexelRepairReport::summary() const
 {
     if (clean())
         return "no invalid texels";
     std::ostringstream out;
+    // A newcomer's first map should not read as damaged when nothing visible changed.
+    if (negligible()) {
+        out << "repaired " << negativeComponents << " slightly negative texel components to 0 (" << formatShort(100.0 * negativeEnergyShare(), 2)
+            << "% of the light: negligible)";
+        return out.str();
+    }
     out << "repaired " << repairedComponents() << " texel components in " << repairedTexels << " texels (set to 0): "
         << negativeComponents << " negative";
     if (negativeComponents > 0)

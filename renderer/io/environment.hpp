@@ -27,6 +27,10 @@ namespace iblab {
 // negativeEnergyShare() = negativeEnergy / positiveEnergy is that change relative to the
 // positive light in the map (the pmndrs "sky" map: about 10%). NaN and Inf components are
 // excluded from both sums (an Inf has no meaningful energy) and counted on their own.
+// The sRGB EOTF (IEC 61966-2-1): an encoded value in [0, 1] to linear. 8-bit maps and
+// #rrggbb colours are read with it.
+float srgbToLinear(float encoded);
+
 struct TexelRepairReport {
     std::uint64_t nanComponents = 0;
     std::uint64_t positiveInfComponents = 0;
@@ -43,7 +47,15 @@ struct TexelRepairReport {
     }
     bool clean() const { return repairedComponents() == 0; }
     double negativeEnergyShare() const { return positiveEnergy > 0.0 ? negativeEnergy / positiveEnergy : 0.0; }
-    // One line, e.g. "repaired 33 texel components (33 negative down to -3394, 10.2% of
+    // Only slightly negative components (no NaN or Inf), whose removal changes the map's light
+    // by less than kNegligibleEnergyShare: stitching or resampling noise, not a damaged file.
+    static constexpr double kNegligibleEnergyShare = 1e-4;
+    bool negligible() const
+    {
+        return nanComponents + positiveInfComponents + negativeInfComponents == 0 && negativeEnergyShare() < kNegligibleEnergyShare;
+    }
+    // One line: a calm one for a negligible repair ("repaired 1818 slightly negative texel
+    // components to 0 (0.0012% of the light: negligible)"), else, e.g. "repaired 33 texel components (33 negative down to -3394, 10.2% of
     // the positive energy; 0 NaN; 0 Inf) in 30 texels" or "no invalid texels".
     std::string summary() const;
 };

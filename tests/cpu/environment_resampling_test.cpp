@@ -164,3 +164,27 @@ TEST(Environment, GalleryListsBundledExrFiles)
     }
     EXPECT_TRUE(galleryEnvironments("/nonexistent-iblab-assets").empty());
 }
+
+// A map whose repair changed nothing visible (the bundled courtyard's stitching left slightly
+// negative texels) gets a calm note saying so; a repair that removes real light, or NaN /
+// Inf, keeps the full account. The note read as a damaged file to a newcomer.
+TEST(Environment, ANegligibleRepairIsACalmNote)
+{
+    ImageRGB32F slight(64, 32);
+    for (float& v : slight.texels) v = 0.5f;
+    for (int x = 0; x < 8; ++x) slight.texels[slight.offset(x, 16) + 1] = -0.003f;
+    const TexelRepairReport calm = repairTexels(slight);
+    EXPECT_TRUE(calm.negligible());
+    EXPECT_NE(calm.summary().find("negligible"), std::string::npos) << calm.summary();
+    EXPECT_EQ(calm.summary().find("NaN"), std::string::npos) << calm.summary();
+
+    ImageRGB32F strong(64, 32);
+    for (float& v : strong.texels) v = 0.5f;
+    for (int x = 0; x < 8; ++x) strong.texels[strong.offset(x, 16) + 1] = -50.0f;
+    const TexelRepairReport loud = repairTexels(strong);
+    EXPECT_FALSE(loud.negligible());
+    EXPECT_NE(loud.summary().find("down to -50"), std::string::npos) << loud.summary();
+
+    slight.texels[slight.offset(3, 3)] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(repairTexels(slight).negligible());
+}

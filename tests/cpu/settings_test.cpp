@@ -167,5 +167,19 @@ TEST(Settings, ClampToRangesMovesNumbersToTheNearestEndOfTheirRange)
     EXPECT_EQ(toJsonText(defaults), toJsonText(FrameSettings{}));
 }
 
+// A model shows its own materials unless asked otherwise, on the command line as in the GUI
+// (which turned the override off on loading a model while the command line's default was
+// on, and the help text named the opposite option).
+TEST(Settings, AModelShowsItsOwnMaterialsUnlessAsked)
+{
+    EXPECT_FALSE(FrameSettings{}.material.overrideModel);
+    for (const auto& field : frameSettingsFields())
+        if (std::string(field.key) == "material.override_model") {
+            EXPECT_EQ(std::string(field.cli), "--override-model");
+            EXPECT_EQ(field.cliForm, CliForm::Flag);
+            EXPECT_NE(std::string(field.help).find("On (--override-model)"), std::string::npos) << field.help;
+        }
+}
+
 } // namespace
 } // namespace iblab
