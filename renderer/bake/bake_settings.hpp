@@ -121,6 +121,13 @@ struct PrefilterSettings {
     // (one box-filtered read per texel). false: sampled like every other mip, `samples`
     // times at source lod 0, which is what LearnOpenGL does (every sample is n itself).
     bool mirrorCopy = true;
+    // At most this many of the environment's brightest texels are summed exactly, by every
+    // output texel with the GGX weight itself, and the rest is sampled (bright_texels.hpp;
+    // docs/bake.md, "The prefilter's estimator"). 0: every texel is sampled (the anchors).
+    int brightTexels = 256;
+    // Texels above this multiple of the map's mean luminance are bright (fewer when more
+    // than brightTexels are): the sampled rest then has at most this dynamic range.
+    float brightThreshold = 4.0f;
     bool operator==(const PrefilterSettings&) const = default;
 };
 
