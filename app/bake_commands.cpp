@@ -61,6 +61,7 @@ struct BakeCommandOptions {
     bool json = false;
     bool noCache = false;
     bool noErrors = false;
+    bool errorFloor = false;
     int repeat = 1;
 };
 
@@ -224,6 +225,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     std::optional<bake::BakeErrors> errors;
     bake::AccuracyOptions accuracy;
     if (cache.enabled()) accuracy.referenceCacheDirectory = cache.root() / "reference";
+    accuracy.shadedFloor = o.errorFloor;
     if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, shaders, accuracy);
 
     ordered_json exported;
@@ -562,6 +564,8 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_option("--cache-dir", o->cacheDir, "Cache directory (default $IBLAB_CACHE_DIR, $XDG_CACHE_HOME/iblab or ~/.cache/iblab)");
     c->add_flag("--no-cache", o->noCache, "Neither read nor write the cache's files (a batch still bakes its LUTs once)");
     c->add_flag("--no-errors", o->noErrors, "Skip the comparison with the exact references");
+    c->add_flag("--error-floor", o->errorFloor,
+                "Also measure an exact prefilter of the same sizes as shaded (errors.prefilter_shaded_floor): the interpolation's share");
     c->add_option("--repeat", o->repeat, "Bake N times in this process (the later ones without the cache) and report each total")
         ->check(CLI::Range(1, 100));
     c->add_flag("--json", o->json, "Print a JSON report");

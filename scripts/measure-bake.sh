@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The bake numbers of the README and docs/bake.md.
-#   scripts/measure-bake.sh [ENV...]        # tutorial against default preset (default: courtyard.exr and sunset.exr):
+#   scripts/measure-bake.sh [ENV...]        # tutorial against default preset, one table (default: every bundled map):
 #       the default's LUTs cached, as they are after the first bake on a machine, 3 interleaved
 #       runs each so both see the same machine load, the minimum reported, and the errors of
 #       each against the exact references (deterministic: one run)
@@ -9,6 +9,8 @@
 #                                           # rounds (ROUNDS=N); IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
 #   scripts/measure-bake.sh hugepages       # the bake with and without malloc's huge pages (app/main.cpp)
+#   scripts/measure-bake.sh unseen          # the default prefilter's per-mip errors on maps that chose none of its
+#                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6)
 #   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms), minimum and median of ROUNDS
 #                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved
 # Every time is the minimum of 3 interleaved runs (cmgen: of ROUNDS, default 7, since the
@@ -18,7 +20,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 iblab=${IBLAB:-build/app/iblab}
 mode=tutorial
-case "${1:-}" in batch | cmgen | writes | hugepages | phases) mode=$1; shift ;; esac
+case "${1:-}" in batch | cmgen | writes | hugepages | phases | unseen) mode=$1; shift ;; esac
 cache=$(mktemp -d)
 trap 'rm -rf "$cache"' EXIT
 # Wall time of one process in ms (stdout and stderr discarded; a failure stops the script).
@@ -55,7 +57,8 @@ print("    diffuse mean / max at texel centres: %s" % irr)
 print("    diffuse mean / max as shaded: %s | LUT max abs: %s" % (shaded_irr, lut))'
 }
 measure_tutorial() {
-  [ $# -gt 0 ] || set -- assets/environments/courtyard.exr assets/environments/sunset.exr
+  [ $# -gt 0 ] || set -- assets/environments/*.exr
+  local rows=()
   for env in "$@"; do
     [ -f "$env" ] || { echo "measure-bake: $env: no such file" >&2; exit 2; }
     "$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json > /dev/null # the LUTs, once
@@ -65,14 +68,32 @@ measure_tutorial() {
       rm -rf "$cache/bake"
       default+=("$("$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json | total)")
     done
-    python3 - "$env" "${tutorial[*]}" "${default[*]}" <<'PY'
-import sys
-env, t, d = sys.argv[1], min(map(float, sys.argv[2].split())), min(map(float, sys.argv[3].split()))
-print(f"{env}: tutorial {t:.0f} ms, default (LUTs cached) {d:.0f} ms: {t / d:.1f}x")
-PY
-    echo "  tutorial:"; "$iblab" bake --env "$env" --preset tutorial --no-cache --json | errors
-    echo "  default:"; "$iblab" bake --env "$env" --no-cache --json | errors
+    local t d
+    t=$(minimum <<< "${tutorial[*]}")
+    d=$(minimum <<< "${default[*]}")
+    rows+=("$(basename "$env") tutorial $t $("$iblab" bake --env "$env" --preset tutorial --no-cache --json | errors_row)")
+    rows+=("$(basename "$env") default $d $("$iblab" bake --env "$env" --no-cache --json | errors_row)")
   done
+  echo "| map | preset | bake, ms (min of 3) | per mip (roughness > 0) | worst mip | as shaded, roughness 0, 0.1 .. 1: RMS / max |"
+  echo "|---|---|---|---|---|---|"
+  printf '%s\n' "${rows[@]}" | python3 -c '
+import sys
+rows = [line.split(" ", 3) for line in sys.stdin.read().splitlines()]
+tutorial = {r[0]: float(r[2]) for r in rows if r[1] == "tutorial"}
+for name, preset, ms, rest in rows:
+    ratio = "" if preset == "tutorial" else " (%.1fx faster)" % (tutorial[name] / float(ms))
+    print("| %s | %s | %.0f%s | %s |" % (name, preset, float(ms), ratio, rest))'
+}
+
+# One table row's error cells from a bake report: per-mip relative RMSE of the mips with
+# roughness > 0, the worst of them, and the as-shaded RMS and max over roughness 0, 0.1 .. 1.
+errors_row() {
+  python3 -c '
+import json, sys
+e = json.load(sys.stdin)["errors"]
+mips = [m["relative_rmse"] for m in e["prefilter"] if m["roughness"] > 0]
+shaded = [m["relative_rmse"] for m in e["prefilter_shaded"]]
+print("%s | %.3f | %.3f / %.3f" % (" ".join("%.3f" % x for x in mips), max(mips), e["prefilter_shaded_rms"], max(shaded)))'
 }
 
 # 4 maps in one process (one context, its programs, the LUTs) against one map per process:
@@ -306,8 +327,38 @@ for phase in phases:
 PY
 }
 
+# The default prefilter's per-mip errors on maps that chose none of its settings: the CC0 maps
+# in ../shared/assets/hdri/pmndrs (512x256, where present) and builtin suns of 0.5 degrees at
+# 1e2 .. 1e6 over a sky of 1 and of 0.05, at 1024x512, each at three places (on a cube edge,
+# off every axis, near a corner). One line per map: per-mip relative RMSE (roughness > 0),
+# the worst, and the as-shaded RMS / max; EXTRA_ARGS are added to every bake (e.g.
+# "--prefilter-bright-texels 0" for the estimator without the split).
+measure_unseen() {
+  local maps=()
+  for f in ../shared/assets/hdri/pmndrs/*.exr; do [ -f "$f" ] && maps+=("$f"); done
+  for sky in 1 0.05; do
+    for intensity in 1e2 1e3 1e4 1e5 1e6; do
+      for place in "elevation=45&azimuth=0" "elevation=23&azimuth=37" "elevation=35&azimuth=44"; do
+        maps+=("builtin:sun?width=1024&size=0.5&intensity=$intensity&sky=$sky&$place")
+      done
+    done
+  done
+  for map in "${maps[@]}"; do
+    # shellcheck disable=SC2086
+    line=$("$iblab" bake --env "$map" --no-cache --json ${EXTRA_ARGS:-} | errors_row)
+    echo "| $map | $line |"
+  done | tee "$cache/unseen.txt"
+  python3 - "$cache/unseen.txt" <<'PY'
+import sys
+rows = [l.split("|") for l in open(sys.argv[1]) if l.startswith("|")]
+worst = max(rows, key=lambda r: float(r[3]))
+print(f"worst mip over {len(rows)} maps: {float(worst[3]):.3f} ({worst[1].strip()})")
+PY
+}
+
 case $mode in
   phases) measure_phases "$@" ;;
+  unseen) measure_unseen ;;
   tutorial) measure_tutorial "$@" ;;
   hugepages) measure_hugepages ;;
   batch) measure_batch ;;

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <set>
 #include <span>
+#include <tuple>
 #include <thread>
 
 #include <glm/geometric.hpp>
@@ -198,6 +200,39 @@ void storeReferenceValues(const std::filesystem::path& path, const std::vector<g
 
 } // namespace
 
+namespace {
+
+// The texels of a size^2 cube level that bilinear, seamless lookups at these directions can
+// read: the nearest texel of each and its 8 neighbours, found by stepping a texel along the
+// face plane (past an edge, that lands on the adjacent face's texels, which seamless
+// filtering reads there).
+std::vector<CubeTexelRef> texelsAround(int size, const std::vector<glm::dvec3>& directions)
+{
+    std::set<std::tuple<int, int, int>> seen;
+    std::vector<CubeTexelRef> texels;
+    const double step = 2.0 / size;
+    for (const glm::dvec3& d : directions) {
+        const glm::dvec3 a = glm::abs(d);
+        const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+        const glm::dvec3 onFace = d / a[axis];
+        glm::dvec3 e1(0.0), e2(0.0);
+        e1[(axis + 1) % 3] = 1.0;
+        e2[(axis + 2) % 3] = 1.0;
+        for (int du = -1; du <= 1; ++du)
+            for (int dv = -1; dv <= 1; ++dv) {
+                const glm::vec3 fst = directionToCubeFaceUv(glm::vec3(glm::normalize(onFace + step * (double(du) * e1 + double(dv) * e2))));
+                const int face = int(fst.x);
+                const int x = std::clamp(int(std::floor(fst.y * float(size))), 0, size - 1);
+                const int row = std::clamp(int(std::floor(fst.z * float(size))), 0, size - 1);
+                if (seen.insert({face, x, row}).second)
+                    texels.push_back({face, x, row});
+            }
+    }
+    return texels;
+}
+
+} // namespace
+
 std::vector<CubeTexelRef> cubeTexelGrid(int size, int grid)
 {
     std::vector<CubeTexelRef> texels;
@@ -258,6 +293,24 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
         shadedRoughness.push_back(float(i) / float(std::max(options.shadedRoughnessSteps, 1)));
         shadedFirst.push_back(references.prefilter(shadedDirections, shadedRoughness.back(), isWide(shadedRoughness.back())));
     }
+    // The floor (AccuracyOptions::shadedFloor): per level, the texels the shaded lookups read.
+    std::vector<std::pair<std::vector<CubeTexelRef>, std::size_t>> floorTexels;
+    if (options.shadedFloor)
+        for (int level = 0; level < pre.levels; ++level) {
+            std::vector<glm::dvec3> reading; // the shaded directions whose lookups read this level
+            for (float roughness : shadedRoughness) {
+                const float lod = prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout));
+                if (level == int(std::floor(lod)) || level == int(std::ceil(lod)))
+                    reading.insert(reading.end(), shadedDirections.begin(), shadedDirections.end());
+            }
+            const CubeImage geometry(pre.levelSize(level));
+            std::vector<CubeTexelRef> texels = texelsAround(geometry.size, reading);
+            std::vector<glm::dvec3> directions;
+            for (const CubeTexelRef& t : texels)
+                directions.push_back(glm::normalize(glm::dvec3(geometry.texelDirection(t.face, t.x, t.row))));
+            const float roughness = levels[std::size_t(level)].roughness;
+            floorTexels.emplace_back(std::move(texels), references.prefilter(directions, roughness, isWide(roughness)));
+        }
     // Irradiance at texel centres: each cube at the grid texels of its own size, the SH at
     // those of the shading cube (or of a 32^2 one when there is none).
     const int irradianceSize = result.irradianceCube ? result.irradianceCube.size : 32;
@@ -336,6 +389,28 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     if (!errors.prefilterShaded.empty())
         errors.prefilterShadedRms = std::sqrt(sumSquares / double(errors.prefilterShaded.size()));
 
+    if (options.shadedFloor) {
+        const BakedTexture exact = createCubeTexture(pre.internalFormat, pre.size, pre.levels);
+        for (int level = 0; level < pre.levels; ++level) {
+            CubeImage image(pre.levelSize(level));
+            const auto& [texels, first] = floorTexels[std::size_t(level)];
+            for (std::size_t i = 0; i < texels.size(); ++i)
+                image.at(texels[i].face, texels[i].x, texels[i].row) = glm::vec4(glm::vec3(values[first + i]), 1.0f);
+            uploadCubeLevel(exact, level, image);
+        }
+        const std::vector<glm::vec3> read = BakePasses(shaders).samplePrefiltered(exact, result.settings.prefilter.layout, queries);
+        double floorSquares = 0.0;
+        for (std::size_t r = 0; r < shadedRoughness.size(); ++r) {
+            const auto first = read.begin() + std::ptrdiff_t(r * shadedDirections.size());
+            const std::vector<glm::dvec3> exactRead(first, first + std::ptrdiff_t(shadedDirections.size()));
+            ShadedRoughnessError e = errors.prefilterShaded[r];
+            e.relativeRmse = relativeRmse(exactRead, slice(shadedFirst[r], exactRead.size()));
+            errors.prefilterShadedFloor.push_back(e);
+            floorSquares += e.relativeRmse * e.relativeRmse;
+        }
+        errors.prefilterShadedFloorRms = std::sqrt(floorSquares / double(errors.prefilterShadedFloor.size()));
+    }
+
     const auto irradianceReference = slice(irradianceFirst, irradianceNormals.size());
     std::vector<glm::dvec3> sh;
     std::vector<glm::dvec3> shWindowed;
@@ -408,6 +483,13 @@ std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& opti
                           {"reference_width", e.referenceWidth}});
     j["prefilter_shaded"] = shaded;
     j["prefilter_shaded_rms"] = errors.prefilterShadedRms;
+    if (!errors.prefilterShadedFloor.empty()) {
+        nlohmann::ordered_json floor = nlohmann::ordered_json::array();
+        for (const ShadedRoughnessError& e : errors.prefilterShadedFloor)
+            floor.push_back({{"roughness", e.roughness}, {"relative_rmse", e.relativeRmse}});
+        j["prefilter_shaded_floor"] = floor;
+        j["prefilter_shaded_floor_rms"] = errors.prefilterShadedFloorRms;
+    }
     nlohmann::ordered_json irr;
     irr["sh"] = statsJson(errors.shIrradiance);
     irr["sh_windowed"] = statsJson(errors.shIrradianceWindowed);

@@ -37,6 +37,10 @@ struct AccuracyOptions {
     // having its mips where the measurement looks.
     int shadedDirections = 96;
     int shadedRoughnessSteps = 10;
+    // The floor of the as-shaded error: an exact prefilter of the bake's sizes and format
+    // (the reference at every texel the shaded lookups read), read the same way. What is
+    // left is the interpolation between texels and mips, which no estimator removes.
+    bool shadedFloor = false;
     int lutGrid = 8;                       // 8 x 8 LUT texels
     std::uint32_t lutReferenceSamples = 16384;
     // Where the reference values are kept between runs (empty: computed every time). They
@@ -74,6 +78,9 @@ struct BakeErrors {
     std::vector<ShadedRoughnessError> prefilterShaded;
     // Root mean square of prefilterShaded's relative RMSEs: one number per bake.
     double prefilterShadedRms = 0.0;
+    // With AccuracyOptions::shadedFloor: the same for the exact prefilter of the same sizes.
+    std::vector<ShadedRoughnessError> prefilterShadedFloor;
+    double prefilterShadedFloorRms = 0.0;
     // Per direction |baked - reference| / |reference| (RGB vector norms).
     ErrorStats shIrradiance;
     ErrorStats shIrradianceWindowed;

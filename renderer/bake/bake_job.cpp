@@ -204,11 +204,15 @@ void BakeJob::plan()
     }
     }
 
+    if (s.prefilter.brightTexels > 0 && s.prefilter.levels > 1)
+        steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
+                              bright_ = splitBrightTexels(passes_, result_.environmentCube, result_.settings.prefilter);
+                          }});
     for (int level = 0; level < s.prefilter.levels; ++level)
-        planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level, double(prefilterSamples(s.prefilter, level)),
-                       [this](const CubeSlice& slice) {
+        planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level,
+                       double(prefilterSamples(s.prefilter, level)) + s.prefilter.brightTexels / 8.0, [this](const CubeSlice& slice) {
                            passes_.prefilter(result_.environmentCube, result_.prefiltered, slice, result_.settings.prefilter,
-                                             result_.settings.exactTexelSolidAngle);
+                                             result_.settings.exactTexelSolidAngle, bright_ ? &*bright_ : nullptr);
                        });
 
     planLuts();
@@ -310,6 +314,7 @@ bool BakeJob::step()
         // The intermediates are not part of the result.
         equirect_.reset();
         momentTexels_ = {};
+        bright_.reset();
         image_ = {};
     }
     return !steps_.empty();

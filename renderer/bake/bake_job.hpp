@@ -110,6 +110,7 @@ private:
     ImageRGB32F image_;
     gl::Texture equirect_;
     MomentTexels momentTexels_; // irradiance_moments' groups, between its steps
+    std::optional<PrefilterBrightTexels> bright_; // the prefilter's split, between its steps
     std::deque<Step> steps_;
     std::optional<StepInFlight> inFlight_;
     double totalCost_ = 0.0;

@@ -64,6 +64,7 @@ void clearPassBindings()
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 1, 0);
 }
 
 GLuint groupsFor(int n) { return GLuint((n + 7) / 8); }
@@ -135,13 +136,17 @@ struct MomentsUniforms {
 
 struct PrefilterUniforms {
     explicit PrefilterUniforms(const gl::ShaderProgram& p)
-        : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod")
+        : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
+          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale")
     {
     }
     gl::Uniform<float> roughness;
     gl::Uniform<float> weightSum;
     gl::Uniform<int> mirrorCopy;
     gl::Uniform<float> copyLod;
+    gl::Uniform<int> brightCount; // the three absent (-1) in a program without bright texels
+    gl::Uniform<float> alpha2;
+    gl::Uniform<float> brightScale;
 };
 
 struct SamplePrefilteredUniforms {
@@ -206,7 +211,8 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
         break;
     }
     for (int level = 1; level < settings.prefilter.levels; ++level)
-        sampleTableProgram(kPrefilter, sampleTableCapacity(prefilterSamples(settings.prefilter, level)));
+        prefilterProgram(sampleTableCapacity(prefilterSamples(settings.prefilter, level)),
+                         prefilterMipRoughness(settings.prefilter, level) > 0.0f ? 2 * settings.prefilter.brightTexels : 0);
     if (lut)
         shaders_.program({kBrdfLut});
 }
@@ -231,6 +237,11 @@ int BakePasses::sampleTableCapacity(int sampleCount) const
 const gl::ShaderProgram& BakePasses::sampleTableProgram(const char* file, int capacity)
 {
     return shaders_.program({file}, {{"SAMPLE_TABLE_CAPACITY", std::to_string(capacity)}});
+}
+
+const gl::ShaderProgram& BakePasses::prefilterProgram(int capacity, int brightCapacity)
+{
+    return shaders_.program({kPrefilter}, {{"SAMPLE_TABLE_CAPACITY", std::to_string(capacity)}, {"BRIGHT_CAPACITY", std::to_string(brightCapacity)}});
 }
 
 int BakePasses::equirectLevelsForCube(int width, int height, int faceSize)
@@ -476,15 +487,18 @@ void BakePasses::irradianceMoments(const MomentTexels& groups, const BakedTextur
 }
 
 void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
-                           const PrefilterSettings& settings, bool exactTexelSolidAngle)
+                           const PrefilterSettings& settings, bool exactTexelSolidAngle, const PrefilterBrightTexels* bright)
 {
     if (copyMirrorLevel(environment, out, slice, settings))
         return;
     SeamlessCubeScope seamless;
     const int sampleCount = prefilterSamples(settings, slice.level);
     const int capacity = sampleTableCapacity(sampleCount);
-    const gl::ShaderProgram& program = sampleTableProgram(kPrefilter, capacity);
     const float roughness = prefilterMipRoughness(settings, slice.level);
+    // The mirror level has no lobe to weight lights by: it reads the environment itself.
+    if (roughness <= 0.0f)
+        bright = nullptr;
+    const gl::ShaderProgram& program = prefilterProgram(capacity, bright ? bright->capacity : 0);
     const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias);
     float weightSum = 0.0f;
     for (const glm::vec4& sample : samples)
@@ -496,7 +510,14 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     uniforms.mirrorCopy.set(settings.mirrorCopy ? 1 : 0);
     // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop
     // of a bake without the mirror copy does).
-    bindSource(program, environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
+    if (bright) {
+        const double alpha = double(roughness) * double(roughness);
+        uniforms.brightCount.set(bright->count);
+        uniforms.alpha2.set(float(alpha * alpha));
+        uniforms.brightScale.set(float(alpha * alpha / (kPi * ggxPrefilterNormalization(roughness))));
+        glBindBufferBase(GL_UNIFORM_BUFFER, 1, bright->texels.id());
+    }
+    bindSource(program, bright ? bright->base : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
     const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
     uniforms.copyLod.set(std::clamp(copyLod, 0.0f, float(environment.levels - 1)));

@@ -12,6 +12,7 @@
 
 #include "bake/bake_settings.hpp"
 #include "bake/baked_texture.hpp"
+#include "bake/bright_texels.hpp"
 #include "gl/shader_library.hpp"
 #include "ibl/image.hpp"
 #include "ibl/sh.hpp"
@@ -87,8 +88,10 @@ public:
     MomentTexels buildIrradianceMoments(const BakedTexture& environment, const MomentIrradianceSettings& settings);
     // Irradiance from those groups (irradiance_moments.comp).
     void irradianceMoments(const MomentTexels& groups, const BakedTexture& out, const CubeSlice& slice);
+    // bright (bright_texels.hpp; null: none): the mips with roughness > 0 sample its base
+    // instead of the environment and add its lights exactly.
     void prefilter(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice, const PrefilterSettings& settings,
-                   bool exactTexelSolidAngle);
+                   bool exactTexelSolidAngle, const PrefilterBrightTexels* bright = nullptr);
     // What shading reads for each query (xyz = direction, w = roughness): textureLod at the
     // layout's lod, seamless trilinear (sample_prefiltered.comp). For accuracy checks.
     std::vector<glm::vec3> samplePrefiltered(const BakedTexture& prefiltered, RoughnessLayout layout, const std::vector<glm::vec4>& queries);
@@ -112,6 +115,7 @@ private:
     // sampleCount entries, or 0 when it needs a storage buffer.
     int sampleTableCapacity(int sampleCount) const;
     const gl::ShaderProgram& sampleTableProgram(const char* file, int capacity);
+    const gl::ShaderProgram& prefilterProgram(int capacity, int brightCapacity);
     // The prefilter's mirror level as a texel copy (mirrorSourceLevel); false: nothing done.
     bool copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                          const PrefilterSettings& settings);

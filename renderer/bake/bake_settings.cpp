@@ -43,7 +43,8 @@ BakeSettings tutorialPreset()
                    .mipSampleScale = "",
                    .mipFiltering = false,
                    .mipBias = 0.0f,
-                   .mirrorCopy = false};
+                   .mirrorCopy = false,
+                   .brightTexels = 0};
     s.lut = {.size = 512, .samples = 1024, .schlickGgx = true, .heightCorrelatedSmith = false};
     return s;
 }
@@ -70,7 +71,8 @@ BakeSettings filamentPreset()
                    .mipSampleScale = "",
                    .mipFiltering = true,
                    .mipBias = 1.0f,
-                   .mirrorCopy = true};
+                   .mirrorCopy = true,
+                   .brightTexels = 0};
     s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     return s;
 }
@@ -97,7 +99,8 @@ BakeSettings gltfViewerPreset()
                    .mipSampleScale = "",
                    .mipFiltering = true,
                    .mipBias = 1.8257f,
-                   .mirrorCopy = false};
+                   .mirrorCopy = false,
+                   .brightTexels = 0};
     s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     return s;
 }
@@ -244,6 +247,12 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
         {"prefilter.mirror_copy", "Mirror mip as a copy",
          "Mip 0 as a copy of the matching source mip (on), or sampled like the other mips as LearnOpenGL does (off)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.mirrorCopy; }), {}, "--prefilter-mirror-copy", value},
+        {"prefilter.bright_texels", "Bright texels summed exactly",
+         "The prefilter sums at most this many of the brightest environment texels exactly and samples the rest (0: samples all)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.brightTexels; }), {0, 1024}, "--prefilter-bright-texels", value},
+        {"prefilter.bright_threshold", "Bright texel threshold",
+         "Texels above this multiple of the mean luminance are summed exactly (at most --prefilter-bright-texels of them)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.brightThreshold; }), {0, 1e9}, "--prefilter-bright-threshold", value},
         {"prefilter.layout", "Roughness layout",
          "Roughness per mip: linear (m / (levels - 1), LearnOpenGL) or quadratic (Filament: 1 - sqrt(1 - m / (levels - 1)))",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.layout; }), {}, "--prefilter-layout", value},

@@ -121,6 +121,15 @@ struct PrefilterSettings {
     // (one box-filtered read per texel). false: sampled like every other mip, `samples`
     // times at source lod 0, which is what LearnOpenGL does (every sample is n itself).
     bool mirrorCopy = true;
+    // At most this many of the environment's brightest texels are summed exactly, by every
+    // output texel with the GGX weight itself, and the rest is sampled (bright_texels.hpp;
+    // docs/bake.md, "The prefilter's estimator"). 0: every texel is sampled (the anchors).
+    // Off by default: on llvmpipe the split costs 2-2.7x the default bake's time, over the
+    // budget the default is held to; --prefilter-bright-texels 256 turns it on.
+    int brightTexels = 0;
+    // Texels above this multiple of the map's mean luminance are bright (fewer when more
+    // than brightTexels are): the sampled rest then has at most this dynamic range.
+    float brightThreshold = 4.0f;
     bool operator==(const PrefilterSettings&) const = default;
 };
 

@@ -18,6 +18,33 @@
 #include "bake/cube_texel.glsl"
 #include "bake/source_samples.glsl"
 
+// BRIGHT_CAPACITY > 0: the environment's brightest texels, split off by the host
+// (renderer/bake/bright_texels.hpp), summed exactly with the GGX weight of each; the source
+// cube the samples read is then the rest of the environment. Two entries per texel:
+// (direction, 0), (flux rgb, 0).
+#if BRIGHT_CAPACITY > 0
+layout(std140, binding = 1) uniform BrightTexels {
+    vec4 brightTexels[BRIGHT_CAPACITY];
+};
+uniform int uBrightCount;   // texels (entries / 2)
+uniform float uAlpha2;      // alpha^2 = roughness^4
+uniform float uBrightScale; // alpha^2 / (pi Z(alpha)), Z the integral of D(h) max(0, n.l)
+
+// sum_j flux_j D(h_j) max(0, n.l_j) / Z with D = alpha^2 / (pi t^2) and
+// t = (n.h)^2 (alpha^2 - 1) + 1, (n.h)^2 = (1 + c) / 2 for c = n.l_j (v = n); written as
+// alpha^2 + (1 - c)(1 - alpha^2) / 2 so that t keeps its precision near the lobe's peak.
+vec3 sumBrightTexels(vec3 n)
+{
+    vec3 sum = vec3(0.0);
+    for (int j = 0; j < uBrightCount; ++j) {
+        float c = dot(n, brightTexels[2 * j].xyz);
+        float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
+        sum += brightTexels[2 * j + 1].xyz * (max(c, 0.0) / (t * t));
+    }
+    return sum * uBrightScale;
+}
+#endif
+
 uniform float uRoughness;      // perceptual; 0 selects the mirror level
 uniform float uWeightSum;      // sum of n.l over the table
 uniform float uCopyLod;
@@ -40,5 +67,9 @@ void main()
         vec4 s = sourceSamples[i];
         sum += readSource(s.w, frame * s.xyz) * s.z;
     }
-    storeOutput(texel, sum / uWeightSum);
+    vec3 radiance = sum / uWeightSum;
+#if BRIGHT_CAPACITY > 0
+    radiance += sumBrightTexels(n);
+#endif
+    storeOutput(texel, radiance);
 }
