@@ -24,6 +24,9 @@ packages=(
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   # The GUI tests drive a real GLFW window on a private X server (tests/gui/with-xvfb.sh).
   xvfb
+  # The Debian package (cpack -G DEB, scripts/package-check.sh): CPack's DEB generator finds
+  # the runtime dependencies with dpkg-shlibdeps (dpkg-dev) and tells binaries by file(1).
+  dpkg-dev file
   # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14, and its
   # llvm-symbolizer (llvm-14): tests/sanitizer/lsan.supp matches function names, which a
   # leak report only has when its stack is symbolized.
