@@ -405,7 +405,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
     // rather than their own mappings, and kept there once freed, the next map of a batch
     // reuses the last one's memory instead of faulting in fresh pages: `measure-bake.sh
     // batch` took about 0.9x the time with these two settings. A one-map bake gets them too
-    // (its numbers in the README were measured so); it frees little before it exits.
+    // (its numbers in docs/performance.md were measured so); it frees little before it exits.
     mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024); // glibc's largest
     mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
     try {

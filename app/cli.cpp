@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,31 @@
 
 namespace iblab::app {
 namespace {
+
+// CLI11's help, without the "{false}" it appends to the negated name of a flag pair
+// ("--multiscatter,--no-multiscatter{false}"): the pair's help says which is the default.
+class HelpFormatter : public CLI::Formatter {
+public:
+    std::string make_option_name(const CLI::Option* option, bool positional) const override
+    {
+        std::string name = CLI::Formatter::make_option_name(option, positional);
+        for (std::size_t open = name.find('{'); open != std::string::npos; open = name.find('{', open)) {
+            const std::size_t close = name.find('}', open);
+            if (close == std::string::npos) break;
+            name.erase(open, close + 1 - open);
+        }
+        return name;
+    }
+    // CLI11 writes a checked range and a set of names after the type: "INT:INT in [1 - 16384]"
+    // and "TEXT:{cpu,gpu}"; shown as "INT [1..16384]" and "{cpu,gpu}".
+    std::string make_option_opts(const CLI::Option* option) const override
+    {
+        static const std::regex range(R"((INT|FLOAT):(?:INT|FLOAT) in \[([^ \]]+) - ([^ \]]+)\])");
+        static const std::regex names(R"(TEXT:(\{[^}]*\}))");
+        const std::string opts = std::regex_replace(CLI::Formatter::make_option_opts(option), range, "$1 [$2..$3]");
+        return std::regex_replace(opts, names, "$1");
+    }
+};
 
 // "0.9,0.6,0.5" (linear) or "#e6a08c" (sRGB-encoded, as colour pickers give it).
 std::optional<glm::vec3> parseColour(const std::string& text)
@@ -55,6 +81,14 @@ const Field<FrameSettings>& frameField(std::string_view key)
     return *field;
 }
 
+// The field's help and its range without the special -1, which the option spells "auto".
+std::string mipHelp(const Field<FrameSettings>& field)
+{
+    FieldRange levels = field.range;
+    levels.special.reset();
+    return std::string(field.help) + rangeHint(levels);
+}
+
 // --mip LEVEL|auto, and --b-mip for the split view's B side.
 void addMipOption(CLI::App& command, const std::string& option, std::string_view key, FrameSettings& settings)
 {
@@ -76,7 +110,8 @@ void addMipOption(CLI::App& command, const std::string& option, std::string_view
                 if (level < 0) throw CLI::ValidationError(option, "a mip level is >= 0");
                 applyFieldText(field, settings, value);
             },
-            std::string(field.help))
+            mipHelp(field))
+        ->type_name("INT|auto")
         ->default_str("auto");
 }
 
@@ -85,6 +120,7 @@ void addMipOption(CLI::App& command, const std::string& option, std::string_view
 void addConventionOption(CLI::App& command, std::string& convention)
 {
     command.add_option("--convention", convention, "Bake and shade as " + conventionNames() + " do (split sum)")
+        ->type_name("NAME")
         ->check([](const std::string& name) {
             return findConvention(name) ? std::string() : "unknown convention \"" + name + "\"; expected one of " + conventionNames();
         });
@@ -98,7 +134,8 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
     std::string builtins;
     for (const std::string& name : builtinEnvironmentNames()) builtins += (builtins.empty() ? "" : ", ") + name;
     command.add_option("--env", settings.environment.source, std::string(frameField("environment.source").help) + " (" + builtins + ")")
-        ->default_str("the bundled courtyard.exr");
+        ->type_name("FILE|builtin:NAME")
+        ->default_str("courtyard.exr");
     command
         .add_option_function<std::string>(
             "--scene",
@@ -114,6 +151,7 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
                 settings.scene.modelPath = value;
             },
             std::string(frameField("scene.kind").help))
+        ->type_name("NAME|FILE")
         ->default_str("sphere");
     addMipOption(command, "--mip", "sampling.forced_mip", settings);
     addMipOption(command, "--b-mip", "view.compare.forced_mip", settings);
@@ -125,17 +163,19 @@ void addFrameOptions(CLI::App& command, FrameSettings& settings)
                 if (!colour) throw CLI::ValidationError("--base-color", "expected r,g,b in 0..1 (linear) or #rrggbb (sRGB), got \"" + value + "\"");
                 settings.material.baseColor = *colour;
             },
-            std::string(frameField("material.base_color").help));
-    command.add_option("--distance", settings.camera.distance, std::string(frameField("camera.distance").help))->default_str("0: frame the scene");
+            std::string(frameField("material.base_color").help))
+        ->type_name("R,G,B|#RRGGBB")
+        ->default_str(fieldDefaultText(frameField("material.base_color"), settings));
+    command.add_option("--distance", settings.camera.distance, fieldHelp(frameField("camera.distance")))->default_str("0");
     command
-        .add_option_function<float>(
+        .add_option_function<std::string>(
             "--split",
-            [&settings](float position) {
+            [&settings](const std::string& position) {
+                applyFieldText(frameField("view.split_position"), settings, position);
                 settings.view.split = true;
-                settings.view.splitPosition = position;
             },
-            std::string(frameField("view.split_position").help))
-        ->check(CLI::Range(0.0f, 1.0f));
+            fieldHelp(frameField("view.split_position")))
+        ->type_name("FLOAT");
 }
 
 int runCommandLine(int argc, char** argv)
@@ -143,7 +183,8 @@ int runCommandLine(int argc, char** argv)
     const auto processStart = std::chrono::steady_clock::now();
     CLI::App app{"iblab: a lab for image-based lighting. With no sub-command it opens the GUI, or renders the default view "
                  "to a PNG when there is no display."};
-    app.set_version_flag("--version", "iblab 0.1.0");
+    app.set_version_flag("--version", "iblab " IBLAB_VERSION);
+    app.formatter(std::make_shared<HelpFormatter>()); // the sub-commands added below inherit it
 
     GuiOptions gui;
     gui.settings.camera.distance = 0.0f; // frame whatever scene is shown, unless --distance says otherwise
@@ -151,7 +192,7 @@ int runCommandLine(int argc, char** argv)
     addConventionOption(app, gui.convention);
     bool forceHeadless = false;
     app.add_flag("--headless", forceHeadless, "Render the default view to a PNG even when a display exists");
-    app.add_option("--quit-after-frames", gui.quitAfterFrames, "Close the window after N frames (scripted start-up timing)");
+    app.add_option("--quit-after-frames", gui.quitAfterFrames, "Close the window after N frames, for start-up timing (0 keeps it open)")->capture_default_str();
     app.add_option_function<std::string>(
            "--window-size",
            [&gui](const std::string& value) {
@@ -163,14 +204,16 @@ int runCommandLine(int argc, char** argv)
                gui.width = width;
                gui.height = height;
            },
-           "GUI window size, WIDTHxHEIGHT")
+           "GUI window size, from 320x240 to 16384x16384")
+        ->type_name("WxH")
         ->default_str("1280x720");
     app.add_option("--script", gui.script,
                    "Run the GUI under a script of input events and checks (docs/gui-scripts.md); exits 0 when every check passed. "
                    "Offscreen when there is no display")
-        ->check(CLI::ExistingFile);
+        ->check(CLI::Validator(CLI::ExistingFile).description(""))
+        ->type_name("FILE");
     app.add_flag("--offscreen", gui.offscreen, "With --script: run the GUI frame in a headless EGL context even when a display exists");
-    app.add_option("--coverage-out", gui.coverageOut, "With --script: write the controls the script showed and used (JSON)");
+    app.add_option("--coverage-out", gui.coverageOut, "With --script: write the controls the script showed and used (JSON)")->type_name("FILE");
 
     std::vector<Command> commands;
     commands.push_back(addRenderCommand(app, processStart));

@@ -1,7 +1,7 @@
 // `iblab compare`: the ground truth beside the real-time methods, on several maps. One row
 // per environment: the reference (the full integral), then per method its frame and its
 // error view against that reference, captioned with its relative RMSE over the pixels the
-// reference resolves. The figure the README's Results show for the split sum's bias and
+// reference resolves. The figure docs/results.md shows for the split sum's bias and
 // what corrects it (issue #14), and a quick way for a user to see the same on their maps.
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,9 @@
 # Runs the README's two commands on a freshly installed Debian 12: bootstraps a minimal
 # bookworm root (mmdebstrap --variant=minbase, nothing but apt), clones this repository's
 # committed HEAD into it and runs, inside a chroot with no DISPLAY, exactly the first two
-# command lines of README.md's "The two commands" block, then any --also commands.
+# command lines of README.md's "The two commands" block; then builds the Debian package
+# there and installs it into a second clean root (scripts/package-check.sh); then any --also
+# commands.
 # A package that scripts/install-deps.sh forgets fails here, where a developer's machine
 # (which has it installed from earlier work) would hide it. Needs root and mmdebstrap.
 #   scripts/fresh-check.sh                          # both README commands
@@ -20,7 +22,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --also) also+=("$2"); shift 2 ;;
     --keep) keep=1; shift ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
     *) echo "fresh-check: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -101,7 +103,7 @@ in_root() {
 }
 
 n=1
-for command in "${readme_commands[@]}" "${also[@]}"; do
+for command in "${readme_commands[@]}"; do
   step "command $n: $command"
   in_root "$command"
   n=$((n + 1))
@@ -109,4 +111,17 @@ done
 
 step "checking that the first command wrote the headless render"
 in_root 'test -s iblab-default.png' || { echo "fresh-check: iblab-default.png is missing" >&2; exit 1; }
+
+# The Debian package, built here from the README's build, installed into a second, clean root
+# (scripts/package-check.sh): a user's machine has none of the build's packages.
+step "building the Debian package"
+deb=$(in_root 'scripts/package-check.sh --build-only')
+step "checking the package in a clean root"
+scripts/package-check.sh --deb "$root$deb"
+
+for command in "${also[@]}"; do
+  step "command $n: $command"
+  in_root "$command"
+  n=$((n + 1))
+done
 step "passed"

@@ -32,6 +32,9 @@ packages=(
   # cmgen (libfilament-tools) for the SH comparison, and node + npm to run npm's ktx-parse on
   # the KTX 2.0 files (scripts/install-ktx-parse.sh installs it from tests/ktx2's lockfile).
   libfilament-dev libfilament-tools nodejs npm
+  # The Debian package (cpack -G DEB, scripts/package-check.sh): CPack's DEB generator finds
+  # the runtime dependencies with dpkg-shlibdeps (dpkg-dev) and tells binaries by file(1).
+  dpkg-dev file
   # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14, and its
   # llvm-symbolizer (llvm-14): tests/sanitizer/lsan.supp matches function names, which a
   # leak report only has when its stack is symbolized.

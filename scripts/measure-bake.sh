@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The bake numbers of the README and docs/bake.md.
+# The bake numbers of docs/performance.md, docs/bake.md and the README's headline numbers.
 #   scripts/measure-bake.sh [ENV...]        # tutorial against default preset, one table (default: every bundled map):
 #       the default's LUTs cached, as they are after the first bake on a machine, 3 interleaved
 #       runs each so both see the same machine load, the minimum reported, and the errors of

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Start-up and frame costs at 1280x720, headless (EGL), printed as Markdown tables for the
-# README. GPU time: steady clock around glFinish (llvmpipe's timer queries are wrong at
+# Start-up and frame costs at 1280x720, headless (EGL), printed as Markdown tables for
+# docs/performance.md. GPU time: steady clock around glFinish (llvmpipe's timer queries are wrong at
 # this size); medians of repeated frames in one process, after a warm-up frame.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Start-up numbers of the README's Performance section: process wall time of `iblab --help`
+# Start-up numbers of docs/performance.md: process wall time of `iblab --help`
 # and `iblab bake --help` (minimum of RUNS), the shared libraries loaded at start, and, when
 # DISPLAY names a usable X server (e.g. Xvfb), the GUI to its first presented frame:
 # process wall time of `iblab --quit-after-frames 1` (start, window, context, environment

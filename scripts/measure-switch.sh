@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's environment-switch numbers: what a GUI user waits for between clicking Load and
+# The environment-switch numbers of docs/performance.md: what a GUI user waits for between clicking Load and
 # the first frame drawn with the new environment's lighting, in the real GUI loop (offscreen,
 # driven by a GUI script). Three cases, each the minimum of 3 runs:
 #   - disk cache: a map baked in an earlier run, loaded and its bake read from the cache;

@@ -33,8 +33,10 @@ std::vector<fs::path> moduleCandidates()
         candidates.emplace_back(path);
     std::error_code ec;
     const fs::path executable = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec)
+    if (!ec) {
         candidates.push_back(executable.parent_path() / kModuleFileName);
+        candidates.push_back(executable.parent_path().parent_path() / IBLAB_INSTALL_MODULE_DIR / kModuleFileName);
+    }
     candidates.emplace_back(IBLAB_IMAGE_MODULE_BUILD_PATH);
     return candidates;
 }

@@ -8,8 +8,9 @@
 // never touch an image file (help, version, a parse error) need none of it.
 //
 // The module is looked for, in this order, at $IBLAB_IMAGE_MODULE, next to the running
-// executable (where CMake builds it beside build/app/iblab), and at the path it was built
-// to (for the test executables elsewhere in the build tree). Only this interface crosses
+// executable (where CMake builds it beside build/app/iblab), in ../lib/iblab from it (an
+// installed iblab, cmake/Install.cmake), and at the path it was built to (for the test
+// executables elsewhere in the build tree). Only this interface crosses
 // the boundary; both sides are built by the same compiler from the same headers.
 #include <cstddef>
 #include <cstdint>

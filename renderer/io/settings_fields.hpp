@@ -64,6 +64,7 @@ struct Field {
     FieldRange range = {};
     std::string cli = {};   // "--prefilter-size"
     CliForm cliForm = CliForm::None;
+    std::string cliPrefix = {}; // "b-" for a nested table's "--b-samples" (appendNested)
 };
 
 template <typename Settings>
@@ -99,7 +100,10 @@ void appendNested(FieldTable<Outer>& out, const FieldTable<Inner>& inner, Access
         Field<Outer> nested{.key = std::string(keyPrefix) + field.key, .label = field.label, .help = field.help, .range = field.range,
                             .cli = field.cli, .cliForm = field.cliForm};
         // "--samples" -> "--b-samples"
-        if (!field.cli.empty() && !cliPrefix.empty()) nested.cli = "--" + std::string(cliPrefix) + field.cli.substr(2);
+        if (!field.cli.empty() && !cliPrefix.empty()) {
+            nested.cli = "--" + std::string(cliPrefix) + field.cli.substr(2);
+            nested.cliPrefix = std::string(cliPrefix) + field.cliPrefix;
+        }
         nested.ref = std::visit(
             [&](const auto& ref) -> FieldRef<Outer> {
                 using Ref = std::decay_t<decltype(ref)>;

@@ -50,7 +50,7 @@ void addFinding(std::vector<Finding>& findings, Finding f, double warnAbove, dou
 // the map and only at a subset of pixels, which costs them up to ~25% against a sharp
 // light; twice the exact maximum is a visible firefly.
 constexpr double kFireflyWarn = 1.25, kFireflyFail = 2.0;
-// Furnace: the README's 2% (LUT and half-float rounding), 5% before it is visibly off.
+// Furnace: the 2% of docs/design-notes.md (LUT and half-float rounding), 5% before it is visibly off.
 constexpr double kFurnaceWarn = 0.02, kFurnaceFail = 0.05;
 // Seams: a step across an edge up to twice the step between neighbours inside a face is
 // what the texel geometry alone gives (edge texels are smaller); four times is a visible seam.

@@ -1,8 +1,8 @@
 // The split sum's own error, with the CPU core alone (no GL, no bake): on the bundled
 // courtyard, the N = V = R prefiltered radiance times the LUT's (F0 A + B) against the full
 // specular integral, both summed over every texel of the same 256 x 128 map. This is the bias
-// that makes `iblab bench` find split-sum's error flat in every prefilter setting (README,
-// Results; docs/bake.md): at normal incidence the two agree to about 10%, but where the view
+// that makes `iblab bench` find split-sum's error flat in every prefilter setting (docs/results.md;
+// docs/bake.md): at normal incidence the two agree to about 10%, but where the view
 // grazes and the lobe's stretched footprint sees darker surroundings than its N = V = R
 // circle, the split sum is more than twice the integral.
 #include <cmath>
