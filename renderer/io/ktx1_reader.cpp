@@ -6,6 +6,7 @@
 
 #include "io/error.hpp"
 #include "io/ktx_cube.hpp"
+#include "io/ktx_format.hpp"
 
 namespace iblab {
 
@@ -18,12 +19,12 @@ constexpr std::size_t kHeaderBytes = 64; // identifier (12) + 13 UInt32 (section
 std::optional<TexelFormat> ktx1Format(std::uint32_t internalFormat)
 {
     switch (internalFormat) {
-    case 0x8C3A: return TexelFormat::R11G11B10F; // GL_R11F_G11F_B10F
+    case ktx::kGlR11fG11fB10f: return TexelFormat::R11G11B10F;
     case 0x8C3D: return TexelFormat::RGB9E5;     // GL_RGB9_E5
     case 0x881B: return TexelFormat::RGB16F;     // GL_RGB16F
-    case 0x881A: return TexelFormat::RGBA16F;    // GL_RGBA16F
+    case ktx::kGlRgba16f: return TexelFormat::RGBA16F;
     case 0x8815: return TexelFormat::RGB32F;     // GL_RGB32F
-    case 0x8814: return TexelFormat::RGBA32F;    // GL_RGBA32F
+    case ktx::kGlRgba32f: return TexelFormat::RGBA32F;
     default: return std::nullopt;
     }
 }
@@ -57,7 +58,7 @@ KtxCube parseKtx1Cube(std::span<const std::byte> bytes, std::string_view name, c
     // (0x01020304) would need its texels swapped too; no bake tool writes one.
     const std::uint32_t endianness = readU32(bytes, 12);
     if (endianness == 0x01020304u) throw Error(name, "big-endian KTX files are not supported");
-    if (endianness != 0x04030201u) throw Error(name, "bad KTX 1.1 endianness field " + std::to_string(endianness));
+    if (endianness != ktx::kKtx1Endianness) throw Error(name, "bad KTX 1.1 endianness field " + std::to_string(endianness));
     auto field = [&](int k) { return readU32(bytes, 16 + 4 * std::size_t(k)); };
     const std::uint32_t glType = field(0), glTypeSize = field(1), glFormat = field(2), glInternalFormat = field(3);
     const std::uint32_t width = field(5), height = field(6), depth = field(7), arrayElements = field(8), faces = field(9);

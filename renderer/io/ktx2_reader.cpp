@@ -5,6 +5,7 @@
 
 #include "io/error.hpp"
 #include "io/ktx_cube.hpp"
+#include "io/ktx_format.hpp"
 
 namespace iblab {
 
@@ -12,9 +13,8 @@ using namespace ktx_detail;
 
 namespace {
 
-// Identifier (12), 9 UInt32 (section 3.1), the index: 4 UInt32 and 2 UInt64 (section 3.2).
-constexpr std::size_t kHeaderBytes = 80;
-constexpr std::size_t kLevelIndexEntryBytes = 24; // byteOffset, byteLength, uncompressedByteLength
+constexpr std::size_t kHeaderBytes = ktx::kKtx2HeaderBytes;
+constexpr std::size_t kLevelIndexEntryBytes = ktx::kKtx2LevelIndexEntryBytes;
 
 std::optional<TexelFormat> vkFormat(std::uint32_t format)
 {
@@ -22,9 +22,9 @@ std::optional<TexelFormat> vkFormat(std::uint32_t format)
     case 122: return TexelFormat::R11G11B10F; // VK_FORMAT_B10G11R11_UFLOAT_PACK32 (R in the low bits)
     case 123: return TexelFormat::RGB9E5;     // VK_FORMAT_E5B9G9R9_UFLOAT_PACK32
     case 90: return TexelFormat::RGB16F;      // VK_FORMAT_R16G16B16_SFLOAT
-    case 97: return TexelFormat::RGBA16F;     // VK_FORMAT_R16G16B16A16_SFLOAT
+    case ktx::kVkR16g16b16a16Sfloat: return TexelFormat::RGBA16F;
     case 106: return TexelFormat::RGB32F;     // VK_FORMAT_R32G32B32_SFLOAT
-    case 109: return TexelFormat::RGBA32F;    // VK_FORMAT_R32G32B32A32_SFLOAT
+    case ktx::kVkR32g32b32a32Sfloat: return TexelFormat::RGBA32F;
     default: return std::nullopt;
     }
 }

@@ -10,6 +10,7 @@
 #include <Imath/half.h>
 
 #include "io/error.hpp"
+#include "io/ktx_format.hpp"
 
 namespace iblab {
 namespace ktx_detail {
@@ -161,15 +162,10 @@ const std::string* KtxCube::value(std::string_view key) const
     return nullptr;
 }
 
-namespace {
-constexpr unsigned char kKtx1Identifier[12] = {0xAB, 'K', 'T', 'X', ' ', '1', '1', 0xBB, '\r', '\n', 0x1A, '\n'};
-constexpr unsigned char kKtx2Identifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
-} // namespace
-
 KtxCube parseKtxCube(std::span<const std::byte> bytes, std::string_view name, const KtxReadOptions& options)
 {
-    if (bytes.size() >= 12 && std::memcmp(bytes.data(), kKtx1Identifier, 12) == 0) return parseKtx1Cube(bytes, name, options);
-    if (bytes.size() >= 12 && std::memcmp(bytes.data(), kKtx2Identifier, 12) == 0) return parseKtx2Cube(bytes, name, options);
+    if (bytes.size() >= 12 && std::memcmp(bytes.data(), ktx::kKtx1Identifier.data(), 12) == 0) return parseKtx1Cube(bytes, name, options);
+    if (bytes.size() >= 12 && std::memcmp(bytes.data(), ktx::kKtx2Identifier.data(), 12) == 0) return parseKtx2Cube(bytes, name, options);
     throw Error(name, "not a KTX file: it starts with neither the KTX 1.1 nor the KTX 2.0 identifier");
 }
 
