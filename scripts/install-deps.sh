@@ -20,6 +20,9 @@ packages=(
   libxxhash-dev
   # Tests: GoogleTest; zlib for the CRCs of the malformed-PNG corpus the tests write.
   libgtest-dev zlib1g-dev
+  # Tests and scripts/compare-cmgen.sh: Filament's cmgen (1.9.25), whose KTX bakes iblab
+  # imports and measures (imported_bake_test runs it on a map it writes; skipped without it).
+  libfilament-tools
   # OpenGL through Mesa: EGL headers (headless), the EGL and GLX vendors, llvmpipe's driver.
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   # The GUI tests drive a real GLFW window on a private X server (tests/gui/with-xvfb.sh).
