@@ -41,8 +41,8 @@ BakeSettings importedSettings(BakeSettings settings, const ImportedBake& importe
     // (filter.frag), the method iblab calls importance.
     settings.irradiance = imported.irradiance ? IrradianceMethod::Importance : IrradianceMethod::None;
     if (imported.irradiance) settings.importance.faceSize = imported.irradiance->width;
-    // The tool's SH as it is: no window of iblab's on top.
-    if (imported.shIrradiance) settings.sh.window = ShWindow::None;
+    // The tool's SH as it is: no window of iblab's on top (iblab's own carries its window).
+    if (imported.shIrradiance) settings.sh.window = imported.shWindowed ? imported.shWindowed->window : ShWindow::None;
     return settings;
 }
 
@@ -173,9 +173,15 @@ void BakeJob::planImported()
                               out.radiance = projectEquirect(image_);
                               out.irradiance = convolveWithCosineLobe(out.radiance);
                           }
-                          out.window = ShWindow::None;
-                          out.windowWidth = 0.0;
-                          out.irradianceWindowed = out.irradiance;
+                          if (imported_->shWindowed) {
+                              out.window = imported_->shWindowed->window;
+                              out.windowWidth = imported_->shWindowed->width;
+                              out.irradianceWindowed = imported_->shWindowed->irradiance;
+                          } else {
+                              out.window = ShWindow::None;
+                              out.windowWidth = 0.0;
+                              out.irradianceWindowed = out.irradiance;
+                          }
                       }});
     planLuts();
     for (const Step& step : steps_)

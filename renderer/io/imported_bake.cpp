@@ -3,13 +3,19 @@
 #include "io/imported_bake.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "ibl/conventions.hpp"
 #include "io/error.hpp"
+#include "io/image_codec_direct.hpp"
+#include "io/image_writer.hpp"
 #include "io/ktx_cube.hpp"
 
 namespace iblab {
@@ -146,6 +152,103 @@ std::shared_ptr<ImportedBake> loadKhronos(const std::string& spec)
     return bake;
 }
 
+// A cube level of an iblab bake directory: an RGB EXR strip of size x 6 size.
+ImageRGB32F readIblabStrip(const fs::path& path, int size)
+{
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw Error(path.string(), "missing (bake.json lists it)");
+    ImageRGB32F strip(size, 6 * size);
+    readExrDirect(path.string(), {.width = size, .height = 6 * size, .channels = 3, .pixelValues = 3, .type = ExrPixelType::Float, .data = strip.texels.data()});
+    for (float& v : strip.texels)
+        if (!std::isfinite(v) || v < 0.0f) throw Error(path.string(), "holds a NaN, infinite or negative texel");
+    return strip;
+}
+
+nlohmann::json readJsonFile(const fs::path& path)
+{
+    std::ifstream in(path);
+    if (!in) throw Error(path.string(), "cannot open");
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) throw Error(path.string(), "not a JSON object");
+    return j;
+}
+
+// A cube's face size from bake.json ({"face_size": n, ...}), checked.
+int faceSizeOf(const nlohmann::json& meta, const std::string& key, const fs::path& file)
+{
+    const auto it = meta.find(key);
+    if (it == meta.end() || !it->is_object() || !it->contains("face_size") || !(*it)["face_size"].is_number_integer())
+        throw Error(file.string(), key + ".face_size is missing");
+    const int size = (*it)["face_size"].get<int>();
+    if (size < 1 || size > 8192) throw Error(file.string(), key + ".face_size " + std::to_string(size) + " is out of range");
+    return size;
+}
+
+SH9Color shOf(const nlohmann::json& sh, const std::string& key, const fs::path& file)
+{
+    SH9Color out;
+    const auto it = sh.find(key);
+    if (it == sh.end() || !it->is_array() || it->size() != 9) throw Error(file.string(), key + " is not 9 RGB coefficients");
+    for (std::size_t i = 0; i < 9; ++i) {
+        const nlohmann::json& c = (*it)[i];
+        if (!c.is_array() || c.size() != 3) throw Error(file.string(), key + " is not 9 RGB coefficients");
+        for (int k = 0; k < 3; ++k) {
+            if (!c[std::size_t(k)].is_number()) throw Error(file.string(), key + " is not 9 RGB coefficients");
+            out.c[i][k] = c[std::size_t(k)].get<double>();
+        }
+    }
+    return out;
+}
+
+// iblab's own `bake --out` directory (bake/bake_files.hpp). The roughness layout is told
+// from bake.json's roughness_per_mip, which states what each mip holds.
+std::shared_ptr<ImportedBake> loadIblabDirectory(const std::string& spec)
+{
+    const fs::path dir(spec);
+    const fs::path metaPath = dir / "bake.json";
+    const nlohmann::json meta = readJsonFile(metaPath);
+    auto bake = std::make_shared<ImportedBake>();
+    bake->kind = ImportedBakeKind::Iblab;
+    bake->files.push_back(metaPath.string());
+    const int prefilterSize = faceSizeOf(meta, "prefiltered", metaPath);
+    const nlohmann::json& roughness = meta["prefiltered"].value("roughness_per_mip", nlohmann::json::array());
+    const int levels = int(roughness.size());
+    if (levels < 1 || levels > int(std::bit_width(unsigned(prefilterSize))))
+        throw Error(metaPath.string(), "prefiltered.roughness_per_mip lists " + std::to_string(levels) + " mips for a " + std::to_string(prefilterSize) + "^2 cube");
+    bool linear = true, quadratic = true;
+    for (int m = 0; m < levels; ++m) {
+        if (!roughness[std::size_t(m)].is_number()) throw Error(metaPath.string(), "prefiltered.roughness_per_mip holds a non-number");
+        const double r = roughness[std::size_t(m)].get<double>();
+        const double t = levels > 1 ? double(m) / double(levels - 1) : 0.0;
+        linear = linear && std::abs(r - t) < 1e-4;
+        quadratic = quadratic && std::abs(r - (1.0 - std::sqrt(1.0 - t))) < 1e-4;
+    }
+    if (!linear && !quadratic) throw Error(metaPath.string(), "prefiltered.roughness_per_mip follows neither the linear nor the quadratic layout");
+    bake->roughnessLayout = quadratic && !linear ? 1 : 0;
+    for (int m = 0; m < levels; ++m) {
+        const fs::path file = dir / ("prefiltered_mip" + std::to_string(m) + ".exr");
+        bake->prefiltered.push_back(readIblabStrip(file, std::max(prefilterSize >> m, 1)));
+        bake->files.push_back(file.string());
+    }
+    bake->sky = readIblabStrip(dir / "environment.exr", faceSizeOf(meta, "environment_cube", metaPath));
+    bake->files.push_back((dir / "environment.exr").string());
+    for (const auto& [key, value] : meta.items())
+        if (key.rfind("irradiance_", 0) == 0 && value.is_object()) {
+            const fs::path file = dir / (key + ".exr");
+            bake->irradiance = readIblabStrip(file, faceSizeOf(meta, key, metaPath));
+            bake->files.push_back(file.string());
+            break;
+        }
+    const fs::path shPath = dir / "sh.json";
+    const nlohmann::json sh = readJsonFile(shPath);
+    bake->shIrradiance = shOf(sh, "irradiance", shPath);
+    ImportedBake::WindowedSh windowed{shOf(sh, "irradiance_windowed", shPath), ShWindow::None, sh.value("window_width", 0.0)};
+    windowed.window = parseEnum<ShWindow>(sh.value("window", std::string("none"))).value_or(ShWindow::None);
+    bake->shWindowed = windowed;
+    bake->files.push_back(shPath.string());
+    return bake;
+}
+
 } // namespace
 
 AxisMap AxisMap::inverse() const
@@ -239,12 +342,15 @@ bool isImportedBakeSpec(const std::string& spec)
 {
     if (endsWith(spec, ".ktx") || endsWith(spec, ".ktx2")) return true;
     std::error_code ec;
-    return fs::is_directory(spec, ec) && khronosPairIn(spec).has_value();
+    return fs::is_directory(spec, ec) && (khronosPairIn(spec).has_value() || fs::is_regular_file(fs::path(spec) / "bake.json", ec));
 }
 
 std::shared_ptr<const ImportedBake> loadImportedBake(const std::string& spec, ImageRGB32F& equirect)
 {
-    std::shared_ptr<ImportedBake> bake = endsWith(spec, ".ktx") ? loadCmgen(spec) : loadKhronos(spec);
+    std::error_code ec;
+    std::shared_ptr<ImportedBake> bake = endsWith(spec, ".ktx")                                  ? loadCmgen(spec)
+                                         : fs::is_regular_file(fs::path(spec) / "bake.json", ec) ? loadIblabDirectory(spec)
+                                                                                                 : loadKhronos(spec);
     equirect = cubeStripToEquirect(bake->sky, 4 * bake->sky.width);
     return bake;
 }

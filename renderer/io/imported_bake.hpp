@@ -12,6 +12,7 @@
 //   diffuse.ktx2 (or ggx/ and        GGX specular cube with lod = roughness x (levels - 1),
 //   lambertian/ subfolders)          Lambertian diffuse cube
 //   SPECULAR.ktx2,DIFFUSE.ktx2       the same pair named explicitly
+//   DIR with bake.json               iblab's own `iblab bake --out DIR` (bake/bake_files.hpp)
 // Every failure is an iblab::Error naming the file and the problem.
 #include <array>
 #include <memory>
@@ -26,7 +27,7 @@
 
 namespace iblab {
 
-enum class ImportedBakeKind { Cmgen, Khronos };
+enum class ImportedBakeKind { Cmgen, Khronos, Iblab };
 
 struct ImportedBake {
     ImportedBakeKind kind = ImportedBakeKind::Cmgen;
@@ -41,6 +42,13 @@ struct ImportedBake {
     ImageRGB32F sky;                       // level 0 of the radiance cube, a strip
     std::optional<ImageRGB32F> irradiance; // E (a white sky of radiance 1 gives pi), a strip
     std::optional<SH9Color> shIrradiance;  // E_lm in kSh9Convention
+    // iblab's own bakes also carry their windowed SH (what their shading reads); others none.
+    struct WindowedSh {
+        SH9Color irradiance;
+        ShWindow window = ShWindow::None;
+        double width = 0.0;
+    };
+    std::optional<WindowedSh> shWindowed;
     std::vector<std::string> notes;        // one line each: what the import assumed or repaired
 };
 
