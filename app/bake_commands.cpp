@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "asset_paths.hpp"
+#include "bake_export.hpp"
 #include "bake/bake_accuracy.hpp"
 #include "bake/bake_cache.hpp"
 #include "bake/bake_files.hpp"
@@ -55,6 +56,7 @@ struct BakeCommandOptions {
     RecordedFieldOptions<bake::BakeSettings> overrides;
     std::optional<std::string> lutGeometry;
     std::string out;
+    std::optional<std::string> exportFormat; // engine layout instead of iblab's files in --out
     std::string cacheDir;
     bool json = false;
     bool noCache = false;
@@ -207,7 +209,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // process, Mesa's disk cache or not); the result and timings are the last run's.
     // The pixels are moved into the job when nothing reads them after it (the errors and
     // --repeat do): a copy is 6 MB of fresh pages for a 1024x512 map, a few ms.
-    const bool pixelsNeededAfter = !o.noErrors || o.repeat > 1;
+    const bool pixelsNeededAfter = !o.noErrors || o.repeat > 1 || o.exportFormat;
     bake::BakeResult result =
         bake::BakeJob(shaders, pixelsNeededAfter ? Environment(environment) : std::move(environment), settings, &cache).runToCompletion();
     std::vector<double> totals{result.totalMilliseconds};
@@ -220,7 +222,10 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     if (cache.enabled()) accuracy.referenceCacheDirectory = cache.root() / "reference";
     if (!o.noErrors) errors = bake::measureBakeErrors(result, environment.image, shaders, accuracy);
 
-    if (!map.out.empty()) {
+    ordered_json exported;
+    if (!map.out.empty() && o.exportFormat) {
+        exported = writeEngineExport(shaders, environment, result, *o.exportFormat, map.out, o.json);
+    } else if (!map.out.empty()) {
         const std::filesystem::path dir(map.out);
         ordered_json extra;
         if (errors) extra["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
@@ -287,6 +292,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     if (errors) j["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
     j["notes"] = notes;
     if (!map.out.empty()) j["output"] = map.out;
+    if (!exported.is_null()) j["export"] = exported;
     return j;
 }
 
@@ -396,6 +402,7 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
     mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
     try {
         const bake::BakeSettings settings = resolveSettings(o);
+        if (o.exportFormat && o.out.empty()) throw Error("--export", "needs --out DIR, the directory to write the engine's files to");
         const std::vector<std::string> maps = expandEnvironments(o.environments);
         // One map named as one --env keeps the single report scripts read; a directory or
         // several maps make a batch.
@@ -544,6 +551,8 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     o->overrides.add(*c, bake::bakeSettingsFields());
     c->add_option("--lut-geometry", o->lutGeometry, "LUT geometry terms: " + enumChoicesText<GeometryTerm>() + ", both or none");
     c->add_option("--out", o->out, "Write the results to DIR (EXR + JSON, see docs/bake.md)");
+    c->add_option("--export", o->exportFormat, "Write --out as an engine loads it: filament, khronos or bevy (docs/engine-export.md)")
+        ->check([](const std::string& v) { return checkExportFormat(v); });
     c->add_option("--cache-dir", o->cacheDir, "Cache directory (default $IBLAB_CACHE_DIR, $XDG_CACHE_HOME/iblab or ~/.cache/iblab)");
     c->add_flag("--no-cache", o->noCache, "Neither read nor write the cache's files (a batch still bakes its LUTs once)");
     c->add_flag("--no-errors", o->noErrors, "Skip the comparison with the exact references");

@@ -18,6 +18,7 @@
 #include <imgui_impl_opengl3.h>
 #include <imgui_internal.h>
 
+#include "bake_export.hpp"
 #include "asset_paths.hpp"
 #include "command_support.hpp"
 #include "frame/camera.hpp"
@@ -327,6 +328,7 @@ struct GuiApp::Impl {
             if (!panels.presetStatus.isError) savedSettings = settings;
         }
         if (requests.exportModel) panels.sceneStatus = session.exportModel(*requests.exportModel, settings);
+        if (requests.exportBake) panels.bakeStatus = exportCurrentBake(session, renderer.shaders(), *requests.exportBake, panels.bakeExportPath);
         if (requests.applyConvention)
             if (const ConventionPreset* convention = findConvention(*requests.applyConvention)) {
                 session.setBakeSettings(conventionBakeSettings(*convention));

@@ -20,13 +20,17 @@ packages=(
   libxxhash-dev
   # Tests: GoogleTest; zlib for the CRCs of the malformed-PNG corpus the tests write.
   libgtest-dev zlib1g-dev
-  # Tests and scripts/compare-cmgen.sh: Filament's cmgen (1.9.25), whose KTX bakes iblab
-  # imports and measures (imported_bake_test runs it on a map it writes; skipped without it).
-  libfilament-tools
   # OpenGL through Mesa: EGL headers (headless), the EGL and GLX vendors, llvmpipe's driver.
   libegl-dev libegl-mesa0 libglx-mesa0 libgl1-mesa-dri
   # The GUI tests drive a real GLFW window on a private X server (tests/gui/with-xvfb.sh).
   xvfb
+  # The export tests' readers that iblab did not write (tests/gl/engine_export_gltest.cpp):
+  # Filament's KTX 1 reader (KtxBundle in libfilament_image, headers in libfilament-dev), its
+  # cmgen (libfilament-tools) for the SH comparison, and node + npm to run npm's ktx-parse on
+  # the KTX 2.0 files (scripts/install-ktx-parse.sh installs it from tests/ktx2's lockfile).
+  # cmgen's own bakes are also what the import is tested on (imported_bake_test runs it on a
+  # map it writes) and what scripts/compare-cmgen.sh measures against iblab's.
+  libfilament-dev libfilament-tools nodejs npm
   # scripts/fuzz.sh (run by CI): libFuzzer and the sanitizer runtimes of clang 14, and its
   # llvm-symbolizer (llvm-14): tests/sanitizer/lsan.supp matches function names, which a
   # leak report only has when its stack is symbolized.
@@ -43,3 +47,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${as_root[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+# The npm package of the export tests, at its locked version (as the invoking user, not root,
+# when run through sudo, so that the checkout stays theirs).
+if [ -n "${SUDO_USER:-}" ]; then sudo -u "$SUDO_USER" "$(dirname "$0")/install-ktx-parse.sh"; else "$(dirname "$0")/install-ktx-parse.sh"; fi

@@ -163,6 +163,14 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
     sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
     sliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
     drawStatus(state.environmentStatus);
+    static const char* const engines[] = {"filament", "khronos", "bevy"};
+    ImGui::SetNextItemWidth(90.0f);
+    ImGui::Combo("##engine", &state.bakeExportFormat, engines, 3);
+    ImGui::SameLine();
+    inputText("##bakeexport", state.bakeExportPath, sizeof state.bakeExportPath);
+    ImGui::SameLine();
+    if (button("Export")) requests.exportBake = engines[state.bakeExportFormat];
+    tooltip("Write the current bake as that engine loads it into the directory (docs/engine-export.md)");
     if (!state.activity.text.empty()) ImGui::ProgressBar(state.activity.progress, ImVec2(-1.0f, 0.0f), state.activity.text.c_str());
     drawStatus(state.bakeStatus);
 }

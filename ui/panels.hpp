@@ -55,6 +55,7 @@ struct UiRequests {
     std::optional<std::string> savePreset;      // lab settings as JSON
     std::optional<std::string> loadPreset;
     std::optional<std::string> exportModel;     // a copy of the loaded glTF with the tuned material
+    std::optional<std::string> exportBake;      // "filament", "khronos" or "bevy": the current bake into PanelState::bakeExportPath
     std::optional<std::string> applyConvention; // conventions.hpp: rebake and set the shading as that viewer does
     bool frameScene = false;
     bool sceneChanged = false;                  // the scene kind changed: frame it
@@ -134,6 +135,8 @@ struct PanelState {
     char modelPath[512] = "";
     char presetPath[512] = "iblab-preset.json";
     char exportPath[512] = "iblab-export.glb";
+    char bakeExportPath[512] = "iblab-ibl"; // the directory of the Environment panel's Export
+    int bakeExportFormat = 0;               // index into filament, khronos, bevy
     bool showPanels = true;
     float panelWidth = 420.0f; // the control window is docked at the left; the view takes the rest
     ViewRect viewRect;

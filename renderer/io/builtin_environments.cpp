@@ -34,6 +34,10 @@ std::vector<BuiltinEnvironmentInfo> makeRegistry()
                  {widthParameter(),
                   {"top", 1.0, 0, kHuge, false, "radiance of the upper hemisphere (y > 0)"},
                   {"ground", 0.1, 0, kHuge, false, "radiance of the lower hemisphere (y < 0)"}}});
+    r.push_back({"axes",
+                 "radiance (1 + d) / 2 per channel of direction d: +X (1, .5, .5), -X (0, .5, .5), and so on for Y (green) and Z "
+                 "(blue): a distinct colour in each axis direction, to check a cube map's orientation",
+                 {widthParameter()}});
     r.push_back({"sun",
                  "a sun disc of radiance sky + `intensity` on a uniform sky of radiance `sky`",
                  {widthParameter(),
@@ -464,6 +468,15 @@ ImageRGB32F makeBuiltinEnvironment(const BuiltinSpec& spec)
         return ImageRGB32F(w, w / 2);
     if (n == "sky")
         return makeSky(w, spec.get("top"), spec.get("ground"));
+    if (n == "axes") {
+        ImageRGB32F img(w, w / 2);
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < w; ++x) {
+                const glm::vec3 d = equirectUvToDirection(glm::vec2((x + 0.5f) / float(w), (y + 0.5f) / float(img.height)));
+                img.set(x, y, 0.5f * (glm::vec3(1.0f) + d));
+            }
+        return img;
+    }
     if (n == "sun") {
         ImageRGB32F img(w, w / 2);
         fill(img, glm::dvec3(spec.get("sky")));
