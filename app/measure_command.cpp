@@ -83,7 +83,7 @@ int runMeasure(const MeasureOptions& o)
         j["source"] = o.environment;
         j["bake"] = o.bake;
         j["files"] = result.source;
-        j["imported"] = {{"prefiltered", {{"face_size", result.prefiltered.size},
+        j["imported"] = {{"prefiltered", {{"size", result.prefiltered.size},
                                           {"levels", result.prefiltered.levels},
                                           {"layout", enumName(result.settings.prefilter.layout)}}},
                          {"irradiance_cube", bool(result.irradianceCube)}};

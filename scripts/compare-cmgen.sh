@@ -63,8 +63,8 @@ for row in sys.argv[1:]:
         cube = next((v for k, v in e["irradiance_shaded"].items() if k.startswith("cube_")), None)
         layout = report.get("imported", {}).get("prefiltered") or report["textures"]["prefiltered"]
         levels = layout["levels"]
-        bake = f"{tool} ({layout['face_size']}^2, {levels} mips)"
-        cube_text = f"{cube["mean_relative"]:.4f} / {cube["max_relative"]:.4f}" if cube else "none (SH only)"
+        bake = f"{tool} ({layout['size']}^2, {levels} mips)"
+        cube_text = f"{cube['mean_relative']:.4f} / {cube['max_relative']:.4f}" if cube else "none (SH only)"
         print(f"| {name} | {bake} | {ms} | {e['prefilter_shaded_rms']:.4f} | {worst['relative_rmse']:.4f} (mip {worst['mip']}, r {worst['roughness']:.2f}) "
-              f"| {sh["mean_relative"]:.4f} / {sh["max_relative"]:.4f} | {cube_text} |")
+              f"| {sh['mean_relative']:.4f} / {sh['max_relative']:.4f} | {cube_text} |")
 PY
