@@ -224,6 +224,7 @@ int runCommandLine(int argc, char** argv)
     commands.push_back(addConventionsCommand(app, processStart));
     commands.push_back(addBenchCommand(app, processStart));
     commands.push_back(addCompareCommand(app, processStart));
+    commands.push_back(addMeasureCommand(app, processStart));
 
     try {
         app.parse(argc, argv);

@@ -31,5 +31,6 @@ Command addStressCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addConventionsCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addBenchCommand(CLI::App& app, ProcessClock::time_point processStart);
 Command addCompareCommand(CLI::App& app, ProcessClock::time_point processStart);
+Command addMeasureCommand(CLI::App& app, ProcessClock::time_point processStart);
 
 } // namespace iblab::app

@@ -31,6 +31,8 @@ packages=(
   # Filament's KTX 1 reader (KtxBundle in libfilament_image, headers in libfilament-dev), its
   # cmgen (libfilament-tools) for the SH comparison, and node + npm to run npm's ktx-parse on
   # the KTX 2.0 files (scripts/install-ktx-parse.sh installs it from tests/ktx2's lockfile).
+  # cmgen's own bakes are also what the import is tested on (imported_bake_test runs it on a
+  # map it writes) and what scripts/compare-cmgen.sh measures against iblab's.
   libfilament-dev libfilament-tools nodejs npm
   # The Debian package (cpack -G DEB, scripts/package-check.sh): CPack's DEB generator finds
   # the runtime dependencies with dpkg-shlibdeps (dpkg-dev) and tells binaries by file(1).

@@ -27,6 +27,35 @@ int rowsPerStep(double budget, double rowCost, int size)
     return rows;
 }
 
+// The settings that describe an imported bake: its sizes, levels, layout and diffuse, so
+// that shading, the accuracy report and the files read it as they read iblab's own. The
+// sizes come from the files (checked by the KTX readers), not from the settings' ranges.
+BakeSettings importedSettings(BakeSettings settings, const ImportedBake& imported)
+{
+    settings.cube.faceSize = imported.sky.width;
+    settings.cube.maxFaceSize = std::max(settings.cube.maxFaceSize, imported.sky.width);
+    settings.prefilter.faceSize = imported.prefiltered.front().width;
+    settings.prefilter.levels = int(imported.prefiltered.size());
+    settings.prefilter.layout = RoughnessLayout(imported.roughnessLayout);
+    // The glTF-IBL-Sampler's Lambertian cube is cosine-weighted importance sampling
+    // (filter.frag), the method iblab calls importance.
+    settings.irradiance = imported.irradiance ? IrradianceMethod::Importance : IrradianceMethod::None;
+    if (imported.irradiance) settings.importance.faceSize = imported.irradiance->width;
+    // The tool's SH as it is: no window of iblab's on top (iblab's own carries its window).
+    if (imported.shIrradiance) settings.sh.window = imported.shWindowed ? imported.shWindowed->window : ShWindow::None;
+    return settings;
+}
+
+CubeImage cubeImageFromStrip(const ImageRGB32F& strip)
+{
+    CubeImage image(strip.width);
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < strip.width; ++row)
+            for (int x = 0; x < strip.width; ++x)
+                image.at(face, x, row) = glm::vec4(strip.at(x, face * strip.width + row), 1.0f);
+    return image;
+}
+
 } // namespace
 
 std::size_t BakeResult::gpuBytes() const
@@ -52,7 +81,8 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const Bake
     if (environment.image.empty())
         throw Error(environment.source, "cannot bake an empty environment");
     image_ = std::move(environment.image);
-    result_.settings = settings;
+    imported_ = std::move(environment.imported);
+    result_.settings = imported_ ? importedSettings(settings, *imported_) : settings;
     result_.source = environment.source;
     result_.contentHash = environment.contentHash;
     result_.sourceWidth = image_.width;
@@ -112,8 +142,58 @@ void BakeJob::planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int
         }
 }
 
+void BakeJob::planImported()
+{
+    const BakeSettings& s = result_.settings;
+    const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
+    steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost,
+                      [this] { passes_.compileFor(result_.settings, 1, compilesLut(result_.settings, cache_)); }});
+    const double texels = 6.0 * s.prefilter.faceSize * s.prefilter.faceSize;
+    steps_.push_back({BakePhase::Upload, StepGroup::Environment, texels, [this, format] {
+                          const ImportedBake& in = *imported_;
+                          const int skyLevels = std::bit_width(unsigned(in.sky.width));
+                          result_.environmentCube = createCubeTexture(format, in.sky.width, skyLevels);
+                          uploadCubeLevel(result_.environmentCube, 0, cubeImageFromStrip(in.sky));
+                          passes_.generateMips(result_.environmentCube);
+                          if (in.irradiance) {
+                              result_.irradianceCube = createCubeTexture(format, in.irradiance->width, 1);
+                              uploadCubeLevel(result_.irradianceCube, 0, cubeImageFromStrip(*in.irradiance));
+                          }
+                          result_.prefiltered = createCubeTexture(format, in.prefiltered.front().width, int(in.prefiltered.size()));
+                          for (std::size_t level = 0; level < in.prefiltered.size(); ++level)
+                              uploadCubeLevel(result_.prefiltered, int(level), cubeImageFromStrip(in.prefiltered[level]));
+                      }});
+    steps_.push_back({BakePhase::Sh9, StepGroup::Environment, texels, [this] {
+                          ShResult& out = result_.sh;
+                          if (imported_->shIrradiance) {
+                              out.irradiance = *imported_->shIrradiance;
+                              for (int i = 0; i < kSh9Count; ++i)
+                                  out.radiance.c[std::size_t(i)] = out.irradiance.c[std::size_t(i)] / cosineLobeBandFactor(sh9Band(i));
+                          } else {
+                              out.radiance = projectEquirect(image_);
+                              out.irradiance = convolveWithCosineLobe(out.radiance);
+                          }
+                          if (imported_->shWindowed) {
+                              out.window = imported_->shWindowed->window;
+                              out.windowWidth = imported_->shWindowed->width;
+                              out.irradianceWindowed = imported_->shWindowed->irradiance;
+                          } else {
+                              out.window = ShWindow::None;
+                              out.windowWidth = 0.0;
+                              out.irradianceWindowed = out.irradiance;
+                          }
+                      }});
+    planLuts();
+    for (const Step& step : steps_)
+        totalCost_ += step.cost;
+}
+
 void BakeJob::plan()
 {
+    if (imported_) {
+        planImported();
+        return;
+    }
     const BakeSettings& s = result_.settings;
     const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
     const double sourceTexels = double(result_.sourceWidth) * double(result_.sourceHeight);

@@ -96,6 +96,8 @@ private:
         gl::Fence fence;
     };
     void plan();
+    // An imported bake (Environment::imported): its cubes are uploaded, not baked.
+    void planImported();
     void planLuts();
     void planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
                         const std::function<void(const CubeSlice&)>& run);
@@ -108,6 +110,7 @@ private:
     BakeCache* cache_;
     BakeResult result_;
     ImageRGB32F image_;
+    std::shared_ptr<const ImportedBake> imported_;
     gl::Texture equirect_;
     MomentTexels momentTexels_; // irradiance_moments' groups, between its steps
     std::optional<PrefilterBrightTexels> bright_; // the prefilter's split, between its steps

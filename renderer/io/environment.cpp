@@ -480,6 +480,14 @@ Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOption
         throw Error("(no environment)", "empty file name");
     if (isBuiltinSpec(spec))
         return loadBuiltin(spec, options);
+    if (isImportedBakeSpec(spec)) {
+        Environment environment;
+        environment.source = spec;
+        environment.imported = rethrowAsError(spec, "reading the bake", "cannot read", [&] { return loadImportedBake(spec, environment.image); });
+        environment.warnings = environment.imported->notes;
+        environment.contentHash = contentHash(environment.image);
+        return environment;
+    }
     // The image libraries below OpenImageIO throw on their own (std::bad_alloc for a header
     // that asks for more than the machine has, std::exception from OpenEXR): every way out
     // of a file load is one Error naming the file.

@@ -8,10 +8,12 @@
 // Failures throw iblab::Error with a one-line message naming the file; nothing else
 // changes, so a caller keeps the environment it had.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "ibl/image.hpp"
+#include "io/imported_bake.hpp"
 
 namespace iblab {
 
@@ -88,6 +90,9 @@ struct Environment {
     TexelRepairReport repair;    // measured on the input at its original resolution
     std::vector<std::string> warnings; // one line each: LDR input, downsampling, repairs
     std::uint64_t contentHash = 0;     // contentHash(image), keys the on-disk bake cache
+    // Another tool's bake (imported_bake.hpp): image is its sky, and BakeJob uploads these
+    // cubes instead of baking them. Null for a map.
+    std::shared_ptr<const ImportedBake> imported;
 };
 
 // The smallest file accepted as an environment: 8x4 (a cube of 2x2 faces).
@@ -95,6 +100,7 @@ inline constexpr int kMinEnvironmentWidth = 8;
 // Texels in one tile of a tiled file (real files use 32x32 to 512x512; this is 2048x2048).
 inline constexpr std::uint64_t kMaxTileTexels = std::uint64_t(1) << 22;
 
+// Also takes another tool's bake (isImportedBakeSpec: .ktx, .ktx2, a KTX2 pair's directory).
 // Loads a file (any format OpenImageIO reads: .exr including DWAB, .hdr, .png, .jpg, ...)
 // or a builtin. Files must be 2:1 (+-1 texel of rounding). Grey inputs are replicated to
 // RGB, alpha and extra channels are dropped. 8-bit inputs or inputs whose values never
