@@ -161,6 +161,7 @@ int runCommandLine(int argc, char** argv)
                    throw CLI::ValidationError("--window-size", "expected WIDTHxHEIGHT between 320x240 and 16384x16384, got \"" + value + "\"");
                gui.width = width;
                gui.height = height;
+               gui.windowSizeGiven = true;
            },
            "GUI window size, WIDTHxHEIGHT")
         ->default_str("1280x720");
