@@ -203,6 +203,7 @@ int runCommandLine(int argc, char** argv)
                    throw CLI::ValidationError("--window-size", "expected WIDTHxHEIGHT between 320x240 and 16384x16384, got \"" + value + "\"");
                gui.width = width;
                gui.height = height;
+               gui.windowSizeGiven = true;
            },
            "GUI window size, from 320x240 to 16384x16384")
         ->type_name("WxH")

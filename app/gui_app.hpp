@@ -4,11 +4,13 @@
 // frame loop and shutdown. Scripts (gui_script.hpp) drive the same GuiApp through its input
 // queue and read state() to check what a user would see.
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "gui_platform.hpp"
+#include "gui_prefs.hpp"
 #include "frame/settings.hpp"
 
 namespace iblab::ui {
@@ -26,6 +28,9 @@ struct GuiOptions {
     std::string script;      // a GUI script (gui_script.hpp): run it, then exit with its verdict
     bool offscreen = false;  // no window: the GUI frame in a headless EGL context
     std::string coverageOut; // with a script: write the controls it showed and used (JSON)
+    bool windowSizeGiven = false; // --window-size: it wins over the remembered size
+    // What the last session left (gui_prefs.hpp); nullopt on the first run.
+    std::optional<GuiPrefs> remembered;
 };
 
 class GuiApp {
@@ -57,6 +62,8 @@ public:
     // The next frame keeps a copy of what it drew, for lastPixels().
     void requestPixels();
     const ui::ItemRegistry& items() const;
+    // What to remember for the next session: open sections, paths, the window's size.
+    GuiPrefs prefs() const;
     int glErrorCount() const;
 
 private:

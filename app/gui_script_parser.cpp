@@ -33,7 +33,8 @@ const std::map<std::string, CommandShape>& commandShapes()
         {"close", {0, 0}},        {"expect", {3, 3}},         {"expect-item", {1, 1}},    {"expect-no-item", {1, 1}},
         {"expect-pixel", {5, 6}}, {"expect-mean", {3, 7}},    {"snapshot", {1, 6}},       {"expect-changed", {1, 2}},
         {"expect-unchanged", {1, 2}}, {"screenshot", {1, 1}}, {"print", {1, 1}},          {"sleep", {1, 1}},
-        {"list-items", {0, 1}},
+        {"list-items", {0, 1}},   {"timed-keys", {3, 3}},     {"timed-click", {1, 3}},    {"expect-within", {4, 4}},
+        {"remember", {1, 1}},     {"expect-same", {1, 1}},
     };
     return shapes;
 }

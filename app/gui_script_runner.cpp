@@ -187,6 +187,23 @@ public:
                 if (a.empty() || shown.path.compare(0, a[0].size(), a[0]) == 0)
                     std::printf("  %-60s %-8s (%.0f, %.0f)-(%.0f, %.0f)\n", shown.path.c_str(), shown.kind.c_str(), shown.min.x, shown.min.y, shown.max.x,
                                 shown.max.y);
+        } else if (c == "timed-keys") {
+            timedKeys(*parseKeyChord(a[0]), int(need(number(a[1]), "a count")), need(number(a[2]), "seconds"));
+        } else if (c == "timed-click") {
+            std::size_t i = 0;
+            const ImVec2 p = target(a, i);
+            const int button = i < a.size() ? mouseButton(a[i]) : 0;
+            moveTo(p);
+            push({.type = InputEvent::Type::MouseButton, .code = button, .pressed = true});
+            push({.type = InputEvent::Type::MouseButton, .code = button, .pressed = false});
+            lastArrival_ = Clock::now();
+        } else if (c == "expect-within") {
+            expectWithin(need(number(a[0]), "milliseconds"), a[1], a[2], a[3]);
+        } else if (c == "remember" || c == "expect-same") {
+            const nlohmann::json value = rememberable(a[0]);
+            if (c == "remember") remembered_[a[0]] = value;
+            else if (!remembered_.contains(a[0])) throw StepFailed("nothing remembered at " + a[0]);
+            else if (remembered_[a[0]] != value) throw StepFailed(a[0] + " is " + value.dump() + ", was " + remembered_[a[0]].dump());
         } else if (c == "sleep") {
             const auto until = Clock::now() + std::chrono::milliseconds(int(need(number(a[0]), "milliseconds")));
             while (Clock::now() < until) frames(1);
@@ -221,6 +238,66 @@ private:
     void push(InputEvent event) { app_.input().push(std::move(event)); }
     void moveTo(ImVec2 p) { push({.type = InputEvent::Type::CursorMoved, .x = p.x, .y = p.y}); }
     void key(int code, bool pressed) { push({.type = InputEvent::Type::Key, .code = code, .pressed = pressed}); }
+
+    // A state value at a JSON pointer, or with "item:PATH" a control's rectangle.
+    nlohmann::json rememberable(const std::string& what)
+    {
+        if (what.compare(0, 5, "item:") == 0) {
+            const ui::TrackedItem& control = item(what.substr(5));
+            return {control.min.x, control.min.y, control.max.x, control.max.y};
+        }
+        const nlohmann::json state = app_.state();
+        const nlohmann::json::json_pointer pointer(what);
+        return state.contains(pointer) ? state.at(pointer) : nlohmann::json();
+    }
+
+    // COUNT presses of a chord spread evenly over SECONDS of wall time, each pushed when it is
+    // due, between frames, as a window's event loop polls them: a frame that takes long sees
+    // what arrived meanwhile all at once. Returns after the last release, running no more frames.
+    void timedKeys(const KeyChord& chord, int count, double seconds)
+    {
+        struct Due {
+            Clock::time_point at;
+            int code;
+            bool pressed;
+        };
+        std::vector<Due> events;
+        const auto start = Clock::now();
+        const double interval = count > 1 ? seconds / double(count - 1) : 0.0;
+        for (int n = 0; n < count; ++n) {
+            const auto press = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval * n));
+            const auto release = press + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(0.5 * interval));
+            for (int m : chord.modifiers) events.push_back({press, m, true});
+            events.push_back({press, chord.key, true});
+            events.push_back({release, chord.key, false});
+            for (int m : chord.modifiers) events.push_back({release, m, false});
+            lastArrival_ = press;
+        }
+        for (std::size_t next = 0; next < events.size();) {
+            while (next < events.size() && events[next].at <= Clock::now()) {
+                key(events[next].code, events[next].pressed);
+                ++next;
+            }
+            if (next < events.size()) frames(1);
+        }
+    }
+
+    // Runs frames until the state check passes, and fails when that took longer than `ms`
+    // after the last input of a timed step arrived. Prints the time it took.
+    void expectWithin(double ms, const std::string& pointer, const std::string& op, const std::string& value)
+    {
+        std::string why;
+        const int giveUpMs = std::max(10000, int(5.0 * ms));
+        const auto giveUp = lastArrival_ + std::chrono::milliseconds(giveUpMs);
+        while (!checkState(app_.state(), pointer, op, value, why)) {
+            if (Clock::now() > giveUp) throw StepFailed("still not " + pointer + " " + op + " " + value + " " + std::to_string(giveUpMs) + " ms after the input (last: " + why + ")");
+            frames(1);
+        }
+        const double took = std::chrono::duration<double, std::milli>(Clock::now() - lastArrival_).count();
+        std::printf("expect-within: %s %s %s %.0f ms after the input (limit %.0f ms)\n", pointer.c_str(), op.c_str(), value.c_str(), took, ms);
+        std::fflush(stdout);
+        if (took > ms) throw StepFailed(pointer + " " + op + " " + value + " took " + std::to_string(int(took)) + " ms, over " + std::to_string(int(ms)));
+    }
 
     void typeText(const std::string& text)
     {
@@ -401,7 +478,9 @@ private:
 
     GuiApp& app_;
     std::map<std::string, Snapshot> snapshots_;
+    std::map<std::string, nlohmann::json> remembered_;
     int frames_ = 0;
+    Clock::time_point lastArrival_ = Clock::now(); // of the last input of a timed step
 };
 
 void writeCoverage(const std::string& path, const ui::ItemRegistry& items)

@@ -40,6 +40,10 @@ if [ -z "${DISPLAY:-}" ]; then
   exit 0
 fi
 gui_runs=$(( runs < 5 ? runs : 5 ))
+# The default window, whatever size this user's GUI remembers (and nothing saved over it).
+gui_config=$(mktemp -d)
+trap 'rm -rf "$cache" "$gui_config"' EXIT
+export XDG_CONFIG_HOME="$gui_config"
 "$iblab" bake --env assets/environments/courtyard.exr --no-errors > /dev/null # the bake cache the GUI loads
 best_wall="" best_own=""
 for _ in $(seq "$gui_runs"); do

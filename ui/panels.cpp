@@ -15,23 +15,13 @@
 #include "ibl/error_metrics.hpp"
 #include "ibl/tonemap.hpp"
 #include "ui/field_widgets.hpp"
+#include "ui/help_window.hpp"
 #include "ui/overlays.hpp"
+#include "ui/status_area.hpp"
 #include "ui/widgets.hpp"
 
 namespace iblab::ui {
 namespace {
-
-void drawStatus(const StatusLine& status)
-{
-    if (status.text.empty()) return;
-    const ImVec4 colour = status.isError ? ImVec4(1.0f, 0.45f, 0.4f, 1.0f) : ImVec4(0.6f, 0.85f, 0.6f, 1.0f);
-    ImGui::PushStyleColor(ImGuiCol_Text, colour);
-    ImGui::TextWrapped("%s", status.text.c_str());
-    ImGui::PopStyleColor();
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    for (const std::string& note : status.notes) ImGui::TextWrapped("note: %s", note.c_str());
-    ImGui::PopStyleColor();
-}
 
 // A warning in amber, wrapped at the panel's edge.
 void drawWarning(const char* text)
@@ -162,7 +152,6 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
         requests.loadEnvironment = std::move(*path);
     sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
     sliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
-    drawStatus(state.environmentStatus);
     static const char* const engines[] = {"filament", "khronos", "bevy"};
     ImGui::SetNextItemWidth(90.0f);
     if (Combo combo("##engine", engines[state.bakeExportFormat]); combo)
@@ -173,8 +162,8 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
     ImGui::SameLine();
     if (button("Export")) requests.exportBake = engines[state.bakeExportFormat];
     tooltip("Write the current bake as that engine loads it into the directory (docs/engine-export.md)");
-    if (!state.activity.text.empty()) ImGui::ProgressBar(state.activity.progress, ImVec2(-1.0f, 0.0f), state.activity.text.c_str());
-    drawStatus(state.bakeStatus);
+    // The map's line and notes, the load or bake under way, the bake's line.
+    drawStatusArea("##environment status", {&state.environmentStatus, &state.bakeStatus}, 6, &state.activity);
 }
 
 void drawToneMapPanel(ToneMapSettings& settings)
@@ -450,7 +439,7 @@ void drawScenePanel(SceneSettings& settings, ShadingMethod method, PanelState& s
         if (button("Export glTF")) requests.exportModel = std::string(state.exportPath);
         tooltip("A copy of the model with the material sliders' factors (.glb or .gltf)");
     }
-    drawStatus(state.sceneStatus);
+    drawStatusArea("##scene status", {&state.sceneStatus}, 3);
 }
 
 void drawViewPanel(ViewSettings& settings)
@@ -475,8 +464,11 @@ void drawPresetPanel(PanelState& state, UiRequests& requests)
     tooltip("Ctrl+S");
     ImGui::SameLine();
     if (button("Load")) requests.loadPreset = std::string(state.presetPath);
-    if (state.unsavedChanges) ImGui::TextDisabled("unsaved changes");
-    drawStatus(state.presetStatus);
+    if (state.unsavedChanges) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("unsaved changes");
+    }
+    drawStatusArea("##preset status", {&state.presetStatus}, 2);
 }
 
 void drawCapturePanel(PanelState& state, UiRequests& requests)
@@ -490,7 +482,7 @@ void drawCapturePanel(PanelState& state, UiRequests& requests)
     ImGui::TextWrapped(".png: tone-mapped sRGB; .exr: linear HDR. A capture never replaces a file: a taken name gets -2, -3, ...; F12 names "
                        "it automatically.");
     ImGui::PopStyleColor();
-    drawStatus(state.captureStatus);
+    drawStatusArea("##capture status", {&state.captureStatus}, 2);
 }
 
 void drawQuitDialog(PanelState& state, UiRequests& requests)
@@ -623,6 +615,11 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
     // Controls take a little over half the width and their labels the rest, so that labels
     // stay inside the panel at its default width.
     ImGui::PushItemWidth(std::floor(ImGui::GetWindowWidth() * 0.55f));
+    if (state.firstRunHint) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.85f, 0.4f, 1.0f));
+        ImGui::TextWrapped("%s", kFirstRunHint);
+        ImGui::PopStyleColor();
+    }
     drawStatsOverlay(stats);
     drawEnvironmentPanel(settings.environment, state, requests);
     drawScenePanel(settings.scene, settings.sampling.method, state, requests);

@@ -144,6 +144,8 @@ struct PanelState {
     ViewRect viewRect;
     QuitDialogState quitDialog;
     bool unsavedChanges = false; // settings differ from the last saved or loaded preset
+    bool helpOpen = false;       // the Help window (F1)
+    bool firstRunHint = false;   // the panel's first line says where to start
 };
 
 void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRequests& requests);

@@ -86,8 +86,26 @@ Result recorded(Result result, const char* label, std::string_view kind)
 
 } // namespace
 
-Section::Section(const char* label, bool defaultOpen)
-    : open_(recorded(ImGui::CollapsingHeader(label, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0), label, "header"))
+std::map<std::string, bool>& sectionStates()
+{
+    static std::map<std::string, bool> states;
+    return states;
+}
+
+namespace {
+
+bool collapsingHeader(const char* label, bool defaultOpen)
+{
+    std::map<std::string, bool>& states = sectionStates();
+    if (const auto remembered = states.find(label); remembered != states.end()) ImGui::SetNextItemOpen(remembered->second, ImGuiCond_Once);
+    const bool open = ImGui::CollapsingHeader(label, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+    states[label] = open;
+    return open;
+}
+
+} // namespace
+
+Section::Section(const char* label, bool defaultOpen) : open_(recorded(collapsingHeader(label, defaultOpen), label, "header"))
 {
     if (!open_) return;
     ImGui::PushID(label);

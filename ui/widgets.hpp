@@ -68,6 +68,10 @@ ItemRegistry& itemRegistry();
 // "Yaw##camera" -> "Yaw"; "##envpath" -> "envpath".
 std::string visibleLabel(std::string_view label);
 
+// Which sections are open, by label: read when a section is first drawn (the GUI remembers
+// them between sessions, gui_prefs.hpp), then kept up to date as the user opens and closes them.
+std::map<std::string, bool>& sectionStates();
+
 // A collapsing header whose contents are scoped under its label, for IDs and paths alike.
 class Section {
 public:

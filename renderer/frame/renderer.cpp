@@ -108,6 +108,112 @@ struct Renderer::Impl {
         });
     }
 
+    // A frame drawn in bands over several calls (renderFrameSlice): what it is of, and how
+    // far it got.
+    struct SlicedFrame {
+        FrameKey key;
+        bool accumulate = false;
+        glm::vec2 rotation{0.0f};
+        int nextRow = 0;
+        bool sampled = false;
+        double spentMs = 0.0;
+    };
+    std::optional<SlicedFrame> sliced;
+    gl::RenderTarget workFrame; // RGBA16F + depth: a sliced frame's bands without MSAA
+    double msPerRow = 0.0;      // of the last band drawn, to size the next
+    double slicedFrameMs = 0.0; // the bands of the last sliced frame, summed
+
+    // What a frame of these settings, size and options draws.
+    struct FrameShape {
+        int width = 0, height = 0;
+        bool accumulate = false;
+        bool debugView = false;
+        bool multisampled = false;
+        int msaaSamples = 1;
+    };
+    FrameShape shapeOf(const FrameSettings& settings, int fullWidth, int fullHeight, const Options& options) const
+    {
+        FrameShape shape;
+        const float scale = std::clamp(options.resolutionScale, 0.05f, 1.0f);
+        shape.width = std::max(1, int(std::lround(float(fullWidth) * scale)));
+        shape.height = std::max(1, int(std::lround(float(fullHeight) * scale)));
+        // A new running mean whenever anything that changes the image changes. Where every
+        // side keeps its exact sample count, more frames would only average copies: none.
+        shape.accumulate = options.accumulate && !everySideKeepsExactSampleCount(settings) && referenceSidesFinal(settings, shape.width, shape.height);
+        const Lighting lighting = lightingFor(settings);
+        shape.debugView = lighting.bake && (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut);
+        // Debug views fill every pixel with one full-screen triangle: samples would add nothing.
+        shape.multisampled = !shape.debugView && settings.view.msaaSamples > 1;
+        shape.msaaSamples = settings.view.msaaSamples;
+        return shape;
+    }
+
+    // The target the frame's passes draw into (the MSAA frame, or single-sampled `single`),
+    // allocated and its depth cleared.
+    void beginTarget(const FrameShape& shape, const gl::RenderTarget& single)
+    {
+        if (shape.multisampled) msaaFrame.ensure(GL_RGBA16F, shape.width, shape.height, shape.msaaSamples);
+        glDisable(GL_SCISSOR_TEST);
+        glBindFramebuffer(GL_FRAMEBUFFER, shape.multisampled ? msaaFrame.framebuffer() : single.framebuffer());
+        glViewport(0, 0, shape.width, shape.height);
+        glClear(GL_DEPTH_BUFFER_BIT);
+    }
+
+    // Rows [y0, y1) of the frame: the debug view, or mesh and sky for each side. Returns
+    // whether a draw used the sampled method with rotating sample sets.
+    bool drawRows(const FrameSettings& settings, const FrameShape& shape, glm::vec2 rotation, int y0, int y1)
+    {
+        const Lighting lighting = lightingFor(settings);
+        const float aspect = float(shape.width) / float(shape.height);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_DEPTH_TEST);
+        glBindFramebuffer(GL_FRAMEBUFFER, shape.multisampled ? msaaFrame.framebuffer() : sliced ? workFrame.framebuffer() : hdrFrame.framebuffer());
+        glViewport(0, 0, shape.width, shape.height);
+        bool sampled = false;
+        if (shape.debugView) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(0, y0, shape.width, y1 - y0);
+            debugView.draw(settings, lighting, shape.width, shape.height);
+            glDisable(GL_SCISSOR_TEST);
+            return false;
+        }
+        drawSides(
+            settings, shape.width, shape.height,
+            [&](const FrameSettings& side) {
+                // The reference method's preview where its reference is not finished: the split sum.
+                FrameSettings shaded = side;
+                if (shaded.sampling.method == ShadingMethod::Reference) shaded.sampling.method = ShadingMethod::SplitSum;
+                // Meshes first, then the sky behind them: llvmpipe shades only the uncovered pixels.
+                sampled = mesh.draw(scene, shaded, lighting, aspect, rotation, MeshPass::Output::Shaded) || sampled;
+                sky.draw(shaded, lighting, aspect);
+            },
+            y0, y1);
+        return sampled;
+    }
+
+    // The drawn frame, complete in `frame` (resolved from MSAA first): the reference
+    // method's sides over it, into the running mean, then tone-mapped (or the error view)
+    // into the display image.
+    void finish(const FrameSettings& settings, const FrameShape& shape, const gl::RenderTarget& frame)
+    {
+        frameSamples = shape.multisampled ? msaaFrame.samples() : 1;
+        if (shape.multisampled) msaaFrame.resolveInto(frame);
+        copyReferenceSides(settings, shape.width, shape.height);
+        frameKey = reference.keyFor(settings, shape.width, shape.height);
+        resolved = &accumulation.add(frame);
+        displayFrame.ensure(GL_RGBA8, shape.width, shape.height);
+        glBindFramebuffer(GL_FRAMEBUFFER, displayFrame.framebuffer());
+        glViewport(0, 0, shape.width, shape.height);
+        if (settings.view.mode == ViewMode::Error && reference.completeFor(frameKey))
+            errorView.draw(resolved->texture(), reference.frameTexture(), reference.layerTexture(ReferenceLayer::Normal), settings);
+        else
+            toneMap.draw(resolved->texture(), settings.toneMap, shape.debugView && settings.view.mode == ViewMode::Lut);
+        glUseProgram(0);
+        glBindVertexArray(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    }
+
     explicit Impl(std::filesystem::path shaderDirectory) : shaders(std::move(shaderDirectory)) { shaders.setProgramInitializer(assignSamplerUnits); }
 
     // The furnace view lights with the furnace bake; every other view with the bake.
@@ -174,61 +280,68 @@ SceneInfo Renderer::sceneInfo(const FrameSettings& settings)
 void Renderer::renderFrame(const FrameSettings& settings, int fullWidth, int fullHeight, const Options& options)
 {
     Impl& r = *impl_;
-    const float scale = std::clamp(options.resolutionScale, 0.05f, 1.0f);
-    const int width = std::max(1, int(std::lround(float(fullWidth) * scale)));
-    const int height = std::max(1, int(std::lround(float(fullHeight) * scale)));
-    r.hdrFrame.ensure(GL_RGBA16F, width, height, /*withDepth=*/true);
-    r.displayFrame.ensure(GL_RGBA8, width, height);
-    const float aspect = float(width) / float(height);
-
-    // A new running mean whenever anything that changes the image changes. Where every
-    // side keeps its exact sample count, more frames would only average copies: none.
-    const bool accumulate = options.accumulate && !everySideKeepsExactSampleCount(settings) && r.referenceSidesFinal(settings, width, height);
-    const glm::vec2 rotation = r.accumulation.begin(accumulate ? std::optional<FrameKey>(FrameKey{settings, width, height, r.contentRevision})
-                                                               : std::nullopt);
-
-    const Lighting lighting = r.lightingFor(settings);
-    r.sampledDraws = false;
-    const bool debugView = lighting.bake && (settings.view.mode == ViewMode::PrefilterMips || settings.view.mode == ViewMode::Lut);
-    // Debug views fill every pixel with one full-screen triangle: samples would add nothing.
-    const bool multisampled = !debugView && settings.view.msaaSamples > 1;
-    if (multisampled) r.msaaFrame.ensure(GL_RGBA16F, width, height, settings.view.msaaSamples);
-    r.frameSamples = multisampled ? r.msaaFrame.samples() : 1;
-
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, multisampled ? r.msaaFrame.framebuffer() : r.hdrFrame.framebuffer());
-    glViewport(0, 0, width, height);
-    glClear(GL_DEPTH_BUFFER_BIT);
-    if (debugView) {
-        r.debugView.draw(settings, lighting, width, height);
-    } else {
-        drawSides(settings, width, height, [&](const FrameSettings& side) {
-            // The reference method's preview where its reference is not finished: the split sum.
-            FrameSettings shaded = side;
-            if (shaded.sampling.method == ShadingMethod::Reference) shaded.sampling.method = ShadingMethod::SplitSum;
-            // Meshes first, then the sky behind them: llvmpipe shades only the uncovered pixels.
-            const bool sampled = r.mesh.draw(r.scene, shaded, lighting, aspect, rotation, MeshPass::Output::Shaded);
-            r.sampledDraws = r.sampledDraws || sampled;
-            r.sky.draw(shaded, lighting, aspect);
-        });
-    }
-    if (multisampled) r.msaaFrame.resolveInto(r.hdrFrame);
-    r.copyReferenceSides(settings, width, height);
-    r.frameKey = r.reference.keyFor(settings, width, height);
-    r.resolved = &r.accumulation.add(r.hdrFrame);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, r.displayFrame.framebuffer());
-    if (settings.view.mode == ViewMode::Error && r.reference.completeFor(r.frameKey))
-        r.errorView.draw(r.resolved->texture(), r.reference.frameTexture(), r.reference.layerTexture(ReferenceLayer::Normal), settings);
-    else
-        r.toneMap.draw(r.resolved->texture(), settings.toneMap, debugView && settings.view.mode == ViewMode::Lut);
-    glUseProgram(0);
-    glBindVertexArray(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    r.sliced.reset(); // a whole frame replaces whatever was under way
+    const Impl::FrameShape shape = r.shapeOf(settings, fullWidth, fullHeight, options);
+    r.hdrFrame.ensure(GL_RGBA16F, shape.width, shape.height, /*withDepth=*/true);
+    r.beginTarget(shape, r.hdrFrame);
+    const glm::vec2 rotation = r.accumulation.begin(shape.accumulate ? std::optional<FrameKey>(FrameKey{settings, shape.width, shape.height, r.contentRevision})
+                                                                     : std::nullopt);
+    r.sampledDraws = r.drawRows(settings, shape, rotation, 0, shape.height);
+    r.finish(settings, shape, r.hdrFrame);
 }
+
+bool Renderer::renderFrameSlice(const FrameSettings& settings, int fullWidth, int fullHeight, const Options& options,
+                                std::chrono::steady_clock::duration budget)
+{
+    using Clock = std::chrono::steady_clock;
+    Impl& r = *impl_;
+    const Impl::FrameShape shape = r.shapeOf(settings, fullWidth, fullHeight, options);
+    const FrameKey key{settings, shape.width, shape.height, r.contentRevision};
+    if (!r.sliced || r.sliced->key != key || r.sliced->accumulate != shape.accumulate) {
+        // The bands go to a target of their own: the image on screen (and what readbacks
+        // read) stays the last complete frame until the last band is in.
+        r.workFrame.ensure(GL_RGBA16F, shape.width, shape.height, /*withDepth=*/true);
+        r.beginTarget(shape, r.workFrame);
+        const glm::vec2 rotation = r.accumulation.begin(shape.accumulate ? std::optional<FrameKey>(key) : std::nullopt);
+        r.sliced = Impl::SlicedFrame{key, shape.accumulate, rotation};
+    }
+    Impl::SlicedFrame& frame = *r.sliced;
+    const auto start = Clock::now();
+    do {
+        // Bands sized from the cost per row so far, the higher of the last band's and the
+        // frame's mean (the last frame's at the start): rows differ by far (a band of sky
+        // costs a fraction of one through a sampled sphere), and a band sized from a cheap one
+        // overran the budget by seconds. Whole 4-row steps, at least one.
+        const double left = std::chrono::duration<double, std::milli>(budget - (Clock::now() - start)).count();
+        const double meanMsPerRow = frame.nextRow > 0 ? frame.spentMs / double(frame.nextRow) : r.slicedFrameMs / double(shape.height);
+        // A row through the scene costs a few times the mean row: twice the caller's mean.
+        const double msPerRow = std::max({r.msPerRow, meanMsPerRow, 2.0 * options.expectedMs / double(shape.height)});
+        int rows = msPerRow > 0.0 ? int(left / msPerRow) : shape.height / 16;
+        rows = std::min(std::max(rows / 4 * 4, 4), shape.height - frame.nextRow);
+        const auto bandStart = Clock::now();
+        frame.sampled = r.drawRows(settings, shape, frame.rotation, frame.nextRow, frame.nextRow + rows) || frame.sampled;
+        glFinish(); // the budget is GPU time, as the reference renderer's
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - bandStart).count();
+        r.msPerRow = ms / double(rows);
+        frame.spentMs += ms;
+        frame.nextRow += rows;
+    } while (frame.nextRow < shape.height && Clock::now() - start < budget);
+    if (frame.nextRow < shape.height) return false;
+    r.sampledDraws = frame.sampled;
+    r.slicedFrameMs = frame.spentMs;
+    if (!shape.multisampled) std::swap(r.hdrFrame, r.workFrame);
+    else r.hdrFrame.ensure(GL_RGBA16F, shape.width, shape.height, /*withDepth=*/true);
+    r.sliced.reset();
+    r.finish(settings, shape, r.hdrFrame);
+    return true;
+}
+
+float Renderer::sliceProgress() const
+{
+    const Impl& r = *impl_;
+    return r.sliced ? float(r.sliced->nextRow) / float(std::max(r.sliced->key.height, 1)) : 0.0f;
+}
+double Renderer::lastSlicedFrameMs() const { return impl_->slicedFrameMs; }
 
 int Renderer::accumulatedFrames() const { return impl_->accumulation.frames(); }
 int Renderer::frameSamples() const { return impl_->frameSamples; }

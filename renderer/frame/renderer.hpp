@@ -80,9 +80,24 @@ public:
     struct Options {
         float resolutionScale = 1.0f;
         bool accumulate = false;
+        // renderFrameSlice: the caller's estimate of the whole frame's time in milliseconds
+        // (0: none), so that the first bands of a frame with new settings fit the budget.
+        double expectedMs = 0.0;
     };
     void renderFrame(const FrameSettings& settings, int width, int height, const Options& options);
     void renderFrame(const FrameSettings& settings, int width, int height) { renderFrame(settings, width, height, Options{}); }
+    // The same frame drawn over several calls, so that a frame that takes seconds on a
+    // software renderer never holds the UI for longer than `budget`: each call draws bands of
+    // rows until the budget is spent (glFinish after each, so that it is GPU time) and
+    // returns true once the last band is in; then the frame is finished as renderFrame
+    // finishes it. Until then the image on screen, the running mean and the readbacks stay
+    // those of the last complete frame. A call with other settings, size, options or content
+    // starts over; renderFrame abandons a frame under way.
+    bool renderFrameSlice(const FrameSettings& settings, int width, int height, const Options& options, std::chrono::steady_clock::duration budget);
+    // How much of the sliced frame under way is drawn (0 when none is).
+    float sliceProgress() const;
+    // The time the bands of the last complete sliced frame took together, in milliseconds.
+    double lastSlicedFrameMs() const;
     // Frames averaged into the current image (1 without accumulation).
     int accumulatedFrames() const;
     // Whether the last frame drew anything with the sampled method and a sample set that

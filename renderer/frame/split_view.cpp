@@ -50,13 +50,22 @@ void forEachVisibleSide(const FrameSettings& settings, int width, const std::fun
     show(compareSide(settings), divider, width);
 }
 
-void drawSides(const FrameSettings& settings, int width, int height, const std::function<void(const FrameSettings&)>& drawSide)
+void drawSides(const FrameSettings& settings, int width, int height, const std::function<void(const FrameSettings&)>& drawSide, int y0, int y1)
 {
+    if (y1 < 0) y1 = height;
+    const bool band = y0 > 0 || y1 < height;
+    if (band) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, y0, width, y1 - y0);
+    }
     drawSide(settings);
-    if (!settings.view.split) return;
+    if (!settings.view.split) {
+        glDisable(GL_SCISSOR_TEST);
+        return;
+    }
     const int x0 = splitColumn(settings.view, width);
     glEnable(GL_SCISSOR_TEST);
-    glScissor(x0, 0, width - x0, height);
+    glScissor(x0, y0, width - x0, y1 - y0);
     glClear(GL_DEPTH_BUFFER_BIT);
     drawSide(compareSide(settings));
     glDisable(GL_SCISSOR_TEST);

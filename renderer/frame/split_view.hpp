@@ -35,8 +35,10 @@ FrameSettings referenceSubject(const FrameSettings& settings);
 void forEachVisibleSide(const FrameSettings& settings, int width, const std::function<void(const FrameSettings&, int x0, int x1)>& show);
 
 // Calls drawSide with side A's settings, then, with the split view, with side B's while the
-// scissor confines drawing (and the depth clear before it) to B's columns. Leaves the
-// scissor test off.
-void drawSides(const FrameSettings& settings, int width, int height, const std::function<void(const FrameSettings&)>& drawSide);
+// scissor confines drawing (and the depth clear before it) to B's columns. Rows [y0, y1)
+// (y up) confine both sides to a band of the frame (a frame drawn over several calls);
+// y1 < 0 means every row. Leaves the scissor test off.
+void drawSides(const FrameSettings& settings, int width, int height, const std::function<void(const FrameSettings&)>& drawSide, int y0 = 0,
+               int y1 = -1);
 
 } // namespace iblab

@@ -1,0 +1,114 @@
+// GuiApp::state(): what a script can check, in JSON (docs/gui-scripts.md lists the keys).
+#include <cmath>
+
+#include <imgui.h>
+#include <imgui_internal.h>
+
+#include "gui_app_impl.hpp"
+#include "ui/help_window.hpp"
+#include "ui/widgets.hpp"
+
+namespace iblab::app {
+namespace {
+
+nlohmann::json statusJson(const ui::StatusLine& status) { return {{"text", status.text}, {"error", status.isError}, {"notes", status.notes}}; }
+
+nlohmann::json switchJson(const std::optional<LabSession::SwitchTiming>& timing)
+{
+    if (!timing) return nullptr;
+    return {{"environment", timing->environment}, {"load_ms", timing->loadMs}, {"bake_ms", timing->bakeMs},
+            {"first_frame_ms", timing->firstFrameMs}, {"from_cache", timing->fromCache}};
+}
+
+// Points the Study chart draws: with a positive error and cost (the axes are logarithmic).
+std::size_t plottedPoints(const std::vector<ui::ParetoChart>& charts)
+{
+    std::size_t count = 0;
+    for (const ui::ParetoChart& chart : charts)
+        for (const ui::ChartSeries& series : chart.series)
+            for (const ui::ChartPoint& point : series.points) count += point.x > 0.0 && point.y > 0.0 && std::isfinite(point.y);
+    return count;
+}
+
+// Whether the last frame drew a tooltip (ImGui's window for them is "##Tooltip_00").
+bool tooltipShown()
+{
+    const ImGuiWindow* window = ImGui::FindWindowByName("##Tooltip_00");
+    return window && window->Active;
+}
+
+} // namespace
+
+nlohmann::json GuiApp::state() const
+{
+    const Impl& a = *impl_;
+    const ui::PanelState& p = a.panels;
+    nlohmann::json labels = nlohmann::json::array();
+    for (const ScreenLabel& label : a.renderer.sceneLabels(a.settings, a.stats.width, a.stats.height))
+        labels.push_back({{"text", label.text}, {"x", p.viewRect.x0 + label.pixel.x}, {"y", float(a.stats.height) - label.pixel.y}});
+    nlohmann::json popups = nlohmann::json::array();
+    for (const ImGuiPopupData& popup : ImGui::GetCurrentContext()->OpenPopupStack)
+        popups.push_back(popup.Window ? popup.Window->Name : "");
+    return {
+        {"frame", a.framesShown},
+        {"idle", a.isIdle},
+        {"quit", a.quit},
+        {"platform", a.platform.kind()},
+        {"window", {{"width", a.platform.width()}, {"height", a.platform.height()}}},
+        {"view", {{"x", p.viewRect.x0}, {"y", p.viewRect.y0}, {"width", p.viewRect.x1 - p.viewRect.x0}, {"height", p.viewRect.y1 - p.viewRect.y0}}},
+        {"settings", nlohmann::json::parse(toJsonText(a.settings))},
+        {"unsaved_changes", a.unsavedChanges()},
+        {"panels",
+         {{"shown", p.showPanels},
+          {"width", p.panelWidth},
+          {"environment_status", statusJson(p.environmentStatus)},
+          {"bake_status", statusJson(p.bakeStatus)},
+          {"scene_status", statusJson(p.sceneStatus)},
+          {"capture_status", statusJson(p.captureStatus)},
+          {"preset_status", statusJson(p.presetStatus)},
+          {"activity", p.activity.text},
+          {"convention", p.convention},
+          {"quit_dialog", p.quitDialog.open},
+          {"hint", p.firstRunHint ? ui::kFirstRunHint : ""},
+          {"sections", ui::sectionStates()},
+          {"paths",
+           {{"environment", p.environmentPath},
+            {"model", p.modelPath},
+            {"preset", p.presetPath},
+            {"export", p.exportPath},
+            {"capture_folder", p.capture.directory}}},
+          {"compare",
+           {{"reference_current", p.compare.reference.current},
+            {"reference_complete", p.compare.reference.complete},
+            {"reference_progress", p.compare.reference.progress},
+            {"error_valid", p.compare.error.valid},
+            {"relative_rmse", p.compare.error.valid ? p.compare.error.left.relativeRmse : 0.0},
+            {"pixels", p.compare.error.valid ? p.compare.error.left.pixels : 0}}},
+          {"study",
+           {{"running", p.study.running},
+            {"status", statusJson(p.study.status)},
+            {"charts", p.study.charts.size()},
+            {"plotted_points", plottedPoints(p.study.charts)},
+            {"chart_open", p.study.chartOpen},
+            {"auto_quality", {{"running", p.study.autoQuality.running}, {"have_choice", p.study.autoQuality.haveChoice}, {"applied", p.study.autoQuality.applied}, {"chosen", p.study.autoQuality.chosen}}}}}}},
+        {"session", {{"busy", a.session.busy()}, {"environment", a.session.environment() ? a.session.environment()->source : ""}, {"has_bake", a.renderer.hasBake()}, {"last_switch", switchJson(a.session.lastSwitch())}}},
+        {"renderer",
+         {{"accumulated_frames", a.renderer.accumulatedFrames()},
+          {"content_revision", a.renderer.contentRevision()},
+          {"sampled", a.renderer.lastFrameWasSampled()},
+          {"render_ms", a.stats.renderMs},
+          {"shows_current", a.view.showsSettingsOf(ViewContent{a.settings, a.stats.width, a.stats.height, a.renderer.contentRevision()})},
+          {"slice_progress", a.renderer.sliceProgress()},
+          {"images", a.viewImages},
+          {"resolution_scale", a.stats.resolutionScale}}},
+        {"ui",
+         {{"popups", popups},
+          {"help_open", p.helpOpen},
+          {"want_text_input", ImGui::GetIO().WantTextInput},
+          {"tooltip", tooltipShown()},
+          {"mouse", {ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}}}},
+        {"labels", labels},
+    };
+}
+
+} // namespace iblab::app
