@@ -504,6 +504,8 @@ void drawQuitDialog(PanelState& state, UiRequests& requests)
     ImGui::EndPopup();
 }
 
+constexpr float kMinPanelWidth = 260.0f;
+
 void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameStats& stats, UiRequests& requests)
 {
     if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Tab)) && !ImGui::GetIO().WantTextInput) state.showPanels = !state.showPanels;

@@ -69,8 +69,6 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
     }
 }
 
-constexpr float kMinPanelWidth = 260.0f;
-
 void drawStudyChartWindow(StudyState& study)
 {
     if (study.charts.empty() || !study.chartOpen) return;
