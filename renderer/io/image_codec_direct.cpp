@@ -20,6 +20,8 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfTileDescriptionAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
@@ -29,6 +31,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/direct_reader.hpp"
+#include "io/environment.hpp"
 #include "io/error.hpp"
 
 namespace iblab {
@@ -96,6 +99,8 @@ public:
             frame.insert(layout_.channels[std::size_t(c)],
                          Imf::Slice::Make(type, out + std::size_t(c) * valueBytes, IMATH_NAMESPACE::V2i(h.x, y0), h.width, y1 - y0, xStride, yStride));
         }
+        if (!tiles_ && !scanlines_)
+            return fail("tiles of " + std::to_string(h.tileWidth) + "x" + std::to_string(h.tileHeight) + " texels are too large to decode");
         if (tiles_) {
             // Whole tile rows, as OpenImageIO's read_tiles: the band must start one and end
             // one (or at the image's end), or tiles would be written past the buffer.
@@ -147,11 +152,24 @@ std::unique_ptr<ImageReader> openExr(const std::string& path)
         return nullptr;
     std::unique_ptr<Imf::InputFile> scanlines;
     std::unique_ptr<Imf::TiledInputFile> tiles;
-    if (Imf::isTiled(*version))
-        tiles = std::make_unique<Imf::TiledInputFile>(path.c_str());
-    else
+    // OpenEXR's TiledInputFile allocates a whole tile per decoding thread as it opens: a
+    // header that declares tiles of 8x2^24 texels costs gigabytes, and seconds of page
+    // faults, before the loader's check of the tile size (environment.cpp) could refuse it.
+    // So a tiled file's header is read alone first, and a file with such tiles is not opened:
+    // its reader carries the header, for the loader to refuse with its own message.
+    Imf::Header headerAlone;
+    if (Imf::isTiled(*version)) {
+        Imf::StdIFStream stream(path.c_str());
+        stream.seekg(8); // past the magic number and the version field
+        int versionField = *version;
+        headerAlone.readFrom(stream, versionField);
+        const bool absurdTiles = headerAlone.hasTileDescription() &&
+                                 std::uint64_t(headerAlone.tileDescription().xSize) * headerAlone.tileDescription().ySize > kMaxTileTexels;
+        if (!absurdTiles) tiles = std::make_unique<Imf::TiledInputFile>(path.c_str());
+    } else {
         scanlines = std::make_unique<Imf::InputFile>(path.c_str());
-    const Imf::Header& header = tiles ? tiles->header() : scanlines->header();
+    }
+    const Imf::Header& header = tiles ? tiles->header() : scanlines ? scanlines->header() : headerAlone;
     int channelCount = 0;
     std::optional<ExrLayout> layout = exrLayout(header, channelCount);
     if (!layout)
@@ -167,11 +185,12 @@ std::unique_ptr<ImageReader> openExr(const std::string& path)
                   .x = window.min.x,
                   .y = window.min.y,
                   .storedType = layout->storedType};
-    if (tiles) {
-        if (tiles->tileXSize() > unsigned(INT_MAX) || tiles->tileYSize() > unsigned(INT_MAX))
+    if (header.hasTileDescription()) {
+        const Imf::TileDescription& tile = header.tileDescription();
+        if (tile.xSize > unsigned(INT_MAX) || tile.ySize > unsigned(INT_MAX))
             return nullptr;
-        h.tileWidth = int(tiles->tileXSize());
-        h.tileHeight = int(tiles->tileYSize());
+        h.tileWidth = int(tile.xSize);
+        h.tileHeight = int(tile.ySize);
     }
     if (const auto* colorSpace = header.findTypedAttribute<Imf::StringAttribute>("oiio:ColorSpace"))
         h.colorSpace = colorSpace->value();
