@@ -94,10 +94,17 @@ for fs in proc sys dev; do
   mount --make-rslave "$root/$fs"
 done
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# The host's own certificate authorities too (a network that inspects TLS, as this machine's
+# does, has its CA there): apt reads plain HTTP, but npm's registry is HTTPS. ca-certificates,
+# installed by the first command, adds them to the root's bundle, which npm is pointed at.
+if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+  mkdir -p "$root/usr/local/share/ca-certificates"
+  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+fi
 
 in_root() {
   # A clean environment: no DISPLAY, no variables of the caller's session.
-  chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb \
+  chroot "$root" /usr/bin/env -i HOME=/root LANG=C.UTF-8 TERM=dumb npm_config_cafile=/etc/ssl/certs/ca-certificates.crt \
     PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
     /bin/bash -c "cd /work/iblab && $1"
 }
