@@ -121,13 +121,13 @@ TEST_F(Cli, HelpShowsTypesAndShortDefaults)
 // its opposite, and a boolean value option with its --no- form.
 TEST_F(Cli, BooleanFlagsHaveBothForms)
 {
-    const Result r = run("render --scene none --env builtin:white --width 8 --height 8 --no-model-material --model-material "
+    const Result r = run("render --scene none --env builtin:white --width 8 --height 8 --no-override-model --override-model "
                          "--no-pdf-filtering --pdf-filtering --no-multiscatter --b-no-multiscatter --b-pdf-filtering "
                          "--no-freeze-samples -o a.png");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     const Result help = run("render --help");
     for (const char* pair : {"--multiscatter,--no-multiscatter", "--no-pdf-filtering,--pdf-filtering",
-                             "--model-material,--no-model-material", "--b-no-pdf-filtering,--b-pdf-filtering"})
+                             "--override-model,--no-override-model", "--b-no-pdf-filtering,--b-pdf-filtering"})
         EXPECT_NE(help.out.find(pair), std::string::npos) << pair << "\n" << help.out;
     const Result bake = run("bake --help");
     EXPECT_NE(bake.out.find("--no-prefilter-mirror-copy"), std::string::npos) << bake.out;
