@@ -177,7 +177,8 @@ TEST(Settings, AModelShowsItsOwnMaterialsUnlessAsked)
         if (std::string(field.key) == "material.override_model") {
             EXPECT_EQ(std::string(field.cli), "--override-model");
             EXPECT_EQ(field.cliForm, CliForm::Flag);
-            EXPECT_NE(std::string(field.help).find("On (--override-model)"), std::string::npos) << field.help;
+            EXPECT_NE(std::string(field.help).find("(--override-model)"), std::string::npos) << field.help;
+            EXPECT_NE(std::string(field.help).find("by default the model's own materials"), std::string::npos) << field.help;
         }
 }
 
