@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cmgen_sh_window.hpp"
 #include "ibl/engine_sh.hpp"
 #include "io/ktx_writer.hpp"
 
@@ -110,20 +111,6 @@ TEST(KtxWriter, RefusesDataOfTheWrongSize)
     EXPECT_THROW(ktx::encodeKtx2(t), std::invalid_argument);
 }
 
-// cmgen's automatic window for a map whose irradiance is never negative: each channel's
-// bisection accepts every midpoint, so it ends at the last l within 0.1 of the cut-off so far
-// (CubemapSH::windowSH), three channels in turn.
-double neverNegativeCutoff()
-{
-    double cutoff = 13.0;
-    for (int channel = 0; channel < 3; ++channel) {
-        double l = 3.0;
-        for (int i = 0; i < 16 && l + 0.1 < cutoff; ++i) l = 0.5 * (l + cutoff);
-        cutoff = l;
-    }
-    return cutoff;
-}
-
 TEST(FilamentSh, LinearEnvironmentInClosedForm)
 {
     // L(d) = a + b . d gives E(n) = pi a + (2 pi / 3) (b . n) (the cosine lobe's band
@@ -144,7 +131,7 @@ TEST(FilamentSh, LinearEnvironmentInClosedForm)
             for (int k = 0; k < kSh9Count; ++k) radiance.c[std::size_t(k)] += L * y[std::size_t(k)] * w;
         }
     const SH9Color irradiance = convolveWithCosineLobe(radiance);
-    const double cutoff = neverNegativeCutoff();
+    const double cutoff = iblab::testing::cmgenNeverNegativeCutoff();
     EXPECT_NEAR(filamentAutoWindowCutoff(irradiance), cutoff, 1e-9);
     const double w1 = std::pow(std::sin(std::numbers::pi / cutoff) / (std::numbers::pi / cutoff), 4);
     // Filament's cube direction d holds iblab's (-x, y, -z): red's x term flips.

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cmgen_sh_window.hpp"
 #include "bake/engine_export.hpp"
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
@@ -82,20 +83,6 @@ void expectAxesCube(const std::vector<std::vector<float>>& faces, int size, cons
         EXPECT_NEAR(mid[2], centre.z, 0.1 * scale) << what << " face " << f;
     }
     EXPECT_LT(worst, 0.03 * scale) << what << ": a texel is not where " << c.name << "'s convention puts its colour";
-}
-
-// cmgen's automatic window for a map whose irradiance is never negative: each channel's
-// bisection accepts every midpoint, so it ends at the last l within 0.1 of the cut-off so far
-// (CubemapSH::windowSH), three channels in turn.
-double neverNegativeCutoff()
-{
-    double cutoff = 13.0;
-    for (int channel = 0; channel < 3; ++channel) {
-        double l = 3.0;
-        for (int i = 0; i < 16 && l + 0.1 < cutoff; ++i) l = 0.5 * (l + cutoff);
-        cutoff = l;
-    }
-    return cutoff;
 }
 
 // Irradiance / pi of builtin:axes: 1/2 + d / 3 (the cosine lobe's band-1 factor 2 pi / 3).
@@ -266,7 +253,7 @@ TEST_F(EngineExport, FilamentFilesReadByKtxBundleCarryTheShAndCmgensOrientation)
     // and w cmgen's automatic cut-off for a never-negative map.
     filament::math::float3 sh[9];
     ASSERT_TRUE(ibl.getSphericalHarmonics(sh));
-    const double w = neverNegativeCutoff();
+    const double w = iblab::testing::cmgenNeverNegativeCutoff();
     const double w1 = std::pow(std::sin(std::numbers::pi / w) / (std::numbers::pi / w), 4) / 3.0;
     // Filament's polynomial order: 1, y, z, x, ...; red varies with iblab x = -x, green with
     // y, blue with iblab z = -z.
