@@ -28,9 +28,12 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
             if (button(study.chartOpen ? "Hide chart" : "Show chart")) study.chartOpen = !study.chartOpen;
         }
     } else {
-        if (button("Stop")) requests.stopStudy = true;
+        // Stop sits at the far end of the row, away from where "Run quick sweep" is drawn: a
+        // click meant for Stop that lands just after the run ends must not start another.
+        const float stopWidth = ImGui::CalcTextSize("Stop").x + 2.0f * ImGui::GetStyle().FramePadding.x;
+        ImGui::ProgressBar(study.progress, ImVec2(std::max(40.0f, ImGui::GetContentRegionAvail().x - stopWidth - ImGui::GetStyle().ItemSpacing.x), 0.0f));
         ImGui::SameLine();
-        ImGui::ProgressBar(study.progress, ImVec2(-1.0f, 0.0f));
+        if (button("Stop")) requests.stopStudy = true;
         ImGui::TextDisabled("%s", study.activity.c_str());
     }
     drawStatus(study.status);
