@@ -48,34 +48,15 @@ if [ ${#readme_commands[@]} -ne 2 ]; then
   exit 1
 fi
 
-root=$(mktemp -d "${TMPDIR:-/tmp}/iblab-fresh.XXXXXX")
-mounted=()
-cleanup() {
-  local status=$?
-  # Unmount in reverse order; a root is only deleted once nothing is mounted below it, so
-  # rm can never reach the host's /dev, /proc or /sys through a bind mount.
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
-    umount -R "${mounted[i]}" 2>/dev/null || umount -R -l "${mounted[i]}" || true
-  done
-  if grep -q " $root/" /proc/mounts; then
-    echo "fresh-check: mounts remain under $root; not deleting it" >&2
-  elif [ "$keep" -eq 1 ]; then
-    echo "fresh-check: root kept at $root"
-  else
-    rm -rf --one-file-system "$root"
-  fi
-  exit "$status"
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
-
 step() { echo; echo "fresh-check: $* ($(( $(date +%s) - start )) s)"; }
 start=$(date +%s)
 
-step "bootstrapping Debian 12 (minbase) in $root"
-sources=/etc/apt/sources.list.d/debian.sources
-[ -f "$sources" ] || sources=/etc/apt/sources.list
-mmdebstrap --variant=minbase --quiet bookworm "$root" "$sources"
+# shellcheck source=lib/debian-root.sh
+. scripts/lib/debian-root.sh
+debian_root_keep=$keep
+step "bootstrapping Debian 12 (minbase)"
+debian_root_create iblab-fresh
+echo "fresh-check: root at $root"
 
 step "cloning $(git rev-parse --short HEAD) into the root"
 mkdir -p "$root/work"
@@ -88,12 +69,7 @@ if [ -d "$repo/../shared/assets" ]; then
   cp -r "$repo/../shared/assets" "$root/work/shared/"
 fi
 
-for fs in proc sys dev; do
-  mount --rbind "/$fs" "$root/$fs"
-  mounted+=("$root/$fs")
-  mount --make-rslave "$root/$fs"
-done
-cp /etc/resolv.conf "$root/etc/resolv.conf"
+debian_root_mount
 # The host's own certificate authorities too (a network that inspects TLS, as this machine's
 # does, has its CA there): apt reads plain HTTP, but npm's registry is HTTPS. ca-certificates,
 # installed by the first command, adds them to the root's bundle, which npm is pointed at.

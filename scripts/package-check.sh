@@ -62,38 +62,13 @@ if [ ${#tools[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${tools[@]}" >/dev/null
 fi
 
-root=$(mktemp -d "${TMPDIR:-/tmp}/iblab-package.XXXXXX")
-mounted=()
-cleanup() {
-  local status=$?
-  # Unmount in reverse order; the root is deleted only once nothing is mounted below it, so
-  # rm can never reach the host's /dev, /proc or /sys through a bind mount.
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
-    umount -R "${mounted[i]}" 2>/dev/null || umount -R -l "${mounted[i]}" || true
-  done
-  if grep -q " $root/" /proc/mounts; then
-    echo "package-check: mounts remain under $root; not deleting it" >&2
-  elif [ "$keep" -eq 1 ]; then
-    echo "package-check: root kept at $root" >&2
-  else
-    rm -rf --one-file-system "$root"
-  fi
-  exit "$status"
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
-
-step "bootstrapping Debian 12 (minbase) in $root"
-sources=/etc/apt/sources.list.d/debian.sources
-[ -f "$sources" ] || sources=/etc/apt/sources.list
-mmdebstrap --variant=minbase --quiet bookworm "$root" "$sources"
-
-for fs in proc sys dev; do
-  mount --rbind "/$fs" "$root/$fs"
-  mounted+=("$root/$fs")
-  mount --make-rslave "$root/$fs"
-done
-cp /etc/resolv.conf "$root/etc/resolv.conf"
+# shellcheck source=lib/debian-root.sh
+. scripts/lib/debian-root.sh
+debian_root_keep=$keep
+step "bootstrapping Debian 12 (minbase)"
+debian_root_create iblab-package
+echo "package-check: root at $root" >&2
+debian_root_mount
 cp "$deb" "$root/tmp/"
 
 in_root() {
