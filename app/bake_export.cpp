@@ -35,7 +35,7 @@ ui::StatusLine exportCurrentBake(const LabSession& session, gl::ShaderLibrary& s
                                  const std::string& directory)
 {
     if (!session.bake() || !session.environment()) return {"export: nothing is baked yet", true};
-    if (session.switching() || session.busy()) return {"export: an environment is loading or baking; export once it is shown", true};
+    if (session.holdsLastImage() || session.busy()) return {"export: an environment is loading or baking; export once it is shown", true};
     try {
         const nlohmann::ordered_json report = writeEngineExport(shaders, *session.environment(), *session.bake(), format, directory, true);
         ui::StatusLine line{"exported " + std::to_string(report["files"].size()) + " " + format + " files to " + directory, false};

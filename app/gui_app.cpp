@@ -32,6 +32,7 @@
 #include "gui_files.hpp"
 #include "gui_script.hpp"
 #include "gui_app_impl.hpp"
+#include "frame_capture.hpp"
 #include "lab_session.hpp"
 #include "ui/help_window.hpp"
 #include "ui/panels.hpp"
@@ -102,8 +103,9 @@ constexpr const char* kNoModelStatus =
 
 // A failed load keeps the environment on screen, so the error line keeps that environment's
 // own line and notes under it: they are still true of what is shown.
-void showEnvironmentStatus(ui::StatusLine& line, ui::StatusLine status)
+void showEnvironmentStatus(ui::StatusLine& line, const StatusReport& report)
 {
+    ui::StatusLine status = toStatusLine(report);
     if (status.isError && !line.text.empty()) {
         // After another error, its notes are already the kept environment's.
         if (!line.isError) status.notes.push_back("still showing " + line.text);
@@ -123,7 +125,7 @@ void handleDrop(const std::string& path, ui::UiRequests& requests, ui::PanelStat
         requests.loadPreset = path;
     else
         showEnvironmentStatus(panels.environmentStatus,
-                              {path + ": cannot open this kind of file (drop .exr, .hdr, .gltf, .glb or a .json preset)", true});
+                              StatusReport{path + ": cannot open this kind of file (drop .exr, .hdr, .gltf, .glb or a .json preset)", true});
 }
 
 bool keyPressed(int glfwKey) { return ImGui::IsKeyPressed(glfwKey, /*repeat=*/false); }
@@ -131,7 +133,7 @@ bool keyPressed(int glfwKey) { return ImGui::IsKeyPressed(glfwKey, /*repeat=*/fa
 } // namespace
 
 GuiApp::Impl::Impl(GuiPlatform& p, const GuiOptions& o)
-    : platform(p), options(o), imgui(p), renderer(shaderDirectory()), settings(o.settings), session(renderer, initialBake(o))
+    : platform(p), options(o), imgui(p), renderer(shaderDirectory()), settings(o.settings), session(renderer, initialBake(o)), model(renderer)
 {
     if (gl::currentContextHasDebugOutput()) {
         echoOnStderr(debug);
@@ -146,14 +148,16 @@ GuiApp::Impl::Impl(GuiPlatform& p, const GuiOptions& o)
         applyConvention(*own, asOwn);
         if (asOwn == settings.sampling) panels.convention = own->name;
     }
-    panels.catalog = session.catalog();
+    panels.catalog = environmentCatalog();
     rememberFrom(options.remembered);
     // The environment loads on a worker thread and bakes in slices: the window is up at once.
     session.requestEnvironment(settings.environment.source);
-    frameWhenReady = settings.camera.distance <= 0.0f;
-    startsAtDefaultOrientation = settings.camera.yawDegrees == CameraSettings{}.yawDegrees && settings.camera.pitchDegrees == CameraSettings{}.pitchDegrees;
-    if (frameWhenReady) settings.camera.distance = 3.5f;
-    if (settings.scene.kind == SceneKind::Model) panels.sceneStatus = session.loadModel(settings.scene.modelPath, settings);
+    if (settings.camera.distance <= 0.0f) {
+        const bool orientationGiven = settings.camera.yawDegrees != CameraSettings{}.yawDegrees || settings.camera.pitchDegrees != CameraSettings{}.pitchDegrees;
+        startFraming = orientationGiven ? StartFraming::WhenBaked : StartFraming::WhenBakedFromHome;
+        settings.camera.distance = 3.5f;
+    }
+    if (settings.scene.kind == SceneKind::Model) loadModel(settings.scene.modelPath);
     stats.renderer = gl::describeCurrentContext();
     savedSettings = settings;
 }
@@ -220,7 +224,17 @@ void GuiApp::Impl::capture(const ui::CaptureRequest& request)
 {
     const std::string extension = request.file.empty() ? ".png" : lowerExtension(request.file);
     const std::filesystem::path path = captureName(panels.capture.directory, request.file, settings.environment.source, extension);
-    panels.captureStatus = session.capture(path.string(), settings);
+    panels.captureStatus = toStatusLine(writeCapture(renderer, path.string(), settings, session.bakeSettings()));
+}
+
+// A loaded model becomes the scene (the session never writes the settings); a failed load
+// keeps the scene and the model it had.
+void GuiApp::Impl::loadModel(const std::string& path)
+{
+    panels.sceneStatus = toStatusLine(model.load(path, settings.scene.kind == SceneKind::Model));
+    if (panels.sceneStatus.isError) return;
+    settings.scene.kind = SceneKind::Model;
+    settings.scene.modelPath = path;
 }
 
 void GuiApp::Impl::actOn(ui::UiRequests& requests, int viewWidth, int viewHeight)
@@ -231,7 +245,7 @@ void GuiApp::Impl::actOn(ui::UiRequests& requests, int viewWidth, int viewHeight
     }
     if (requests.loadEnvironment) session.requestEnvironment(*requests.loadEnvironment);
     if (requests.loadModel) {
-        panels.sceneStatus = session.loadModel(*requests.loadModel, settings);
+        loadModel(*requests.loadModel);
         if (!panels.sceneStatus.isError) {
             // A model shows its own materials first; the sliders take over on request.
             settings.material.overrideModel = false;
@@ -239,12 +253,12 @@ void GuiApp::Impl::actOn(ui::UiRequests& requests, int viewWidth, int viewHeight
         }
     }
     if (requests.loadPreset)
-        panels.presetStatus = loadPreset(*requests.loadPreset, settings, savedSettings, session, panels.convention);
+        panels.presetStatus = loadPreset(*requests.loadPreset, settings, savedSettings, session, model, panels.convention);
     if (requests.savePreset) {
         panels.presetStatus = savePreset(*requests.savePreset, settings, session.bakeSettings());
         if (!panels.presetStatus.isError) savedSettings = settings;
     }
-    if (requests.exportModel) panels.sceneStatus = session.exportModel(*requests.exportModel, settings);
+    if (requests.exportModel) panels.sceneStatus = toStatusLine(model.exportWithPanelMaterial(*requests.exportModel, settings));
     if (requests.exportBake) panels.bakeStatus = exportCurrentBake(session, renderer.shaders(), *requests.exportBake, panels.bakeExportPath);
     if (requests.applyConvention)
         if (const ConventionPreset* convention = findConvention(*requests.applyConvention)) {
@@ -284,21 +298,21 @@ void GuiApp::Impl::frameCamera(ui::UiRequests& requests, int viewWidth, int view
     // to the model shows it again (the sphere kept the model's line). Without a model the
     // renderer draws the sphere: say why.
     if (requests.sceneChanged && settings.scene.kind == SceneKind::Model)
-        panels.sceneStatus = settings.scene.modelPath.empty() || session.modelLine().empty() ? ui::StatusLine{kNoModelStatus}
-                                                                                               : ui::StatusLine{session.modelLine()};
+        panels.sceneStatus = settings.scene.modelPath.empty() || model.line().empty() ? ui::StatusLine{kNoModelStatus} : ui::StatusLine{model.line()};
     else if (requests.sceneChanged)
         panels.sceneStatus = {};
-    if (requests.sceneChanged || requests.frameScene || (frameWhenReady && renderer.hasBake())) {
-        const bool startFraming = frameWhenReady && !requests.sceneChanged && !requests.frameScene;
+    const bool framingDue = startFraming != StartFraming::Done && renderer.hasBake();
+    if (requests.sceneChanged || requests.frameScene || framingDue) {
+        const bool atStart = framingDue && !requests.sceneChanged && !requests.frameScene;
         const auto cameraBefore = settings.camera;
         const SceneInfo scene = renderer.sceneInfo(settings);
-        const bool model = settings.scene.kind == SceneKind::Model;
-        if (home || (startFraming && startsAtDefaultOrientation)) homeView(settings.camera, model);
-        frameScene(settings.camera, scene.centre, scene.halfExtents, model, float(viewWidth) / float(viewHeight));
+        const bool isModel = settings.scene.kind == SceneKind::Model;
+        if (home || (atStart && startFraming == StartFraming::WhenBakedFromHome)) homeView(settings.camera, isModel);
+        frameScene(settings.camera, scene.centre, scene.halfExtents, isModel, float(viewWidth) / float(viewHeight));
         // The start's own framing (once the first bake is in) is not an edit of the
         // user's: what counts as saved moves with it, so that quitting does not ask.
-        if (startFraming && savedSettings.camera == cameraBefore) savedSettings.camera = settings.camera;
-        frameWhenReady = false;
+        if (atStart && savedSettings.camera == cameraBefore) savedSettings.camera = settings.camera;
+        startFraming = StartFraming::Done;
     }
 }
 
@@ -309,13 +323,24 @@ ViewArea GuiApp::Impl::viewArea() const
     return {x, windowWidth - x, platform.height()};
 }
 
-// Loading, baking and the study, each a budgeted slice of work per frame.
-void GuiApp::Impl::pumpBackground()
+// Loading, baking and the study, each a budgeted slice of work per frame: the frame's one
+// call into the session, which also hears when the last frame was presented.
+void GuiApp::Impl::pumpBackground(bool inputArrived)
 {
-    const LabSession::Finished finished = session.pump(settings, kBackgroundBudgetPerFrame);
+    // While a map decodes and nothing else is to be done, wait for it, a 60 Hz frame at most,
+    // rather than drawing held frames: on two cores each drawn frame took CPU from the decode
+    // (the GUI's switch from the disk cache loaded sunset.exr in 161 ms, the bake command in
+    // 52). Input that came with this frame is not kept waiting.
+    const bool waitForDecode = pace == LoopPace::HeldForLoad && !inputArrived;
+    const LabSession::FrameReport report =
+        session.update({.budget = kBackgroundBudgetPerFrame,
+                        .presented = std::exchange(presented, std::nullopt),
+                        .waitForDecode = waitForDecode ? std::chrono::milliseconds(16) : Clock::duration::zero()});
+    const LabSession::Finished& finished = report.finished;
     if (finished.environment) showEnvironmentStatus(panels.environmentStatus, *finished.environment);
-    if (finished.bake) panels.bakeStatus = *finished.bake;
-    panels.activity = {session.activity(), session.progress()};
+    if (finished.bake) panels.bakeStatus = toStatusLine(*finished.bake);
+    if (finished.environmentShown) settings.environment.source = *finished.environmentShown;
+    panels.activity = {report.activity, report.progress};
     study.advance(panels.study, kBackgroundBudgetPerFrame);
 }
 
@@ -377,7 +402,7 @@ void GuiApp::Impl::renderView(const ViewArea& area, bool interacting)
     // While another environment loads and bakes, the view keeps its last image (the previous
     // environment, lit by its own bake) rather than drawing each frame again: the new one
     // shows sooner, and never with the old one's lighting.
-    in.hold = session.switching() && renderer.hasBake();
+    in.hold = session.holdsLastImage();
     const ViewWork work = view.render(renderer, in, Clock::now());
     if (view.newImage()) {
         ++viewImages;
@@ -401,9 +426,12 @@ void GuiApp::Impl::renderView(const ViewArea& area, bool interacting)
     ViewFrameInput settled = in;
     settled.inputPending = false;
     const bool viewDone = view.plan(renderer, settled) == ViewWork::None;
-    isIdle = viewDone && !in.hold && !session.busy() && !referencePending && !study.running() && input.empty() && !pendingCapture;
-    heldForLoad = work == ViewWork::None && !study.running() && !referencePending;
-    sleepWhenIdle = !ImGui::IsAnyItemHovered() && !ImGui::GetIO().WantTextInput;
+    // A switch's first frame is reported at the next frame's update: not idle before, so that
+    // its timing is there for whoever waits for idle.
+    const bool idle = viewDone && !in.hold && !session.busy() && !session.awaitsFrame() && !referencePending && !study.running() &&
+                      input.empty() && !pendingCapture;
+    if (idle) pace = !ImGui::IsAnyItemHovered() && !ImGui::GetIO().WantTextInput ? LoopPace::IdleAsleep : LoopPace::Idle;
+    else pace = work == ViewWork::None && !study.running() && !referencePending ? LoopPace::HeldForLoad : LoopPace::Working;
 }
 
 void GuiApp::Impl::present(int windowWidth, int windowHeight, int viewX)
@@ -416,20 +444,16 @@ void GuiApp::Impl::present(int windowWidth, int windowHeight, int viewX)
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (std::exchange(pixelsRequested, false)) pixels = platform.readPixels();
     platform.present();
-    session.frameDrawn();
+    presented = Clock::now();
 }
 
 void GuiApp::Impl::frame()
 {
-    // While a map decodes and nothing else is to be done, wait for it, a 60 Hz frame at most,
-    // rather than drawing held frames: on two cores each drawn frame took CPU from the decode
-    // (the GUI's switch from the disk cache loaded sunset.exr in 161 ms, the bake command in
-    // 52). Input waits at most that frame.
-    if (heldForLoad && input.empty()) session.waitForLoad(std::chrono::milliseconds(16));
-    platform.collectEvents(input, isIdle && sleepWhenIdle && !scripted ? 0.25 : 0.0);
+    platform.collectEvents(input, pace == LoopPace::IdleAsleep && !scripted ? 0.25 : 0.0);
+    const bool inputArrived = !input.empty();
     ImGuiIO& io = ImGui::GetIO();
     const FrameRequests frameInput = input.applyFrame(io);
-    if (frameInput.resized && platform.kind() == "offscreen") platform.resize(frameInput.width, frameInput.height);
+    if (frameInput.resized && platform.kind() == PlatformKind::Offscreen) platform.resize(frameInput.width, frameInput.height);
     if (frameInput.closeRequested) requestQuit();
 
     const ViewArea area = viewArea();
@@ -439,14 +463,12 @@ void GuiApp::Impl::frame()
     }
     panels.viewRect = {float(area.x), 0.0f, float(platform.width()), float(platform.height())};
     for (const std::string& error : renderer.reloadShaders()) std::fprintf(stderr, "iblab: %s\n", error.c_str());
-    pumpBackground();
+    pumpBackground(inputArrived);
     ui::UiRequests requests = drawUi(frameInput, area);
 
     actOn(requests, area.width, area.height);
-    const LabSession::Finished switched = session.showRequestedRecent(settings);
-    if (switched.environment) showEnvironmentStatus(panels.environmentStatus, *switched.environment);
-    if (switched.bake) panels.bakeStatus = *switched.bake;
-    if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
+    // On the frame that turns to the furnace view (or after a re-bake, which drops it).
+    if (settings.view.mode == ViewMode::Furnace && !renderer.hasFurnaceBake()) session.ensureFurnaceBake();
     if (requests.capture) pendingCapture = requests.capture;
 
     // A drag, a held control or the wheel: the view previews what changes and refines nothing.
@@ -472,7 +494,7 @@ GuiApp::~GuiApp() = default;
 void GuiApp::frame() { impl_->frame(); }
 void GuiApp::setScripted(bool scripted) { impl_->scripted = scripted; }
 bool GuiApp::quitRequested() const { return impl_->quit; }
-bool GuiApp::idle() const { return impl_->isIdle; }
+bool GuiApp::idle() const { return impl_->pace == LoopPace::Idle || impl_->pace == LoopPace::IdleAsleep; }
 InputQueue& GuiApp::input() { return impl_->input; }
 GuiPlatform& GuiApp::platform() { return impl_->platform; }
 const WindowPixels& GuiApp::lastPixels() const { return impl_->pixels; }

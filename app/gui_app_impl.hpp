@@ -14,6 +14,7 @@
 #include "gui_app.hpp"
 #include "gui_input.hpp"
 #include "lab_session.hpp"
+#include "loaded_model.hpp"
 #include "study_run.hpp"
 #include "ui/panels.hpp"
 #include "view_input.hpp"
@@ -35,6 +36,24 @@ struct ViewArea {
     int x = 0, width = 0, height = 0;
 };
 
+// How the loop goes on after a frame, as that frame found things.
+enum class LoopPace {
+    Working,     // something computes or refines: the next frame comes at once
+    HeldForLoad, // the frame drew nothing new while a map may decode: the next one waits for
+                 // the decode, a 60 Hz frame at most, rather than taking its CPU
+    Idle,        // nothing to compute until the next input (what scripts wait for); frames go
+                 // on for a hovered control's tooltip or a text field's caret
+    IdleAsleep,  // idle, and nothing hovered or typed into: the loop sleeps until input
+};
+
+// The camera's framing at the start (no --distance): once the first bake is in, since the
+// scene's bounds come with it.
+enum class StartFraming {
+    Done,              // framed, or --distance given
+    WhenBaked,         // keeping the --yaw / --pitch given
+    WhenBakedFromHome, // from the scene's home view (a model's front), as no --yaw or --pitch was given
+};
+
 struct GuiApp::Impl {
     using Clock = std::chrono::steady_clock;
 
@@ -47,6 +66,7 @@ struct GuiApp::Impl {
     FrameSettings savedSettings; // as last saved or loaded: quitting asks before losing changes
     ui::PanelState panels;
     LabSession session;
+    LoadedModel model;
     ui::FrameStats stats;
     ViewScheduler view; // what the 3D view renders each frame (frame_scheduler.hpp)
     InputQueue input;
@@ -58,11 +78,9 @@ struct GuiApp::Impl {
     std::vector<SphereReading> furnaceReadings; // of the previous frame, printed over the spheres
     Clock::time_point start = Clock::now();
     Clock::time_point previousFrame = Clock::now();
-    bool frameWhenReady = false;
-    bool startsAtDefaultOrientation = true; // no --yaw or --pitch: a model starts from its home view
-    bool isIdle = false;
-    bool heldForLoad = false; // the last frame drew nothing new: a map decodes, nothing else runs
-    bool sleepWhenIdle = false;
+    std::optional<Clock::time_point> presented; // the last frame's present, for the session's switch timing
+    StartFraming startFraming = StartFraming::Done;
+    LoopPace pace = LoopPace::Working;
     bool scripted = false;
     bool quit = false;
     bool pixelsRequested = false;
@@ -78,12 +96,13 @@ struct GuiApp::Impl {
     void requestQuit();
     void handleShortcuts(const ImGuiIO& io, ui::UiRequests& requests);
     void capture(const ui::CaptureRequest& request);
+    void loadModel(const std::string& path);
     void actOn(ui::UiRequests& requests, int viewWidth, int viewHeight);
     void frameCamera(ui::UiRequests& requests, int viewWidth, int viewHeight);
 
     void frame();
     ViewArea viewArea() const;
-    void pumpBackground();
+    void pumpBackground(bool inputArrived);
     ui::UiRequests drawUi(const FrameRequests& frameInput, const ViewArea& area);
     void renderView(const ViewArea& area, bool interacting);
     void present(int windowWidth, int windowHeight, int viewX);

@@ -13,7 +13,7 @@ namespace {
 
 nlohmann::json statusJson(const ui::StatusLine& status) { return {{"text", status.text}, {"error", status.isError}, {"notes", status.notes}}; }
 
-nlohmann::json switchJson(const std::optional<LabSession::SwitchTiming>& timing)
+nlohmann::json switchJson(const std::optional<SwitchTiming>& timing)
 {
     if (!timing) return nullptr;
     return {{"environment", timing->environment}, {"load_ms", timing->loadMs}, {"bake_ms", timing->bakeMs},
@@ -51,9 +51,9 @@ nlohmann::json GuiApp::state() const
         popups.push_back(popup.Window ? popup.Window->Name : "");
     return {
         {"frame", a.framesShown},
-        {"idle", a.isIdle},
+        {"idle", a.pace == LoopPace::Idle || a.pace == LoopPace::IdleAsleep},
         {"quit", a.quit},
-        {"platform", a.platform.kind()},
+        {"platform", platformKindName(a.platform.kind())},
         {"window", {{"width", a.platform.width()}, {"height", a.platform.height()}}},
         {"view", {{"x", p.viewRect.x0}, {"y", p.viewRect.y0}, {"width", p.viewRect.x1 - p.viewRect.x0}, {"height", p.viewRect.y1 - p.viewRect.y0}}},
         {"settings", nlohmann::json::parse(toJsonText(a.settings))},

@@ -3,12 +3,21 @@
 #include <cctype>
 #include <ctime>
 
+#include "asset_paths.hpp"
 #include "io/builtin_environments.hpp"
 #include "io/error.hpp"
 #include "io/atomic_file.hpp"
 #include "preset_json.hpp"
 
 namespace iblab::app {
+
+ui::EnvironmentCatalog environmentCatalog()
+{
+    ui::EnvironmentCatalog catalog;
+    catalog.gallery = galleryEnvironments(assetDirectory().string());
+    for (const auto& name : builtinEnvironmentNames()) catalog.builtins.push_back("builtin:" + name);
+    return catalog;
+}
 
 ui::StatusLine savePreset(const std::string& path, const FrameSettings& settings, const bake::BakeSettings& bake)
 {
@@ -22,7 +31,8 @@ ui::StatusLine savePreset(const std::string& path, const FrameSettings& settings
 
 // A preset replaces every setting; its environment and model load like a user's choice, and
 // bake settings other than the session's bake the environment again with them.
-ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, FrameSettings& saved, LabSession& session, std::string& convention)
+ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, FrameSettings& saved, LabSession& session, LoadedModel& model,
+                          std::string& convention)
 {
     Preset loaded;
     try {
@@ -43,10 +53,10 @@ ui::StatusLine loadPreset(const std::string& path, FrameSettings& settings, Fram
     convention = matchingConvention(session.bakeSettings(), settings.sampling);
     if (!environment.empty()) session.requestEnvironment(environment);
     if (settings.scene.kind == SceneKind::Model && !settings.scene.modelPath.empty()) {
-        const ui::StatusLine model = session.loadModel(settings.scene.modelPath, settings);
-        if (model.isError) return model;
+        const StatusReport loadedModel = model.load(settings.scene.modelPath, /*modelShown=*/true);
+        if (loadedModel.isError) return toStatusLine(loadedModel);
     }
-    // The preset's environment counts as saved while it loads: the session names it in the
+    // The preset's environment counts as saved while it loads: the GUI names it in the
     // settings once shown, which made a preset look edited as soon as its map arrived.
     saved = settings;
     if (!environment.empty()) saved.environment.source = environment;

@@ -106,7 +106,7 @@ public:
         return text ? text : "";
     }
     void setClipboard(const std::string& text) override { glfwSetClipboardString(window_, text.c_str()); }
-    std::string kind() const override { return "window"; }
+    PlatformKind kind() const override { return PlatformKind::Window; }
 
 private:
     int size(int axis) const
@@ -176,7 +176,7 @@ public:
     void setCursor(int) override {}
     std::string clipboard() const override { return clipboard_; }
     void setClipboard(const std::string& text) override { clipboard_ = text; }
-    std::string kind() const override { return "offscreen"; }
+    PlatformKind kind() const override { return PlatformKind::Offscreen; }
 
 private:
     gl::HeadlessContext context_;

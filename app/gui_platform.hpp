@@ -24,6 +24,10 @@ struct WindowPixels {
     std::vector<std::uint8_t> rgba; // top row first, as the window shows it
 };
 
+enum class PlatformKind { Window, Offscreen };
+// "window" or "offscreen": the name scripts and logs print.
+inline const char* platformKindName(PlatformKind kind) { return kind == PlatformKind::Window ? "window" : "offscreen"; }
+
 class GuiPlatform {
 public:
     virtual ~GuiPlatform() = default;
@@ -40,8 +44,7 @@ public:
     virtual void setCursor(int imguiCursor) = 0;
     virtual std::string clipboard() const = 0;
     virtual void setClipboard(const std::string& text) = 0;
-    // "window" or "offscreen".
-    virtual std::string kind() const = 0;
+    virtual PlatformKind kind() const = 0;
     // The drawn frame, read back before present().
     WindowPixels readPixels() const;
 };

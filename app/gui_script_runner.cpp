@@ -540,7 +540,7 @@ int runGuiScript(GuiApp& app, const std::string& path, const std::string& covera
             status = 1;
         }
     std::printf("gui script %s: %s, %zu steps, %d frames, %s, %.1f s\n", path.c_str(), status == 0 ? "passed" : "FAILED", steps.size(),
-                runner.framesRun(), app.platform().kind().c_str(), std::chrono::duration<double>(Clock::now() - start).count());
+                runner.framesRun(), platformKindName(app.platform().kind()), std::chrono::duration<double>(Clock::now() - start).count());
     return status;
 }
 

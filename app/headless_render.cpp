@@ -16,7 +16,9 @@
 #include "frame/split_view.hpp"
 #include "command_support.hpp"
 #include "gl/shader_library.hpp"
+#include "frame_capture.hpp"
 #include "lab_session.hpp"
+#include "loaded_model.hpp"
 #include "view_overlays.hpp"
 
 namespace iblab::app {
@@ -48,12 +50,12 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         }
         LabSession session(renderer, bakeSettings);
         const auto loadStart = Clock::now();
-        const ui::StatusLine loaded = session.loadEnvironment(settings.environment.source, settings);
+        const StatusReport loaded = session.loadEnvironment(settings.environment.source);
         if (loaded.isError) return fail(loaded.text);
         const double loadMs = millisecondsSince(loadStart);
         std::string sceneStatus;
         if (settings.scene.kind == SceneKind::Model) {
-            const ui::StatusLine model = session.loadModel(settings.scene.modelPath, settings);
+            const StatusReport model = LoadedModel(renderer).load(settings.scene.modelPath, /*modelShown=*/false);
             if (model.isError) return fail(model.text);
             sceneStatus = model.text;
         }
@@ -98,7 +100,7 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
             OffscreenOverlay overlay;
             overlay.drawOver(renderer, settings, job.width, job.height);
         }
-        const ui::StatusLine written = session.capture(job.output, settings);
+        const StatusReport written = writeCapture(renderer, job.output, settings, session.bakeSettings());
         if (written.isError) return fail(written.text);
         if (gl.debug.errorCount() > 0) return fail(std::to_string(gl.debug.errorCount()) + " GL error(s) while rendering; see above");
 

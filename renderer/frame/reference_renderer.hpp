@@ -35,6 +35,9 @@ public:
     void setEnvironment(const ImageRGB32F& image);
     // The meshes changed (a model was loaded): references of the old ones are stale.
     void sceneChanged() { ++revision_; }
+    // Another map is shown (its bake), before setEnvironment brings its pixels: the
+    // reference of the old one is stale.
+    void environmentChanged() { ++revision_; }
 
     // Everything the reference image depends on: not the tone map, the view's error and
     // split controls, nor the estimators' sampling (only the BRDF's geometry term and the

@@ -239,6 +239,11 @@ void Renderer::setEnvironment(const ImageRGB32F& image)
 
 void Renderer::setBake(std::shared_ptr<const bake::BakeResult> bake)
 {
+    // Another map's bake can come before that map's pixels (the session shows a bake read
+    // from the cache while the file decodes): the reference of the old map, its sky
+    // included, is stale from now on, not only once setEnvironment brings the pixels.
+    const bool otherMap = bake && impl_->bake && bake->contentHash != impl_->bake->contentHash;
+    if (otherMap) impl_->reference.environmentChanged();
     impl_->bake = std::move(bake);
     ++impl_->contentRevision;
 }

@@ -1,4 +1,4 @@
-// The GUI's session (app/lab_session) facing bad files: every malformed environment or model
+// The GUI's session (app/lab_session, with app/loaded_model) facing bad files: every malformed environment or model
 // is refused with one line naming the file, and what the user had (environment, bake,
 // model, their settings) stays exactly as it was. Also: environment requests made while one
 // loads are queued, never waited for, and the newest wins.
@@ -13,6 +13,7 @@
 #include "bake/bake_cache.hpp"
 #include "io/image_writer.hpp"
 #include "lab_session.hpp"
+#include "loaded_model.hpp"
 #include "malformed_images.hpp"
 #include "temp_dir.hpp"
 
@@ -35,7 +36,9 @@ protected:
         app::LabSession::Finished last;
         const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
         while (session.busy() && std::chrono::steady_clock::now() < deadline) {
-            const app::LabSession::Finished finished = session.pump(settings, std::chrono::milliseconds(5));
+            const app::LabSession::Finished finished = session.pump(std::chrono::milliseconds(5));
+            // As the GUI does: the session reports the map it shows, the caller's settings name it.
+            if (finished.environmentShown) settings.environment.source = *finished.environmentShown;
             if (finished.environment) last.environment = finished.environment;
             if (finished.bake) last.bake = finished.bake;
             std::this_thread::sleep_for(std::chrono::milliseconds(1)); // the rest of a frame
@@ -47,7 +50,18 @@ protected:
     testing::TempDir folder{"iblab-lab-session"};
 };
 
-void expectOneLineNaming(const ui::StatusLine& status, const std::string& fileName, const std::string& problem)
+// Loads a model as the GUI does: a loaded one becomes the scene in the caller's settings.
+app::StatusReport loadModel(app::LoadedModel& model, const std::string& path, FrameSettings& settings)
+{
+    app::StatusReport status = model.load(path, settings.scene.kind == SceneKind::Model);
+    if (!status.isError) {
+        settings.scene.kind = SceneKind::Model;
+        settings.scene.modelPath = path;
+    }
+    return status;
+}
+
+void expectOneLineNaming(const app::StatusReport& status, const std::string& fileName, const std::string& problem)
 {
     EXPECT_TRUE(status.isError) << status.text;
     EXPECT_EQ(status.text.find('\n'), std::string::npos) << status.text;
@@ -60,7 +74,7 @@ TEST_F(LabSessionTest, MalformedEnvironmentsAreRefusedAndTheCurrentOneStays)
     Renderer renderer(shaderDirectory());
     app::LabSession session(renderer, testing::smallBakeSettings());
     FrameSettings settings;
-    ASSERT_FALSE(session.loadEnvironment("builtin:sky?width=64", settings).isError);
+    ASSERT_FALSE(session.loadEnvironment("builtin:sky?width=64").isError);
     const auto bakeBefore = session.bake();
     const std::string sourceBefore = settings.environment.source;
     ASSERT_TRUE(bakeBefore);
@@ -86,9 +100,10 @@ TEST_F(LabSessionTest, MalformedModelsAreRefusedAndTheLoadedModelStays)
     Renderer renderer(shaderDirectory());
     app::LabSession session(renderer, testing::smallBakeSettings());
     FrameSettings settings;
-    ASSERT_FALSE(session.loadEnvironment("builtin:studio?width=64", settings).isError);
+    ASSERT_FALSE(session.loadEnvironment("builtin:studio?width=64").isError);
     const std::string goodModel = IBLAB_ASSET_DIR "/models/material_spheres.glb";
-    ASSERT_FALSE(session.loadModel(goodModel, settings).isError);
+    app::LoadedModel model(renderer);
+    ASSERT_FALSE(loadModel(model, goodModel, settings).isError);
     const std::size_t drawsBefore = renderer.sceneInfo(settings).draws;
     ASSERT_GT(drawsBefore, 0u);
 
@@ -111,7 +126,7 @@ TEST_F(LabSessionTest, MalformedModelsAreRefusedAndTheLoadedModelStays)
            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
     for (const char* name : {"broken.gltf", "empty.glb", "short-chunk.glb", "missing-buffer.gltf", "escaping.gltf", "no-such-model.glb"}) {
         SCOPED_TRACE(name);
-        const ui::StatusLine status = session.loadModel((models / name).string(), settings);
+        const app::StatusReport status = loadModel(model, (models / name).string(), settings);
         expectOneLineNaming(status, name, "");
         EXPECT_EQ(settings.scene.kind, SceneKind::Model);
         EXPECT_EQ(settings.scene.modelPath, goodModel);
@@ -150,7 +165,7 @@ TEST_F(LabSessionTest, AMapAskedForAgainWhileItLoadsLoadsOnce)
     session.requestEnvironment("builtin:sky?width=64");
     session.requestEnvironment("builtin:sky?width=64");
     session.waitForLoad(std::chrono::seconds(30));
-    const app::LabSession::Finished finished = session.pump(settings, std::chrono::seconds(30));
+    const app::LabSession::Finished finished = session.pump(std::chrono::seconds(30));
     ASSERT_TRUE(finished.environment) << "the first load's result was used";
     EXPECT_FALSE(finished.environment->isError) << finished.environment->text;
     EXPECT_EQ(session.environment()->source, "builtin:sky?width=64");
@@ -159,7 +174,7 @@ TEST_F(LabSessionTest, AMapAskedForAgainWhileItLoadsLoadsOnce)
     // Asked for again once decoded, while it bakes: the bake goes on, nothing decodes again.
     session.requestEnvironment("builtin:sun?width=256");
     session.waitForLoad(std::chrono::seconds(30));
-    session.pump(settings, std::chrono::microseconds(1)); // the decode lands, the bake starts
+    session.pump(std::chrono::microseconds(1)); // the decode lands, the bake starts
     ASSERT_EQ(session.environment()->source, "builtin:sun?width=256");
     ASSERT_NE(session.activity().find("baking"), std::string::npos) << session.activity();
     session.requestEnvironment("builtin:sun?width=256");
@@ -180,16 +195,16 @@ protected:
         Renderer renderer(shaderDirectory());
         app::LabSession earlier(renderer, testing::smallBakeSettings());
         FrameSettings settings;
-        ASSERT_FALSE(earlier.loadEnvironment(mapA.string(), settings).isError);
+        ASSERT_FALSE(earlier.loadEnvironment(mapA.string()).isError);
         hashA = earlier.environment()->contentHash;
-        ASSERT_FALSE(earlier.loadEnvironment(mapB.string(), settings).isError);
+        ASSERT_FALSE(earlier.loadEnvironment(mapB.string()).isError);
         hashB = earlier.environment()->contentHash;
     } // the session's cache finishes its writes
 
     // A session showing map B, as the user's before the switch.
-    void showB(app::LabSession& session, FrameSettings& settings)
+    void showB(app::LabSession& session)
     {
-        ASSERT_FALSE(session.loadEnvironment(mapB.string(), settings).isError);
+        ASSERT_FALSE(session.loadEnvironment(mapB.string()).isError);
         ASSERT_EQ(session.bake()->contentHash, hashB);
     }
 
@@ -202,12 +217,12 @@ TEST_F(EarlyBakeTest, TheBakeIsShownBeforeTheFileDecodes)
     Renderer renderer(shaderDirectory());
     app::LabSession session(renderer, testing::smallBakeSettings());
     FrameSettings settings;
-    showB(session, settings);
+    showB(session);
     const std::uint64_t revision = renderer.contentRevision();
 
     session.requestEnvironment(mapA.string());
     // One pump reads the bake; the decode waits for the frame that shows it.
-    const app::LabSession::Finished early = session.pump(settings, std::chrono::seconds(10));
+    const app::LabSession::Finished early = session.pump(std::chrono::seconds(10));
     ASSERT_TRUE(early.bake);
     EXPECT_NE(early.bake->text.find("(from cache)"), std::string::npos) << early.bake->text;
     EXPECT_NE(early.bake->text.find("; reading a.exr"), std::string::npos) << early.bake->text;
@@ -236,10 +251,10 @@ TEST_F(EarlyBakeTest, TheBakeIsShownBeforeTheFileDecodes)
 
     // Kept with its own pixels: back to B and to A again shows each at once.
     session.requestEnvironment(mapB.string());
-    session.showRequestedRecent(settings);
+    session.pump(std::chrono::seconds(10));
     EXPECT_EQ(session.bake()->contentHash, hashB);
     session.requestEnvironment(mapA.string());
-    session.showRequestedRecent(settings);
+    session.pump(std::chrono::seconds(10));
     EXPECT_EQ(session.environment()->contentHash, hashA);
     EXPECT_EQ(session.bake()->contentHash, hashA);
 }
@@ -251,9 +266,9 @@ TEST_F(EarlyBakeTest, ARecordThatNoLongerMatchesGivesWayToTheDecodedMap)
     Renderer renderer(shaderDirectory());
     app::LabSession session(renderer, testing::smallBakeSettings());
     FrameSettings settings;
-    ASSERT_FALSE(session.loadEnvironment("builtin:studio?width=64", settings).isError);
+    ASSERT_FALSE(session.loadEnvironment("builtin:studio?width=64").isError);
     session.requestEnvironment(mapA.string());
-    session.pump(settings, std::chrono::seconds(10));
+    session.pump(std::chrono::seconds(10));
     EXPECT_EQ(session.bake()->contentHash, hashB) << "what the record promised";
     pumpUntilIdle(session, settings);
     EXPECT_EQ(session.environment()->contentHash, hashA);
@@ -266,7 +281,7 @@ TEST_F(EarlyBakeTest, ARecordWhoseBakeIsGoneBakesTheDecodedMap)
     Renderer renderer(shaderDirectory());
     app::LabSession session(renderer, testing::smallBakeSettings());
     FrameSettings settings;
-    const ui::StatusLine status = session.loadEnvironment(mapA.string(), settings);
+    const app::StatusReport status = session.loadEnvironment(mapA.string());
     ASSERT_FALSE(status.isError) << status.text;
     EXPECT_EQ(session.environment()->contentHash, hashA);
     EXPECT_EQ(session.bake()->contentHash, hashA);
@@ -279,14 +294,14 @@ TEST_F(EarlyBakeTest, AFileThatNoLongerDecodesPutsBackWhatWasShown)
     Renderer renderer(shaderDirectory());
     app::LabSession session(renderer, testing::smallBakeSettings());
     FrameSettings settings;
-    showB(session, settings);
+    showB(session);
     // Damaged in place, its size and time kept: the record still applies, the decode fails.
     const auto size = std::filesystem::file_size(mapA);
     const auto time = std::filesystem::last_write_time(mapA);
     { std::ofstream(mapA, std::ios::binary | std::ios::trunc) << std::string(size, 'x'); }
     std::filesystem::last_write_time(mapA, time);
     session.requestEnvironment(mapA.string());
-    session.pump(settings, std::chrono::seconds(10));
+    session.pump(std::chrono::seconds(10));
     EXPECT_EQ(session.bake()->contentHash, hashA);
     const app::LabSession::Finished last = pumpUntilIdle(session, settings);
     ASSERT_TRUE(last.environment);
@@ -301,7 +316,7 @@ TEST_F(LabSessionTest, BakeStatusReportsItsGpuMemory)
     Renderer renderer(shaderDirectory());
     app::LabSession session(renderer, testing::smallBakeSettings());
     FrameSettings settings;
-    const ui::StatusLine status = session.loadEnvironment("builtin:sky?width=64", settings);
+    const app::StatusReport status = session.loadEnvironment("builtin:sky?width=64");
     ASSERT_FALSE(status.isError) << status.text;
     char expected[64];
     std::snprintf(expected, sizeof expected, "%.1f MiB of GPU memory", double(session.bake()->gpuBytes()) / (1024.0 * 1024.0));

@@ -170,5 +170,24 @@ TEST_F(ReferenceMethod, ASettingChangeStartsItOver)
     EXPECT_TRUE(nearRelative(pixelOf(second, centre.x, centre.y), pixelOf(renderer().readReferenceFrame(), centre.x, centre.y), kHalfFloatRelative));
 }
 
+// Another environment's bake set before its pixels (the session shows a bake read from the
+// cache while the file still decodes): the old map's finished tiles, lit by the old sky,
+// never show over the new view (issue 30, item 4.5); the frame is the new bake's preview.
+TEST_F(ReferenceMethod, AnotherEnvironmentsBakeDropsTheFinishedTiles)
+{
+    load("builtin:studio?width=128");
+    const FrameSettings s = referenceSphere();
+    ASSERT_TRUE(renderer().advanceReference(s, kSize, kSize, std::chrono::hours(1)).complete);
+    const FrameReadback old = render(s);
+    const Environment sky = loadEnvironment("builtin:sky?width=128");
+    bake::BakeJob job(renderer().shaders(), sky, testing::smallBakeSettings());
+    renderer().setBake(std::make_shared<bake::BakeResult>(job.runToCompletion()));
+    EXPECT_FALSE(renderer().referenceStatus(s, kSize, kSize).current);
+    const FrameReadback preview = render(withMethod(s, ShadingMethod::SplitSum));
+    const FrameReadback shown = render(s);
+    EXPECT_NE(preview.rgba, old.rgba) << "the two maps must light the sphere differently for this to prove anything";
+    EXPECT_EQ(shown.rgba, preview.rgba) << "no tile of the old map's reference over the new bake";
+}
+
 } // namespace
 } // namespace iblab
