@@ -24,14 +24,14 @@ struct StatusLine {
     bool isError = false;
     // Details that are worth knowing but are no problem (texels a loader repaired, a model's
     // unsupported extension): shown quietly under the line.
-    std::vector<std::string> notes;
+    std::vector<std::string> notes = {};
     // text and notes in one line ("a; b; c"), for logs and reports.
     std::string joined() const;
 };
 
 struct FrameStats {
     double frameMs = 0.0;  // wall clock of the whole frame, CPU side
-    double renderMs = 0.0; // a full-resolution frame of the shown settings: the view's pass timer (gl/pass_timer.hpp), a preview's time scaled up
+    double renderMs = 0.0; // a full-resolution frame of the shown settings (ViewScheduler::fullFrameMs): measured, or a preview's time scaled up
     int width = 0;
     int height = 0;
     std::string renderer; // GL renderer string
