@@ -24,7 +24,6 @@
 #include "bake/bake_cache.hpp"
 #include "bake/bake_files.hpp"
 #include "bake/bake_job.hpp"
-#include "bake/bake_passes.hpp"
 #include "command_support.hpp"
 #include "field_options.hpp"
 #include "commands.hpp"
@@ -155,6 +154,62 @@ std::future<LoadedEnvironment> startLoading(const std::string& path)
     });
 }
 
+// The times of one map's bake that its report gives beside the job's own.
+struct BakeRunTimes {
+    double loadMs = 0.0, contextMs = 0.0, compileMs = 0.0, cacheWriteWaitMs = 0.0;
+    std::optional<double> gpuMs;  // a warm repeat's GL_TIME_ELAPSED, on hardware renderers
+    std::vector<double> totals;   // each run's, with --repeat
+};
+
+// What --json prints for one map's bake.
+ordered_json bakeReportJson(const bake::BakeSettings& settings, const MapBake& map, const bake::BakeResult& result,
+                            const std::optional<bake::BakeErrors>& errors, const bake::AccuracyOptions& accuracy, bake::BakeCache& cache,
+                            const BakeRunTimes& times, const std::vector<std::string>& notes, const ordered_json& exported,
+                            Clock::time_point processStart)
+{
+    ordered_json j;
+    j["source"] = result.source;
+    j["source_size"] = {result.sourceWidth, result.sourceHeight};
+    j["renderer"] = gl::describeCurrentContext();
+    j["malloc_huge_pages"] = mallocHugePages();
+    j["preset"] = settings.preset;
+    j["settings"] = ordered_json::parse(bake::toJsonText(settings));
+    j["from_cache"] = result.fromCache;
+    j["lut_from_cache"] = {{"schlick-ggx", result.lutFromCache[0]}, {"height-correlated-smith", result.lutFromCache[1]}};
+    ordered_json timings;
+    for (const auto& t : result.timings) timings[std::string(enumName(t.phase))] = t.milliseconds;
+    timings["total"] = result.totalMilliseconds;
+    j["timings_ms"] = timings;
+    // Begin to end of the whole job on the GPU's clock, the gaps between its steps included.
+    if (times.gpuMs) j["gpu_total_ms"] = *times.gpuMs;
+    j["timing_method"] = "steady clock from each step's submission to its fence, one step in flight; shaders: compile (Mesa's disk "
+                         "cache makes a second run warm) of what other_ms.programs_while_loading did not compile";
+    j["other_ms"] = {{"environment_load", times.loadMs},
+                     {"context", times.contextMs},
+                     {"programs_while_loading", times.compileMs},
+                     {"cache_write_wait", times.cacheWriteWaitMs},
+                     {"process", millisecondsSince(processStart)}};
+    // The writes' own time, on their thread (a batch reports its total instead).
+    if (cache.enabled() && map.waitForWrites) j["other_ms"]["cache_write"] = cache.writeMilliseconds();
+    if (times.totals.size() > 1) {
+        j["repeat_totals_ms"] = times.totals;
+        j["repeat_min_total_ms"] = *std::min_element(times.totals.begin(), times.totals.end());
+    }
+    j["gpu_bytes"] = result.gpuBytes();
+    j["textures"] = {{"environment_cube", textureJson(result.environmentCube)},
+                     {"irradiance", textureJson(result.irradianceCube)},
+                     {"prefiltered", textureJson(result.prefiltered)},
+                     {"brdf_lut_schlick-ggx", textureJson(result.brdfLut[0])},
+                     {"brdf_lut_height-correlated-smith", textureJson(result.brdfLut[1])}};
+    j["textures"]["irradiance"]["method"] = enumName(result.settings.irradiance);
+    j["sh"] = ordered_json::parse(bake::shJsonText(result.sh));
+    if (errors) j["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
+    j["notes"] = notes;
+    if (!map.out.empty()) j["output"] = map.out;
+    if (!exported.is_null()) j["export"] = exported;
+    return j;
+}
+
 // Bakes one map in the session (made on the first map) and prints its table, or returns its
 // JSON report. `loading` decodes map.environment (startLoading); `decoded` runs once it has,
 // failed or not, before the bake (a batch starts the next map's decode there). Throws on
@@ -253,47 +308,8 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
         printTable(result, errors, map.out);
         return nullptr;
     }
-    ordered_json j;
-    j["source"] = result.source;
-    j["source_size"] = {result.sourceWidth, result.sourceHeight};
-    j["renderer"] = gl::describeCurrentContext();
-    j["malloc_huge_pages"] = mallocHugePages();
-    j["preset"] = settings.preset;
-    j["settings"] = ordered_json::parse(bake::toJsonText(settings));
-    j["from_cache"] = result.fromCache;
-    j["lut_from_cache"] = {{"schlick-ggx", result.lutFromCache[0]}, {"height-correlated-smith", result.lutFromCache[1]}};
-    ordered_json timings;
-    for (const auto& t : result.timings) timings[std::string(enumName(t.phase))] = t.milliseconds;
-    timings["total"] = result.totalMilliseconds;
-    j["timings_ms"] = timings;
-    // Begin to end of the whole job on the GPU's clock, the gaps between its steps included.
-    if (gpuMs) j["gpu_total_ms"] = *gpuMs;
-    j["timing_method"] = "steady clock from each step's submission to its fence, one step in flight; shaders: compile (Mesa's disk "
-                         "cache makes a second run warm) of what other_ms.programs_while_loading did not compile";
-    j["other_ms"] = {{"environment_load", loadMs},
-                     {"context", contextMs},
-                     {"programs_while_loading", compileMs},
-                     {"cache_write_wait", cacheWriteWaitMs},
-                     {"process", millisecondsSince(processStart)}};
-    // The writes' own time, on their thread (a batch reports its total instead).
-    if (cache.enabled() && map.waitForWrites) j["other_ms"]["cache_write"] = cache.writeMilliseconds();
-    if (totals.size() > 1) {
-        j["repeat_totals_ms"] = totals;
-        j["repeat_min_total_ms"] = *std::min_element(totals.begin(), totals.end());
-    }
-    j["gpu_bytes"] = result.gpuBytes();
-    j["textures"] = {{"environment_cube", textureJson(result.environmentCube)},
-                     {"irradiance", textureJson(result.irradianceCube)},
-                     {"prefiltered", textureJson(result.prefiltered)},
-                     {"brdf_lut_schlick-ggx", textureJson(result.brdfLut[0])},
-                     {"brdf_lut_height-correlated-smith", textureJson(result.brdfLut[1])}};
-    j["textures"]["irradiance"]["method"] = enumName(result.settings.irradiance);
-    j["sh"] = ordered_json::parse(bake::shJsonText(result.sh));
-    if (errors) j["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
-    j["notes"] = notes;
-    if (!map.out.empty()) j["output"] = map.out;
-    if (!exported.is_null()) j["export"] = exported;
-    return j;
+    const BakeRunTimes times{loadMs, contextMs, compileMs, cacheWriteWaitMs, gpuMs, totals};
+    return bakeReportJson(settings, map, result, errors, accuracy, cache, times, notes, exported, processStart);
 }
 
 bool isEnvironmentFile(const std::filesystem::path& path)

@@ -26,7 +26,7 @@ namespace {
 struct BenchCommandOptions {
     std::vector<std::string> environments;
     std::vector<std::string> families; // empty: every family of the sweep
-    SceneSettings scene{.kind = SceneKind::Grid};
+    SceneSettings scene{.kind = SceneKind::Grid, .modelPath = {}};
     std::optional<float> roughness; // the material's, for the sphere (the grid has its own)
     std::string out = "bench";
     bool json = false;

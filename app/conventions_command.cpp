@@ -38,7 +38,7 @@ struct ConventionsOptions {
 
 struct Row {
     const ConventionPreset* convention = nullptr;
-    ErrorMetrics error; // over the pixels the reference resolves (lab::Harness)
+    ErrorMetrics error = {}; // over the pixels the reference resolves (lab::Harness)
     double bakeMs = 0.0;
     double referenceMs = 0.0;
 };

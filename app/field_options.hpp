@@ -41,8 +41,8 @@ void applyFieldText(const Field<Settings>& field, Settings& target, const std::s
     target = std::move(candidate);
 }
 
-// The value's form in --help: FLOAT, INT, on|off, NAME (the choices follow in the help), R,G,B
-// or TEXT.
+// The value's form in --help: FLOAT, INT, on|off, NAME (the choices follow in the help), R,G,B,
+// LIST (numbers separated by commas) or TEXT.
 template <typename Settings>
 std::string fieldTypeName(const Field<Settings>& field)
 {
@@ -57,6 +57,7 @@ std::string fieldTypeName(const Field<Settings>& field)
                 else if constexpr (std::is_same_v<T, float> || std::is_same_v<T, double>) return "FLOAT";
                 else if constexpr (std::is_integral_v<T>) return "INT";
                 else if constexpr (std::is_same_v<T, glm::vec3>) return "R,G,B";
+                else if constexpr (std::is_same_v<T, NumberList>) return "LIST";
                 else return "TEXT";
             }
         },
@@ -76,6 +77,7 @@ inline std::string shortNumber(double value)
 template <typename Settings>
 std::string fieldDefaultText(const Field<Settings>& field, const Settings& settings)
 {
+    if (std::holds_alternative<std::function<NumberList&(Settings&)>>(field.ref)) return fieldText(field, settings);
     const nlohmann::ordered_json value = fieldJson(field, settings);
     if (value.is_number()) return shortNumber(value.get<double>());
     if (value.is_array()) return shortNumber(value[0].get<double>()) + "," + shortNumber(value[1].get<double>()) + "," + shortNumber(value[2].get<double>());

@@ -32,7 +32,7 @@ struct InputEvent {
     int code = 0;       // button or key
     bool pressed = false;
     unsigned codepoint = 0;
-    std::vector<std::string> paths;
+    std::vector<std::string> paths = {};
 };
 
 // What one frame's input asks of the app beyond Dear ImGui.

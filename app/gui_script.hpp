@@ -21,6 +21,13 @@ struct ScriptStep {
     std::string text;              // the line as written, for messages
 };
 
+// How many arguments a command takes, nullopt for a name that is no command: the runner's
+// table of commands (gui_script_runner.cpp), which the parser checks scripts against.
+struct ScriptCommandShape {
+    int minArgs = 0, maxArgs = 0;
+};
+std::optional<ScriptCommandShape> scriptCommandShape(const std::string& command);
+
 // Splits a script into steps. Throws std::runtime_error naming the line of a malformed one
 // (an unknown command, an unterminated quote, a wrong number of arguments).
 std::vector<ScriptStep> parseGuiScript(const std::string& text);

@@ -1,8 +1,8 @@
 // The GUI script language: lines split into tokens (double quotes group, backslash escapes,
 // '#' starts a comment, ${NAME} expands an environment variable), each command checked
 // against its number of arguments and key chords against the key names, so that a script
-// with a typo fails before a single frame runs. What each command does: the runner
-// (gui_script_runner.cpp) and docs/gui-scripts.md.
+// with a typo fails before a single frame runs. The commands, their arguments and what each
+// does are one table in the runner (gui_script_runner.cpp); docs/gui-scripts.md describes them.
 #include "gui_script.hpp"
 
 #include <algorithm>
@@ -16,28 +16,6 @@
 
 namespace iblab::app {
 namespace {
-
-struct CommandShape {
-    int minArgs, maxArgs;
-};
-
-// Every command and how many arguments it takes (docs/gui-scripts.md describes each).
-const std::map<std::string, CommandShape>& commandShapes()
-{
-    static const std::map<std::string, CommandShape> shapes = {
-        {"window", {2, 2}},       {"frames", {1, 1}},         {"wait-idle", {0, 1}},      {"wait-until", {3, 4}},
-        {"move", {1, 2}},         {"click", {1, 3}},          {"double-click", {1, 2}},   {"press", {0, 1}},
-        {"release", {0, 1}},      {"drag", {3, 5}},           {"wheel", {1, 3}},          {"key", {1, 16}},
-        {"key-down", {1, 1}},     {"key-up", {1, 1}},         {"type", {1, 1}},           {"set", {2, 2}},
-        {"select", {2, 2}},       {"open", {1, 1}},           {"close-section", {1, 1}},  {"drop", {1, 16}},
-        {"close", {0, 0}},        {"expect", {3, 3}},         {"expect-item", {1, 1}},    {"expect-no-item", {1, 1}},
-        {"expect-pixel", {5, 6}}, {"expect-mean", {3, 7}},    {"snapshot", {1, 6}},       {"expect-changed", {1, 2}},
-        {"expect-unchanged", {1, 2}}, {"screenshot", {1, 1}}, {"print", {1, 1}},          {"sleep", {1, 1}},
-        {"list-items", {0, 1}},   {"timed-keys", {3, 3}},     {"timed-click", {1, 3}},    {"expect-within", {4, 4}},
-        {"remember", {1, 1}},     {"expect-same", {1, 1}},
-    };
-    return shapes;
-}
 
 // ${NAME} becomes the environment variable's value, so that a script can name files
 // wherever a test or a user keeps them (${IBLAB_ASSET_DIR}/models/...). An unset variable is
@@ -155,12 +133,12 @@ std::vector<ScriptStep> parseGuiScript(const std::string& text)
         std::vector<std::string> tokens = tokenize(line, lineNumber);
         if (tokens.empty()) continue;
         const std::string command = tokens.front();
-        const auto shape = commandShapes().find(command);
-        if (shape == commandShapes().end()) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown command \"" + command + "\"");
+        const std::optional<ScriptCommandShape> shape = scriptCommandShape(command);
+        if (!shape) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown command \"" + command + "\"");
         const int args = int(tokens.size()) - 1;
-        if (args < shape->second.minArgs || args > shape->second.maxArgs)
-            throw std::runtime_error("line " + std::to_string(lineNumber) + ": " + command + " takes " + std::to_string(shape->second.minArgs) +
-                                     (shape->second.maxArgs != shape->second.minArgs ? " to " + std::to_string(shape->second.maxArgs) : "") +
+        if (args < shape->minArgs || args > shape->maxArgs)
+            throw std::runtime_error("line " + std::to_string(lineNumber) + ": " + command + " takes " + std::to_string(shape->minArgs) +
+                                     (shape->maxArgs != shape->minArgs ? " to " + std::to_string(shape->maxArgs) : "") +
                                      " arguments, got " + std::to_string(args));
         if (command == "key" || command == "key-down" || command == "key-up")
             for (std::size_t i = 1; i < tokens.size(); ++i)

@@ -24,7 +24,7 @@
 #include "bake/bake_cache.hpp"
 #include "bake/bake_files.hpp"
 #include "bake/bake_job.hpp"
-#include "bake/bake_passes.hpp"
+#include "bake/standalone_passes.hpp"
 #include "command_support.hpp"
 #include "field_options.hpp"
 #include "commands.hpp"
@@ -76,13 +76,9 @@ int runSh(const ShCommandOptions& o)
         } else {
             HeadlessGl gl(/*debugContext=*/true);
             gl::ShaderLibrary shaders(shaderDirectory());
-            bake::BakePasses passes(shaders);
-            passes.compileFor(bake::BakeSettings{}, 0, /*lut=*/false);
-            glFinish();
-            const auto start = Clock::now();
-            const gl::Texture equirect = passes.uploadEquirect(environment.image);
-            radiance = passes.projectSh9(equirect.id(), environment.image.width, environment.image.height);
-            ms = millisecondsSince(start);
+            const bake::TimedSh9 projected = bake::projectSh9OnGpu(shaders, environment.image);
+            radiance = projected.radiance;
+            ms = projected.ms;
             if (gl.debug.errorCount() > 0) return failCommand("sh", "GL error: " + gl.debug.firstError());
         }
         const SH9Color irradiance = convolveWithCosineLobe(radiance);
@@ -134,14 +130,9 @@ int runLut(const LutCommandOptions& o)
         if (!term) throw Error("--geometry", "expected schlick or correlated, got \"" + o.geometry + "\"");
         HeadlessGl gl(/*debugContext=*/true);
         gl::ShaderLibrary shaders(shaderDirectory());
-        bake::BakePasses passes(shaders);
-        passes.compileFor(bake::BakeSettings{}, 0, /*lut=*/true);
-        const auto start = Clock::now();
-        const bake::BakedTexture lut = bake::create2DTexture(GL_RGBA16F, o.size);
-        passes.brdfLut(lut, 0, o.size, o.samples, *term);
-        glFinish();
-        const double ms = millisecondsSince(start);
-        bake::writeLutExr(o.output, bake::read2D(lut), o.samples, *term, o.multiscatter, false);
+        const bake::TimedLut baked = bake::bakeBrdfLut(shaders, o.size, o.samples, *term);
+        const double ms = baked.ms;
+        bake::writeLutExr(o.output, bake::read2D(baked.lut), o.samples, *term, o.multiscatter, false);
         if (gl.debug.errorCount() > 0) return failCommand("lut", "GL error: " + gl.debug.firstError());
         if (o.json) {
             ordered_json j;

@@ -113,20 +113,6 @@ std::string StatusLine::joined() const
 
 namespace {
 
-// A combo over an enum whose names settings.hpp spells; returns true when it changed.
-template <typename Enum, std::size_t N>
-bool enumCombo(const char* label, Enum& value, const std::array<Enum, N>& values, std::string_view (*nameOf)(Enum))
-{
-    bool changed = false;
-    if (Combo combo(label, std::string(nameOf(value)).c_str()); combo)
-        for (Enum v : values)
-            if (combo.entry(std::string(nameOf(v)).c_str(), v == value)) {
-                changed = v != value;
-                value = v;
-            }
-    return changed;
-}
-
 void tooltip(const char* text)
 {
     if (tooltipWanted()) ImGui::SetTooltip("%s", text);
@@ -138,8 +124,10 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
 {
     Section section("Environment", true);
     if (!section) return;
-    // Tall enough for the bundled maps and every builtin without scrolling.
-    if (Combo combo("Source", displayName(settings.source).c_str(), ImGuiComboFlags_HeightLargest); combo) {
+    // Tall enough for the bundled maps and every builtin without scrolling. Its entries are
+    // the catalogue's (a choice is a load request), its label and tooltip the setting's.
+    const auto& sourceRow = settingRow<&EnvironmentSettings::source>();
+    if (Combo combo(fieldLabel(sourceRow).c_str(), displayName(settings.source).c_str(), ImGuiComboFlags_HeightLargest); combo) {
         ImGui::TextDisabled("Bundled (CC0)");
         for (const auto& path : state.catalog.gallery)
             if (combo.entry(displayName(path).c_str(), path == settings.source)) requests.loadEnvironment = path;
@@ -148,10 +136,12 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
         for (const auto& name : state.catalog.builtins)
             if (combo.entry(name.c_str(), name == settings.source)) requests.loadEnvironment = name;
     }
+    noteField(sourceRow, "combo");
+    fieldTooltip(sourceRow.help);
     if (auto path = pathField("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath, sizeof state.environmentPath, "Load"))
         requests.loadEnvironment = std::move(*path);
-    sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
-    sliderFloat("Intensity", &settings.intensityEv, -10.0f, 10.0f, "%+.2f EV");
+    fieldSlider<&EnvironmentSettings::yawDegrees>(settings);
+    fieldSlider<&EnvironmentSettings::intensityEv>(settings);
     static const char* const engines[] = {"filament", "khronos", "bevy"};
     ImGui::SetNextItemWidth(90.0f);
     if (Combo combo("##engine", engines[state.bakeExportFormat]); combo)
@@ -170,10 +160,8 @@ void drawToneMapPanel(ToneMapSettings& settings)
 {
     Section section("Tone mapping", true);
     if (!section) return;
-    if (Combo combo("Operator", toneMapOperatorLabel(settings.op)); combo)
-        for (ToneMapOperator op : allToneMapOperators())
-            if (combo.entry(toneMapOperatorLabel(op), op == settings.op)) settings.op = op;
-    sliderFloat("Exposure", &settings.exposureEv, -10.0f, 10.0f, "%+.2f EV");
+    fieldCombo<&ToneMapSettings::op>(settings, allToneMapOperators(), toneMapOperatorLabel);
+    fieldSlider<&ToneMapSettings::exposureEv>(settings);
     ImGui::SameLine();
     if (smallButton("0")) settings.exposureEv = 0.0f;
     tooltip("Exposure back to 0 EV");
@@ -184,10 +172,10 @@ void drawCameraPanel(CameraSettings& settings, UiRequests& requests)
 {
     Section section("Camera");
     if (!section) return;
-    sliderFloat("Yaw", &settings.yawDegrees, -180.0f, 180.0f, "%.1f deg");
-    sliderFloat("Pitch", &settings.pitchDegrees, -89.0f, 89.0f, "%.1f deg");
-    sliderFloat("Field of view", &settings.fovDegrees, 10.0f, 120.0f, "%.0f deg");
-    sliderFloat("Distance", &settings.distance, 0.1f, 200.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    fieldSlider<&CameraSettings::yawDegrees>(settings);
+    fieldSlider<&CameraSettings::pitchDegrees>(settings);
+    fieldSlider<&CameraSettings::fovDegrees>(settings);
+    fieldSlider<&CameraSettings::distance>(settings);
     if (button("Frame")) requests.frameScene = true;
     tooltip("Fit the scene in the view (F, or double-click the view)");
     ImGui::SameLine();
@@ -211,17 +199,20 @@ void drawMaterialPanel(MaterialSettings& settings, const SceneSettings& scene)
 {
     Section section("Material", true);
     if (!section) return;
-    const FieldTable<MaterialSettings>& fields = materialSettingsFields();
-    if (scene.kind == SceneKind::Model) fieldCheckbox(fields, "override_model", settings);
-    colourEdit3("Base colour", &settings.baseColor.x);
+    using M = MaterialSettings;
+    if (scene.kind == SceneKind::Model) fieldCheckbox<&M::overrideModel>(settings);
+    fieldColour<&M::baseColor>(settings);
     if (scene.kind == SceneKind::Grid) ImGui::TextDisabled("The grid sets metallic (rows) and roughness (columns).");
-    fieldSlider(fields, "metallic", settings);
-    fieldSlider(fields, "roughness", settings);
-    fieldSlider(fields, "ambient_occlusion", settings);
-    fieldSlider(fields, "specular", settings, "%.2f");
+    fieldSlider<&M::metallic>(settings);
+    fieldSlider<&M::roughness>(settings);
+    fieldSlider<&M::ambientOcclusion>(settings);
+    fieldSlider<&M::specular>(settings);
 }
 
 namespace {
+
+// The reference map's widths the Compare panel offers.
+constexpr std::array kReferenceWidths{32, 64, 128, 256, 512};
 
 // "reference 37% (256x128)": how far the reference is, over the bar that shows it.
 std::string referenceProgressText(const ReferenceStatus& r)
@@ -235,8 +226,8 @@ std::string referenceProgressText(const ReferenceStatus& r)
 // `reference`: the status of the reference the frame shows, for the reference method's bar.
 void drawSamplingControls(SamplingSettings& settings, bool exactCountForced, const ReferenceStatus& reference)
 {
-    const FieldTable<SamplingSettings>& fields = samplingSettingsFields();
-    fieldCombo(fields, "method", settings);
+    using S = SamplingSettings;
+    fieldCombo<&S::method>(settings);
     if (settings.method == ShadingMethod::Reference) {
         if (reference.current) progressBar("Reference progress", reference.progress, referenceProgressText(reference).c_str());
         // Wrapped and greyed: the panel is narrower than the sentence.
@@ -250,38 +241,43 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced, con
         // buttons or the +/- keys, or dragged on a logarithmic scale.
         const float stepWidth = ImGui::GetFrameHeight();
         ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - 2.0f * (stepWidth + ImGui::GetStyle().ItemInnerSpacing.x));
-        sliderInt("##N", &settings.samples, 1, kMaxSampleCount, "N = %d", ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-        tooltip("Samples per pixel. Ctrl+click to type; +/- keys step by one");
+        fieldSlider<&S::samples>(settings, ImGuiSliderFlags_AlwaysClamp, /*hideLabel=*/true);
         ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
         if (button("-", ImVec2(stepWidth, 0.0f))) settings.samples = std::max(1, settings.samples - 1);
         ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
         if (button("+", ImVec2(stepWidth, 0.0f))) settings.samples = std::min(kMaxSampleCount, settings.samples + 1);
         ImGui::SameLine(0.0f, ImGui::GetStyle().ItemInnerSpacing.x);
         ImGui::TextUnformatted("N samples");
+        // Shown on and locked where the scene keeps exactly N whatever the setting says.
+        const auto& freezeRow = settingRow<&S::freezeSampleSet>();
         bool frozen = settings.freezeSampleSet || exactCountForced;
         ImGui::BeginDisabled(exactCountForced);
-        if (checkbox("Freeze the sample set", &frozen)) settings.freezeSampleSet = frozen;
+        if (checkbox(fieldLabel(freezeRow).c_str(), &frozen)) settings.freezeSampleSet = frozen;
+        noteField(freezeRow, "checkbox");
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-            ImGui::SetTooltip(exactCountForced ? "The counting strip always keeps exactly N samples per pixel"
-                                               : "Exactly N samples per pixel: no progressive refinement with rotated sample sets");
-        fieldCheckbox(fields, "pdf_mip_filtering", settings);
-        if (settings.pdfMipFiltering) sliderFloat("Mip bias", &settings.mipBias, -1.0f, 3.0f, "%+.2f"); // the useful part of the range
-        fieldCheckbox(fields, "cosine_sampled_diffuse", settings);
-        fieldCheckbox(fields, "normalize_by_accepted", settings);
+            ImGui::SetTooltip("%s", exactCountForced ? "The counting strip always keeps exactly N samples per pixel" : std::string(freezeRow.help).c_str());
+        fieldCheckbox<&S::pdfMipFiltering>(settings);
+        if (settings.pdfMipFiltering) fieldSlider<&S::mipBias>(settings);
+        fieldCheckbox<&S::cosineSampledDiffuse>(settings);
+        fieldCheckbox<&S::normalizeByAccepted>(settings);
     }
     // The reference reads no mip and no baked diffuse: of these it shares only the BRDF
     // (geometry term, energy compensation).
     if (settings.method != ShadingMethod::Reference) {
+        // Auto is the forced mip's special value, -1 (its row's range says so).
+        const auto& forcedRow = settingRow<&S::forcedMip>();
         bool automatic = settings.forcedMip < 0;
         if (checkbox("Auto mip", &automatic)) settings.forcedMip = automatic ? -1 : 0;
-        if (!automatic) sliderInt("Forced mip", &settings.forcedMip, 0, 10);
+        noteField(forcedRow, "checkbox");
+        fieldTooltip(forcedRow.range.specialMeaning);
+        if (!automatic) fieldSlider<&S::forcedMip>(settings);
     }
-    fieldCombo(fields, "geometry", settings);
-    if (settings.method != ShadingMethod::Reference) fieldCombo(fields, "diffuse", settings);
-    fieldCheckbox(fields, "multiscatter", settings);
-    if (readsPrefilteredCube(settings.method)) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
-    if (settings.method == ShadingMethod::SplitSum) fieldCombo(fields, "specular_direction", settings);
+    fieldCombo<&S::geometry>(settings);
+    if (settings.method != ShadingMethod::Reference) fieldCombo<&S::diffuse>(settings);
+    fieldCheckbox<&S::multiscatter>(settings);
+    if (readsPrefilteredCube(settings.method)) fieldCheckbox<&S::roughFresnelOnLut>(settings);
+    if (settings.method == ShadingMethod::SplitSum) fieldCombo<&S::specularDirection>(settings);
 }
 
 // The smoothest roughness the scene shows, where the settings say it (a glTF's own
@@ -355,20 +351,26 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
 {
     Section section("Compare");
     if (!section) return;
+    // A shortcut to one value of the view mode (the View panel's combo has them all).
     bool errorView = view.mode == ViewMode::Error;
     if (checkbox("Error against the reference", &errorView)) view.mode = errorView ? ViewMode::Error : ViewMode::Final;
+    noteField(settingRow<&ViewSettings::mode>(), "checkbox");
     tooltip("The full integral over the environment's texels: no split sum, no N = V = R");
     if (errorView) {
-        enumCombo("Error space", view.errorSpace, std::array{ErrorSpace::Linear, ErrorSpace::Display}, enumName<ErrorSpace>);
-        sliderFloat("Colour bar top", &view.errorScale, 0.01f, 4.0f, "%.3f", ImGuiSliderFlags_Logarithmic);
+        fieldCombo<&ViewSettings::errorSpace>(view);
+        fieldSlider<&ViewSettings::errorScale>(view);
     }
     // The reference's map and progress, for the error view and for the reference method.
     const bool referenceMethod = frameSampling.method == ShadingMethod::Reference || (view.split && view.compare.method == ShadingMethod::Reference);
     if (errorView || referenceMethod) {
-        const std::array widths{32, 64, 128, 256, 512};
-        if (Combo combo("Reference map", (std::to_string(view.referenceWidth) + " x " + std::to_string(view.referenceWidth / 2)).c_str()); combo)
-            for (int w : widths)
+        // The widths worth a choice, inside the row's range (tests/cpu/panel_fields_test.cpp).
+        const auto& widthRow = settingRow<&ViewSettings::referenceWidth>();
+        if (Combo combo(fieldLabel(widthRow).c_str(), (std::to_string(view.referenceWidth) + " x " + std::to_string(view.referenceWidth / 2)).c_str());
+            combo)
+            for (int w : kReferenceWidths)
                 if (combo.entry((std::to_string(w) + " x " + std::to_string(w / 2)).c_str(), w == view.referenceWidth)) view.referenceWidth = w;
+        noteField(widthRow, "combo", kReferenceWidths.front(), kReferenceWidths.back());
+        fieldTooltip(widthRow.help);
         const ReferenceStatus& r = state.reference;
         if (r.current) {
             progressBar("Reference progress", r.progress, referenceProgressText(r).c_str());
@@ -392,9 +394,9 @@ void drawComparePanel(ViewSettings& view, const SamplingSettings& frameSampling,
         }
     }
     ImGui::Separator();
-    checkbox("Split view A | B", &view.split);
+    fieldCheckbox<&ViewSettings::split>(view);
     if (!view.split) return;
-    sliderFloat("Divider", &view.splitPosition, 0.0f, 1.0f, "%.2f");
+    fieldSlider<&ViewSettings::splitPosition>(view);
     tooltip("Or drag the line in the view");
     if (button("Copy A's sampling to B")) view.compare = frameSampling;
     ImGui::TextDisabled("B, right of the divider:");
@@ -410,10 +412,9 @@ void drawScenePanel(SceneSettings& settings, ShadingMethod method, PanelState& s
     Section section("Scene", true);
     if (!section) return;
     const std::array kinds{SceneKind::Sphere, SceneKind::Grid, SceneKind::Counting, SceneKind::Sweep, SceneKind::Model, SceneKind::None};
-    if (enumCombo("Scene", settings.kind, kinds, enumName<SceneKind>)) requests.sceneChanged = true;
+    if (fieldCombo<&SceneSettings::kind>(settings, kinds)) requests.sceneChanged = true;
     if (settings.kind == SceneKind::Counting || settings.kind == SceneKind::Sweep) {
-        if (sliderInt("Spheres", &settings.countingSpheres, 2, 16)) requests.sceneChanged = true;
-        tooltip(settings.kind == SceneKind::Counting ? "Sphere i uses N = i samples" : "Roughness from 0 (left) to 1 (right)");
+        if (fieldSlider<&SceneSettings::countingSpheres>(settings)) requests.sceneChanged = true;
         // Only the sampled method counts samples: under any other every counting sphere is the
         // same, whatever its label says.
         if (settings.kind == SceneKind::Counting) {
@@ -446,12 +447,10 @@ void drawViewPanel(ViewSettings& settings)
 {
     Section section("View");
     if (!section) return;
-    const std::array modes{ViewMode::Final, ViewMode::PrefilterMips, ViewMode::Lut, ViewMode::Furnace, ViewMode::Irradiance, ViewMode::Error};
-    enumCombo("View", settings.mode, modes, enumName<ViewMode>);
-    const std::array backgrounds{BackgroundMode::Environment, BackgroundMode::Irradiance, BackgroundMode::PrefilterMip, BackgroundMode::SolidColour};
-    enumCombo("Background", settings.background, backgrounds, enumName<BackgroundMode>);
-    if (settings.background == BackgroundMode::PrefilterMip) sliderInt("Mip", &settings.backgroundMip, 0, 8);
-    if (settings.background == BackgroundMode::SolidColour) colourEdit3("Colour", &settings.solidColour.x);
+    fieldCombo<&ViewSettings::mode>(settings);
+    fieldCombo<&ViewSettings::background>(settings);
+    if (settings.background == BackgroundMode::PrefilterMip) fieldSlider<&ViewSettings::backgroundMip>(settings);
+    if (settings.background == BackgroundMode::SolidColour) fieldColour<&ViewSettings::solidColour>(settings);
 }
 
 void drawPresetPanel(PanelState& state, UiRequests& requests)

@@ -24,14 +24,14 @@ struct StatusLine {
     bool isError = false;
     // Details that are worth knowing but are no problem (texels a loader repaired, a model's
     // unsupported extension): shown quietly under the line.
-    std::vector<std::string> notes;
+    std::vector<std::string> notes = {};
     // text and notes in one line ("a; b; c"), for logs and reports.
     std::string joined() const;
 };
 
 struct FrameStats {
     double frameMs = 0.0;  // wall clock of the whole frame, CPU side
-    double renderMs = 0.0; // our passes, measured with glFinish when profiling is on
+    double renderMs = 0.0; // a full-resolution frame of the shown settings (ViewScheduler::fullFrameMs): measured, or a preview's time scaled up
     int width = 0;
     int height = 0;
     std::string renderer; // GL renderer string
@@ -96,9 +96,9 @@ struct CompareState {
     ErrorReport error;
 };
 
-// The auto quality mode's choice as the Study panel shows it (bench/auto_quality.hpp).
+// The auto quality mode's choice as the Study panel shows it (lab/auto_quality.hpp).
 struct AutoQualityState {
-    float targetSteps = 20.0f;     // 99th-percentile display error, 8-bit steps after tone mapping (bench::kDefaultAutoTargetSteps says why 20)
+    float targetSteps = 20.0f;     // 99th-percentile display error, 8-bit steps after tone mapping (kDefaultAutoTargetSteps in lab/auto_quality.hpp says why 20)
     bool running = false;          // measuring its candidates (the StudyState's progress and chart follow it)
     bool haveChoice = false;
     bool applied = false;          // the choice is what the view bakes and shades with

@@ -50,8 +50,19 @@ void ItemRegistry::recordRect(std::string_view label, std::string_view kind, ImV
     const std::string base = path;
     for (int n = 2; std::any_of(building_.begin(), building_.end(), [&](const TrackedItem& item) { return item.path == path; }); ++n)
         path = base + "#" + std::to_string(n);
-    building_.push_back({path, std::string(kind), min, max});
+    building_.push_back({.path = path, .kind = std::string(kind), .min = min, .max = max});
     everShown_.emplace(path, std::string(kind));
+}
+
+void ItemRegistry::noteLastField(std::string_view field, double min, double max, std::string_view kind)
+{
+    for (auto item = building_.rbegin(); item != building_.rend(); ++item)
+        if (kind.empty() || item->kind == kind) {
+            item->field = std::string(field);
+            item->fieldMin = min;
+            item->fieldMax = max;
+            return;
+        }
 }
 
 const TrackedItem* ItemRegistry::find(std::string_view path) const

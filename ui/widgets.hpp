@@ -9,6 +9,7 @@
 // A Section (collapsing header) also scopes the IDs of what it holds, so a header and a
 // control inside it may share a label ("Scene" > "Scene") without sharing an ImGui ID.
 #include <cstddef>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -28,6 +29,10 @@ struct TrackedItem {
     // bar, which shows and is not used.
     std::string kind;
     ImVec2 min{0.0f, 0.0f}, max{0.0f, 0.0f}; // window pixels, y down
+    // The settings table row the control edits ("camera.fov_degrees"; ui/field_widgets.hpp),
+    // empty for a control that edits no setting; a slider's span (NaN for other controls).
+    std::string field = {};
+    double fieldMin = std::numeric_limits<double>::quiet_NaN(), fieldMax = std::numeric_limits<double>::quiet_NaN();
     ImVec2 centre() const { return {0.5f * (min.x + max.x), 0.5f * (min.y + max.y)}; }
 };
 
@@ -46,6 +51,9 @@ public:
     void recordLastItem(std::string_view label, std::string_view kind);
     // Records a part of a composite widget (a colour's component field) by its rectangle.
     void recordRect(std::string_view label, std::string_view kind, ImVec2 min, ImVec2 max);
+    // Notes the settings row that the last recorded item of `kind` (any kind when empty)
+    // edits, and a slider's span.
+    void noteLastField(std::string_view field, double min, double max, std::string_view kind = {});
 
     // In the last complete frame: the exact path, else the one item whose path ends with
     // "/" + path.

@@ -101,6 +101,9 @@ std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& se
     nlohmann::json j = nlohmann::json::parse(toJsonText(settings));
     j.erase("preset");
     j.erase("samples_per_step");
+    // The factors as the text they were before they became a list, so that a cache written
+    // then is still found.
+    j["prefilter"]["mip_sample_scale"] = numberListText(settings.prefilter.mipSampleScale);
     return hex16(fnv1a("iblab-bake-" + std::to_string(kBakeFormatVersion) + "|" + hex16(contentHash) + "|" + j.dump()));
 }
 

@@ -40,11 +40,12 @@ BakeSettings tutorialPreset()
                    .layout = RoughnessLayout::Linear,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
-                   .mipSampleScale = "",
+                   .mipSampleScale = {},
                    .mipFiltering = false,
                    .mipBias = 0.0f,
                    .mirrorCopy = false,
-                   .brightTexels = 0};
+                   .brightTexels = 0,
+                   .brightThreshold = 4.0f};
     s.lut = {.size = 512, .samples = 1024, .schlickGgx = true, .heightCorrelatedSmith = false};
     return s;
 }
@@ -68,11 +69,12 @@ BakeSettings filamentPreset()
                    .layout = RoughnessLayout::Quadratic,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
-                   .mipSampleScale = "",
+                   .mipSampleScale = {},
                    .mipFiltering = true,
                    .mipBias = 1.0f,
                    .mirrorCopy = true,
-                   .brightTexels = 0};
+                   .brightTexels = 0,
+                   .brightThreshold = 4.0f};
     s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     return s;
 }
@@ -96,11 +98,12 @@ BakeSettings gltfViewerPreset()
                    .layout = RoughnessLayout::Linear,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
-                   .mipSampleScale = "",
+                   .mipSampleScale = {},
                    .mipFiltering = true,
                    .mipBias = 1.8257f,
                    .mirrorCopy = false,
-                   .brightTexels = 0};
+                   .brightTexels = 0,
+                   .brightThreshold = 4.0f};
     s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     return s;
 }
@@ -127,37 +130,11 @@ BakeSettings presetByName(std::string_view name)
     throw Error("preset \"" + std::string(name) + "\"", "unknown preset; expected default, tutorial, filament or gltf-viewer");
 }
 
-namespace {
-
-std::vector<double> prefilterMipSampleScales(const std::string& list)
-{
-    std::vector<double> scales;
-    std::size_t begin = 0;
-    while (begin < list.size()) {
-        const std::size_t end = std::min(list.find(',', begin), list.size());
-        const std::string item = list.substr(begin, end - begin);
-        std::size_t used = 0;
-        double scale = 0.0;
-        try {
-            scale = std::stod(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        require(used == item.size() && used > 0 && scale >= 1.0 / 64.0 && scale <= 64.0, "prefilter.mip_sample_scale",
-                "expected numbers in [1/64, 64] separated by commas, got \"" + list + "\"");
-        scales.push_back(scale);
-        begin = end + 1;
-    }
-    return scales;
-}
-
-} // namespace
-
 int prefilterSamples(const PrefilterSettings& settings, int level)
 {
     if (level == 0)
         return settings.mirrorCopy ? 1 : settings.samples;
-    const std::vector<double> scales = prefilterMipSampleScales(settings.mipSampleScale);
+    const NumberList& scales = settings.mipSampleScale;
     const double scale = std::size_t(level - 1) < scales.size() ? scales[std::size_t(level - 1)] : 1.0;
     const double n = scale * double(settings.samples) * std::pow(double(settings.sampleGrowth), double(std::max(level - 1, 0)));
     return int(std::clamp(std::lround(n), 1l, 65536l));
@@ -239,7 +216,7 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.sampleGrowth; }), {1, 8}, "--prefilter-sample-growth", value},
         {"prefilter.mip_sample_scale", "Prefilter sample scale per mip",
          "Factors on samples * growth^(m-1) for mips 1, 2, ..., comma-separated (1,1,2 doubles mip 3; \"\" for none)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipSampleScale; }), {}, "--prefilter-mip-sample-scale", value},
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipSampleScale; }), {1.0 / 64.0, 64.0}, "--prefilter-mip-sample-scale", value},
         {"prefilter.mip_filtering", "Prefilter mip filtering", "PDF-based source-mip selection for the prefilter",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipFiltering; }), {}, "--prefilter-mip-filter", value},
         {"prefilter.mip_bias", "Prefilter mip bias", "Levels added to the prefilter's source lod (0 as LearnOpenGL, 1 as Filament)",
@@ -273,7 +250,6 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
 void validate(const BakeSettings& s)
 {
     validateRanges(bakeSettingsFields(), s, "bake settings");
-    prefilterMipSampleScales(s.prefilter.mipSampleScale);
     // The rule that relates two fields.
     const int maxLevels = std::bit_width(unsigned(std::max(s.prefilter.faceSize, 1)));
     require(s.prefilter.levels <= maxLevels, "prefilter.levels",

@@ -108,12 +108,13 @@ struct PrefilterSettings {
     // each further mip while giving the wide lobes, which need them most, more samples
     // (8, 24, 72, 216, 648 for mips 1-5).
     float sampleGrowth = 3.0f;
-    // Per-mip factors on that rule, mips 1, 2, ... ("" or a mip the list does not reach: 1).
+    // Per-mip factors on that rule, mips 1, 2, ..., each in [1/64, 64] (a mip the list does
+    // not reach: 1).
     // The default doubles mip 3 (roughness 0.37; 8, 24, 144, 216, 648): of the mips that
     // roughness 0.2-0.5 reads, it had the most error per sample on maps with small, very
     // bright lights, and doubling it halves its error against the exact prefilter on
     // courtyard.exr and sunset.exr for about 10 ms of bake (docs/bake.md).
-    std::string mipSampleScale = "1,1,2";
+    NumberList mipSampleScale = {1.0, 1.0, 2.0};
     bool mipFiltering = true;
     // Added to 0.5 log2(Omega_s / Omega_p): 0 = LearnOpenGL's anchor, 1 = Filament's.
     float mipBias = 0.0f;
@@ -134,7 +135,6 @@ struct PrefilterSettings {
 };
 
 // The sample count of prefiltered mip `level`, capped at 65536 (1 for a copied mirror level).
-// Throws for a mipSampleScale that is not a comma-separated list of numbers in [1/64, 64].
 int prefilterSamples(const PrefilterSettings& settings, int level);
 
 // The split-sum LUT. Depends on no environment: baked once per (size, samples, geometry)

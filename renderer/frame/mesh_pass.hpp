@@ -1,6 +1,6 @@
 #pragma once
 // The mesh pass (mesh.vert + pbr.frag): every draw of the scene, shaded with the split sum
-// or the fitted lobe (METHOD 0, a uniform tells them apart) or N importance samples
+// or the fitted lobe (METHOD 0; a #define of the program tells them apart) or N importance samples
 // (METHOD 1, the first N Hammersley points rotated by the frame's Cranley-Patterson offset),
 // or written as the reference renderer's G-buffer (METHOD 2). Depth-tested, so it runs
 // before the sky pass.

@@ -46,8 +46,8 @@ public:
     FrameKey keyFor(const FrameSettings& settings, int width, int height) const;
 
     // Starts the reference of keyFor(settings, width, height) when it is not the one under
-    // way (or the slicing differs), then runs slices until budget is spent (glFinish after
-    // each, so that it is GPU time) or it is complete, and resolves a complete one. Needs
+    // way (or the slicing differs), then runs slices until budget is spent (each waits on
+    // a fence after the one before it, so that it is GPU time) or it is complete, and resolves a complete one. Needs
     // lighting.bake (for the sky behind it and the frame's shading inputs) and an environment.
     ReferenceStatus advance(const FrameSettings& settings, int width, int height, std::chrono::steady_clock::duration budget,
                             const ReferenceSlicing& slicing, SceneSlot& scene, const Lighting& lighting);

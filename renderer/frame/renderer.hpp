@@ -112,8 +112,8 @@ public:
     // The reference renderer: the frame of these settings at this size with the full
     // integral over the (downsampled) environment's texels, no split sum and no N = V = R.
     // Starts it when the settings, size, slicing, environment or model changed (the mesh
-    // pass fills a G-buffer at once), then runs slices until `budget` is spent (glFinish
-    // after each, so the budget is GPU time) or it is complete; a complete reference is
+    // pass fills a G-buffer at once), then runs slices until `budget` is spent (each
+    // waits on a fence after the one before it, so the budget is GPU time) or it is complete; a complete reference is
     // resolved into an RGBA32F frame. Needs a bake, like any lit frame.
     ReferenceStatus advanceReference(const FrameSettings& settings, int width, int height, std::chrono::steady_clock::duration budget,
                                      const ReferenceSlicing& slicing = {});

@@ -19,15 +19,17 @@ const FieldTable<SamplingSettings>& samplingSettingsFields()
     constexpr CliForm value = CliForm::Value, flag = CliForm::Flag;
     static const FieldTable<S> fields{
         {"method", "Method", "Shading method: splitsum|sampled|fitted-lobe|reference (the full integral, slow)", fieldRef<S>([](S& s) -> auto& { return s.method; }), {}, "--method", value},
-        {"samples", "N (samples)", "N, the samples per pixel of the sampled method", fieldRef<S>([](S& s) -> auto& { return s.samples; }),
-         {1, kMaxSampleCount}, "--samples", value},
+        {"samples", "N", "N, the samples per pixel of the sampled method",
+         fieldRef<S>([](S& s) -> auto& { return s.samples; }), {.min = 1, .max = kMaxSampleCount, .ui = {.format = "N = %d", .logarithmic = true}},
+         "--samples", value},
         // --mip takes "auto" for -1 (app/cli.cpp).
         {"forced_mip", "Forced mip", "Mip level every read takes (the prefiltered mip for the split sum, the source mip for sampled), or auto",
          fieldRef<S>([](S& s) -> auto& { return s.forcedMip; }), {0, 16, -1, "the lod follows roughness or the pdf"}, "--mip"},
         {"pdf_mip_filtering", "PDF mip filtering", "Sampled method: read each sample from the source mip its pdf chooses (--pdf-filtering) or from mip 0 (--no-pdf-filtering)",
          fieldRef<S>([](S& s) -> auto& { return s.pdfMipFiltering; }), {}, "--no-pdf-filtering", CliForm::NegatedFlag},
         {"mip_bias", "Mip bias", "Sampled method: levels added to the pdf-chosen source mip (0 as LearnOpenGL, 1 as Filament)",
-         fieldRef<S>([](S& s) -> auto& { return s.mipBias; }), {-16, 16}, "--mip-bias", value},
+         fieldRef<S>([](S& s) -> auto& { return s.mipBias; }),
+         {.min = -16, .max = 16, .ui = {.format = "%+.2f", .min = -1, .max = 3}}, "--mip-bias", value}, // the slider: the useful part
         {"geometry", "Geometry term", "Geometry term: schlick-ggx|height-correlated-smith",
          fieldRef<S>([](S& s) -> auto& { return s.geometry; }), {}, "--geometry", value},
         {"diffuse", "Diffuse", "Split sum's diffuse source: sh9 (windowed)|sh9-plain|irradiance-cube", fieldRef<S>([](S& s) -> auto& { return s.diffuse; }), {}, "--diffuse",
@@ -68,12 +70,17 @@ const FieldTable<MaterialSettings>& materialSettingsFields()
         {"ambient_occlusion", "AO", "Ambient occlusion factor",
          fieldRef<S>([](S& s) -> auto& { return s.ambientOcclusion; }), {0, 1}, "--ao", value},
         {"specular", "Specular", "Dielectric reflectance, F0 = 0.16 specular^2 (0.5 gives F0 = 0.04)",
-         fieldRef<S>([](S& s) -> auto& { return s.specular; }), {0, 1}, "--specular", value},
+         fieldRef<S>([](S& s) -> auto& { return s.specular; }), {.min = 0, .max = 1, .ui = {.format = "%.2f"}}, "--specular", value},
     };
     return fields;
 }
 
 namespace {
+
+// An angle is valid at any value (it wraps); its slider spans one turn.
+const FieldRange kAngle{.min = -1e6, .max = 1e6, .ui = {.format = "%.1f deg", .min = -180, .max = 180}};
+// Exposure and intensity in EV stops.
+const FieldRange kStops{.min = -20, .max = 20, .ui = {.format = "%+.2f EV"}};
 
 FieldTable<FrameSettings> makeFrameFields()
 {
@@ -84,22 +91,23 @@ FieldTable<FrameSettings> makeFrameFields()
         {"environment.source", "Source", "Environment: an .exr/.hdr file or builtin:NAME",
          fieldRef<S>([](S& s) -> auto& { return s.environment.source; }), {}, "--env"},
         {"environment.yaw_degrees", "Yaw", "Environment rotation about +Y in degrees (+90 brings +X to the front)",
-         fieldRef<S>([](S& s) -> auto& { return s.environment.yawDegrees; }), {-1e6, 1e6}, "--env-yaw", value},
-        {"environment.intensity_ev", "Intensity (EV)", "Environment intensity in EV stops",
-         fieldRef<S>([](S& s) -> auto& { return s.environment.intensityEv; }), {-20, 20}, "--env-intensity", value},
+         fieldRef<S>([](S& s) -> auto& { return s.environment.yawDegrees; }), kAngle, "--env-yaw", value},
+        {"environment.intensity_ev", "Intensity", "Environment intensity in EV stops",
+         fieldRef<S>([](S& s) -> auto& { return s.environment.intensityEv; }), kStops, "--env-intensity", value},
         {"tone_map.operator", "Operator", "Tone-map operator", fieldRef<S>([](S& s) -> auto& { return s.toneMap.op; }), {}, "--tonemap",
          value},
-        {"tone_map.exposure_ev", "Exposure (EV)", "Exposure before tone mapping in EV stops",
-         fieldRef<S>([](S& s) -> auto& { return s.toneMap.exposureEv; }), {-20, 20}, "--exposure", value},
+        {"tone_map.exposure_ev", "Exposure", "Exposure before tone mapping in EV stops",
+         fieldRef<S>([](S& s) -> auto& { return s.toneMap.exposureEv; }), kStops, "--exposure", value},
         {"camera.yaw_degrees", "Yaw", "Camera yaw in degrees (0 looks down -Z, +90 down +X)",
-         fieldRef<S>([](S& s) -> auto& { return s.camera.yawDegrees; }), {-1e6, 1e6}, "--yaw", value},
+         fieldRef<S>([](S& s) -> auto& { return s.camera.yawDegrees; }), kAngle, "--yaw", value},
         {"camera.pitch_degrees", "Pitch", "Camera pitch in degrees (positive looks up, from below the target)", fieldRef<S>([](S& s) -> auto& { return s.camera.pitchDegrees; }),
-         {-89, 89}, "--pitch", value},
+         {.min = -89, .max = 89, .ui = {.format = "%.1f deg"}}, "--pitch", value},
         {"camera.fov_degrees", "Field of view", "Vertical field of view in degrees", fieldRef<S>([](S& s) -> auto& { return s.camera.fovDegrees; }),
-         {1, 170}, "--fov", value},
+         {.min = 1, .max = 170, .ui = {.format = "%.0f deg"}}, "--fov", value},
         // --distance 0 frames the scene (app/cli.cpp).
         {"camera.distance", "Distance", "Camera distance from its target", fieldRef<S>([](S& s) -> auto& { return s.camera.distance; }),
-         {1e-5, 1e6, 0, "frame the scene"}, "--distance"},
+         {.min = 1e-5, .max = 1e6, .special = 0, .specialMeaning = "frame the scene", .ui = {.format = "%.2f", .min = 0.1, .max = 200, .logarithmic = true}},
+         "--distance"},
         {"camera.target", "Target", "The point the camera orbits", fieldRef<S>([](S& s) -> auto& { return s.camera.target; })},
     };
     appendNested(fields, materialSettingsFields(), [](S& s) -> MaterialSettings& { return s.material; }, "material.", "");
@@ -109,27 +117,29 @@ FieldTable<FrameSettings> makeFrameFields()
         {"scene.kind", "Scene", "Scene: sphere|grid|counting|sweep|none|FILE.gltf|FILE.glb",
          fieldRef<S>([](S& s) -> auto& { return s.scene.kind; }), {}, "--scene"},
         {"scene.model", "Model", "The .gltf / .glb shown by the model scene", fieldRef<S>([](S& s) -> auto& { return s.scene.modelPath; })},
-        {"scene.counting_spheres", "Spheres", "Spheres k in the N = 1..k counting strip",
+        {"scene.counting_spheres", "Spheres",
+         "Spheres k of the counting strip (sphere i uses N = i samples) and of the sweep (roughness 0 at the left to 1 at the right)",
          fieldRef<S>([](S& s) -> auto& { return s.scene.countingSpheres; }), {1, 64}, "--counting-spheres", value},
         {"view.mode", "View", "View: final|prefilter-mips|lut|furnace|irradiance|error", fieldRef<S>([](S& s) -> auto& { return s.view.mode; }),
          {}, "--view", value},
         {"view.background", "Background", "Background: environment|irradiance|prefilter-mip|solid",
          fieldRef<S>([](S& s) -> auto& { return s.view.background; }), {}, "--background", value},
-        {"view.background_mip", "Background mip", "The prefiltered mip that --background prefilter-mip shows",
+        {"view.background_mip", "Mip", "The prefiltered mip that --background prefilter-mip shows",
          fieldRef<S>([](S& s) -> auto& { return s.view.backgroundMip; }), {0, 16}, "--background-mip", value},
-        {"view.solid_colour", "Solid colour", "Background colour of the solid background",
+        {"view.solid_colour", "Colour", "Background colour of the solid background",
          fieldRef<S>([](S& s) -> auto& { return s.view.solidColour; })},
         {"view.error_space", "Error space", "What --view error compares: linear (HDR, before tone mapping)|display (after it)",
          fieldRef<S>([](S& s) -> auto& { return s.view.errorSpace; }), {}, "--error-space", value},
-        {"view.error_scale", "Error scale", "The relative error at the top of --view error's colour bar",
-         fieldRef<S>([](S& s) -> auto& { return s.view.errorScale; }), {1e-6, 1e6}, "--error-scale", value},
-        {"view.reference_width", "Reference width",
+        {"view.error_scale", "Colour bar top", "The relative error at the top of --view error's colour bar",
+         fieldRef<S>([](S& s) -> auto& { return s.view.errorScale; }),
+         {.min = 1e-6, .max = 1e6, .ui = {.format = "%.3f", .min = 0.01, .max = 4, .logarithmic = true}}, "--error-scale", value},
+        {"view.reference_width", "Reference map",
          "Width of the environment the reference sums over, halved from the loaded map until it fits (height = width / 2)",
          fieldRef<S>([](S& s) -> auto& { return s.view.referenceWidth; }), {2, 4096}, "--reference-width", value},
-        {"view.split", "A/B split", "Show settings B right of a divider", fieldRef<S>([](S& s) -> auto& { return s.view.split; })},
+        {"view.split", "Split view A | B", "Show settings B right of a divider", fieldRef<S>([](S& s) -> auto& { return s.view.split; })},
         // --split POSITION turns the split on and places the divider (app/cli.cpp).
         {"view.split_position", "Divider", "Split view at this position from the left: A (the options above) left of it, B (the --b-* options) right",
-         fieldRef<S>([](S& s) -> auto& { return s.view.splitPosition; }), {0, 1}, "--split"},
+         fieldRef<S>([](S& s) -> auto& { return s.view.splitPosition; }), {.min = 0, .max = 1, .ui = {.format = "%.2f"}}, "--split"},
     };
     fields.insert(fields.end(), sceneAndView.begin(), sceneAndView.end());
     appendNested(fields, samplingSettingsFields(), [](S& s) -> SamplingSettings& { return s.view.compare; }, "view.compare.", "b-");

@@ -8,7 +8,8 @@ namespace iblab::shared {
 #include "common/prefilter_lod.glsl"
 }
 
-namespace iblab::bake {
+// In ibl's namespace, as the rest of the math (docs/architecture.md, Namespaces).
+namespace iblab {
 using shared::cubeAverageTexelSolidAngle;
 using shared::cubeTexelSolidAngle;
 using shared::prefilterMipFromRoughness;

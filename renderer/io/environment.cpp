@@ -270,25 +270,10 @@ private:
     int savedStderr_ = -1;
 };
 
-Environment loadFile(const std::string& path, const EnvironmentLoadOptions& options)
+// Refuses what no environment is (deep, volume, no pixels or channels, not 2:1, too small)
+// and what would cost too much to read, all from the header, before anything is allocated.
+void checkHeader(const std::string& path, const ImageHeader& spec, const EnvironmentLoadOptions& options)
 {
-    const LibpngStderrFilter quietLibpng;
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status))
-        throw Error(path, "no such file");
-    if (fs::is_directory(status))
-        throw Error(path, "is a directory, not an image file");
-    if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0 && !ec)
-        throw Error(path, "empty file (0 bytes)");
-
-    std::string openError;
-    const std::unique_ptr<ImageReader> in = imageCodec().openFile(path, openError);
-    if (!in)
-        throw Error(path, "cannot read as an image: " + orFallback(openError, "unknown format"));
-    const ImageHeader& spec = in->header();
-
-    // Header checks, all before allocating anything.
     if (spec.deep)
         throw Error(path, "deep images are not supported");
     if (spec.width <= 0 || spec.height <= 0)
@@ -320,22 +305,26 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
                               std::to_string(kMaxTileTexels) + powerOfTwoText(kMaxTileTexels));
     if (options.maxWidth < 2 || options.maxWidth % 2 != 0)
         throw Error(path, "invalid size cap maxWidth=" + std::to_string(options.maxWidth) + " (must be even and >= 2)");
+}
 
-    const int srcW = spec.width;
-    const int srcH = spec.height;
-    const bool downsample = srcW > options.maxWidth || srcH > options.maxWidth / 2;
-    Environment env;
-    env.source = path;
-    env.image = downsample ? ImageRGB32F(options.maxWidth, options.maxWidth / 2) : ImageRGB32F(srcW, srcH);
+// How the stored values are encoded: what the header's colour space says, else sRGB for
+// integer images (display-referred); an unknown colour space is read as linear, with a warning.
+struct StoredEncoding {
+    Encoding encoding = Encoding::Linear;
+    float gamma = 1.0f;
+    bool eightBit = false;
+};
 
-    // Encoding of the stored values.
+StoredEncoding storedEncoding(const ImageHeader& spec, std::vector<std::string>& warnings)
+{
     const PixelType base = spec.storedType;
     const bool eightBit = base == PixelType::UInt8 || base == PixelType::Int8;
     const bool integer = eightBit || base == PixelType::UInt16 || base == PixelType::Int16;
     const std::string& colorSpace = spec.colorSpace;
     const std::string cs = lower(colorSpace);
-    Encoding encoding = Encoding::Linear;
-    float gamma = 1.0f;
+    StoredEncoding stored;
+    Encoding& encoding = stored.encoding;
+    float& gamma = stored.gamma;
     if (cs.starts_with("srgb") && cs != "srgb_linear" && cs != "srgb-linear") {
         encoding = Encoding::Srgb;
     } else if (cs.starts_with("gamma")) {
@@ -347,8 +336,43 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
         encoding = Encoding::Srgb; // integer images that name no colour space are display-referred
     } else if (!cs.empty() && cs.find("lin") == std::string::npos && cs != "raw" && cs.find("aces") == std::string::npos &&
                cs != "scene_linear") {
-        env.warnings.push_back("unknown colour space '" + colorSpace + "', treated as linear");
+        warnings.push_back("unknown colour space '" + colorSpace + "', treated as linear");
     }
+    stored.eightBit = eightBit;
+    return stored;
+}
+
+Environment loadFile(const std::string& path, const EnvironmentLoadOptions& options)
+{
+    const LibpngStderrFilter quietLibpng;
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status))
+        throw Error(path, "no such file");
+    if (fs::is_directory(status))
+        throw Error(path, "is a directory, not an image file");
+    if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0 && !ec)
+        throw Error(path, "empty file (0 bytes)");
+
+    std::string openError;
+    const std::unique_ptr<ImageReader> in = imageCodec().openFile(path, openError);
+    if (!in)
+        throw Error(path, "cannot read as an image: " + orFallback(openError, "unknown format"));
+    const ImageHeader& spec = in->header();
+
+    checkHeader(path, spec, options);
+
+    const int srcW = spec.width;
+    const int srcH = spec.height;
+    const bool downsample = srcW > options.maxWidth || srcH > options.maxWidth / 2;
+    Environment env;
+    env.source = path;
+    env.image = downsample ? ImageRGB32F(options.maxWidth, options.maxWidth / 2) : ImageRGB32F(srcW, srcH);
+
+    const StoredEncoding stored = storedEncoding(spec, env.warnings);
+    const Encoding encoding = stored.encoding;
+    const float gamma = stored.gamma;
+    const bool eightBit = stored.eightBit;
 
     // Read in bands of rows (whole tile rows for tiled files), decode, repair, store.
     const int channelsRead = spec.channels >= 3 ? 3 : 1; // grey (+alpha) -> replicate

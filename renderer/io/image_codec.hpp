@@ -33,7 +33,7 @@ struct ImageHeader {
     int tileWidth = 0, tileHeight = 0; // 0: scanline file
     bool deep = false;
     PixelType storedType = PixelType::Other;
-    std::string colorSpace; // "oiio:ColorSpace", empty when the file names none
+    std::string colorSpace = {}; // "oiio:ColorSpace", empty when the file names none
 };
 
 class ImageReader {
@@ -68,10 +68,10 @@ struct ImageWrite {
     std::ptrdiff_t rowStride = 0;
     std::ptrdiff_t pixelStride = 0;
     int tileSize = 0; // "openexr": square tiles of this edge, one level (0: scanlines)
-    std::vector<std::string> channelNames; // empty: the format's defaults
+    std::vector<std::string> channelNames = {}; // empty: the format's defaults
     int alphaChannel = -1;
     // Metadata, in the order set (OpenImageIO's spec.attribute: "compression", "Software").
-    std::vector<std::pair<std::string, std::variant<std::string, int>>> attributes;
+    std::vector<std::pair<std::string, std::variant<std::string, int>>> attributes = {};
 };
 
 class ImageCodec {

@@ -22,7 +22,7 @@ struct ImageWriteOptions {
     // A JSON document (usually an object) describing how the image was made. Empty: no
     // metadata and no sidecar. Anything else must parse as JSON, or the write throws
     // before touching the disk.
-    std::string settingsJson;
+    std::string settingsJson = {};
     ExrPixelType exrPixelType = ExrPixelType::Float; // EXR only
     // EXR only: OpenEXR's compression by OpenImageIO's name ("zip", "none", "piz", "dwaa", ...).
     std::string exrCompression = "zip";

@@ -2,8 +2,8 @@
 // One description per setting: its JSON key, command-line option, label, help and valid
 // range, with a reference into the settings struct. JSON (presets, sidecars, the bake cache
 // key), the command line (app/field_options.hpp), validation and the UI's tooltips and
-// ranges all read the same description, so a setting is added in one table row; its
-// default stays where it belongs, in the struct's member initialiser.
+// ranges, labels and slider formats all read the same description, so a setting is added in
+// one table row; its default stays where it belongs, in the struct's member initialiser.
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -39,12 +39,27 @@ struct EnumFieldRef {
     std::function<std::string_view(const Settings&)> get;
     std::function<bool(Settings&, std::string_view)> set; // false for an unknown name
     std::vector<std::string_view> choices;
+    std::function<const void*(const Settings&)> address; // the member itself (fieldAddress)
 };
+
+// A list of numbers: a JSON array, "a,b,c" on the command line (mip sample factors).
+using NumberList = std::vector<double>;
 
 template <typename Settings>
 using FieldRef = std::variant<std::function<bool&(Settings&)>, std::function<int&(Settings&)>, std::function<float&(Settings&)>,
                               std::function<double&(Settings&)>, std::function<std::int64_t&(Settings&)>,
-                              std::function<std::string&(Settings&)>, std::function<glm::vec3&(Settings&)>, EnumFieldRef<Settings>>;
+                              std::function<std::string&(Settings&)>, std::function<glm::vec3&(Settings&)>,
+                              std::function<NumberList&(Settings&)>, EnumFieldRef<Settings>>;
+
+// How a panel shows a number. The slider spans the valid range unless the row names a
+// narrower span: where the whole range would leave a slider useless (an angle valid at any
+// value, a distance of 1e-5..1e6) or a documented part of it is the useful one.
+struct FieldUi {
+    std::string_view format = {}; // printf format of the slider ("%.1f deg"); empty: ImGui's default
+    double min = std::numeric_limits<double>::quiet_NaN(); // NaN: the valid range's end
+    double max = std::numeric_limits<double>::quiet_NaN();
+    bool logarithmic = false;
+};
 
 struct FieldRange {
     double min = -std::numeric_limits<double>::infinity();
@@ -53,7 +68,12 @@ struct FieldRange {
     std::optional<double> special = std::nullopt;
     std::string_view specialMeaning = {};
     bool powerOfTwo = false; // face sizes, sample counts of MSAA
+    FieldUi ui = {};         // a list's range is each element's
 };
+
+// The span of a number's slider: the row's ui span where it has one, else its valid range.
+inline double sliderMin(const FieldRange& range) { return std::isnan(range.ui.min) ? range.min : range.ui.min; }
+inline double sliderMax(const FieldRange& range) { return std::isnan(range.ui.max) ? range.max : range.ui.max; }
 
 template <typename Settings>
 struct Field {
@@ -84,7 +104,7 @@ FieldRef<Settings> fieldRef(Access access)
                 if (value) access(s) = *value;
                 return value.has_value();
             },
-            enumChoices<T>()};
+            enumChoices<T>(), [access](const Settings& s) -> const void* { return &access(const_cast<Settings&>(s)); }};
     } else {
         return std::function<T&(Settings&)>(access);
     }
@@ -97,8 +117,8 @@ void appendNested(FieldTable<Outer>& out, const FieldTable<Inner>& inner, Access
                   std::string_view cliPrefix)
 {
     for (const Field<Inner>& field : inner) {
-        Field<Outer> nested{.key = std::string(keyPrefix) + field.key, .label = field.label, .help = field.help, .range = field.range,
-                            .cli = field.cli, .cliForm = field.cliForm};
+        Field<Outer> nested{.key = std::string(keyPrefix) + field.key, .label = field.label, .help = field.help, .ref = {},
+                            .range = field.range, .cli = field.cli, .cliForm = field.cliForm, .cliPrefix = {}};
         // "--samples" -> "--b-samples"
         if (!field.cli.empty() && !cliPrefix.empty()) {
             nested.cli = "--" + std::string(cliPrefix) + field.cli.substr(2);
@@ -110,7 +130,8 @@ void appendNested(FieldTable<Outer>& out, const FieldTable<Inner>& inner, Access
                 if constexpr (std::is_same_v<Ref, EnumFieldRef<Inner>>) {
                     return EnumFieldRef<Outer>{[ref, access](const Outer& o) { return ref.get(access(const_cast<Outer&>(o))); },
                                                [ref, access](Outer& o, std::string_view name) { return ref.set(access(o), name); },
-                                               ref.choices};
+                                               ref.choices,
+                                               [ref, access](const Outer& o) { return ref.address(access(const_cast<Outer&>(o))); }};
                 } else {
                     using T = std::remove_reference_t<decltype(ref(std::declval<Inner&>()))>;
                     return std::function<T&(Outer&)>([ref, access](Outer& o) -> T& { return ref(access(o)); });
@@ -127,6 +148,61 @@ const Field<Settings>* findField(const FieldTable<Settings>& table, std::string_
     for (const auto& field : table)
         if (field.key == key) return &field;
     return nullptr;
+}
+
+// The address of the member the field describes, in `settings`.
+template <typename Settings>
+const void* fieldAddress(const Field<Settings>& field, const Settings& settings)
+{
+    return std::visit(
+        [&](const auto& ref) -> const void* {
+            if constexpr (std::is_same_v<std::decay_t<decltype(ref)>, EnumFieldRef<Settings>>)
+                return ref.address(settings);
+            else
+                return &ref(const_cast<Settings&>(settings));
+        },
+        field.ref);
+}
+
+// The row that describes the member at `address` inside `settings`, null for none: how a
+// member pointer finds its row (ui/field_widgets.hpp), since a row reaches its member
+// through a function rather than naming it.
+template <typename Settings>
+const Field<Settings>* findFieldAt(const FieldTable<Settings>& table, const Settings& settings, const void* address)
+{
+    for (const auto& field : table)
+        if (fieldAddress(field, settings) == address) return &field;
+    return nullptr;
+}
+
+// "1,1,2": the shortest text that reads back as each number.
+inline std::string numberListText(const NumberList& list)
+{
+    std::string text;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        char buffer[32];
+        const auto end = std::to_chars(buffer, buffer + sizeof buffer, list[i]).ptr;
+        text += (i == 0 ? "" : ",") + std::string(buffer, end);
+    }
+    return text;
+}
+
+// Numbers separated by commas ("" is the empty list); throws std::runtime_error otherwise.
+inline NumberList parseNumberList(std::string_view text)
+{
+    NumberList list;
+    if (text.empty()) return list;
+    for (std::size_t begin = 0;;) {
+        const std::size_t comma = std::min(text.find(',', begin), text.size());
+        const std::string_view item = text.substr(begin, comma - begin);
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), value);
+        if (item.empty() || error != std::errc() || end != item.data() + item.size())
+            throw std::runtime_error("expected numbers separated by commas, got \"" + std::string(text) + "\"");
+        list.push_back(value);
+        if (comma == text.size()) return list;
+        begin = comma + 1;
+    }
 }
 
 // The field's value as JSON.
@@ -188,6 +264,19 @@ void setFieldFromJson(const Field<Settings>& field, Settings& settings, const nl
                 if constexpr (std::is_same_v<T, glm::vec3>) {
                     if (!value.is_array() || value.size() != 3) throw std::runtime_error("expected [r, g, b]");
                     target = glm::vec3(value[0].get<float>(), value[1].get<float>(), value[2].get<float>());
+                } else if constexpr (std::is_same_v<T, NumberList>) {
+                    // Presets and caches written before lists were arrays hold the text "1,1,2".
+                    if (value.is_string()) {
+                        target = parseNumberList(value.get<std::string>());
+                        return;
+                    }
+                    if (!value.is_array()) throw std::runtime_error("expected an array of numbers");
+                    NumberList list;
+                    for (const auto& item : value) {
+                        if (!item.is_number()) throw std::runtime_error("expected an array of numbers");
+                        list.push_back(item.get<double>());
+                    }
+                    target = std::move(list);
                 } else if constexpr (std::is_same_v<T, bool>) {
                     if (!value.is_boolean()) throw std::runtime_error("expected true or false");
                     target = value.get<bool>();
@@ -225,7 +314,7 @@ void fromJson(const FieldTable<Settings>& table, const nlohmann::json& json, Set
 }
 
 // Parses command-line text into the field: numbers, on/off for booleans, enum names,
-// "r,g,b" for colours. Throws std::runtime_error saying what was expected.
+// "r,g,b" for colours, "a,b,c" for lists. Throws std::runtime_error saying what was expected.
 template <typename Settings>
 void setFieldFromText(const Field<Settings>& field, Settings& settings, std::string_view text)
 {
@@ -252,6 +341,8 @@ void setFieldFromText(const Field<Settings>& field, Settings& settings, std::str
                     else throw std::runtime_error("expected on or off, got \"" + std::string(text) + "\"");
                 } else if constexpr (std::is_same_v<T, std::string>) {
                     target = std::string(text);
+                } else if constexpr (std::is_same_v<T, NumberList>) {
+                    target = parseNumberList(text);
                 } else if constexpr (std::is_same_v<T, glm::vec3>) {
                     glm::vec3 v;
                     std::string_view rest = text;
@@ -277,6 +368,8 @@ void setFieldFromText(const Field<Settings>& field, Settings& settings, std::str
 template <typename Settings>
 std::string fieldText(const Field<Settings>& field, const Settings& settings)
 {
+    if (const auto* list = std::get_if<std::function<NumberList&(Settings&)>>(&field.ref))
+        return numberListText((*list)(const_cast<Settings&>(settings)));
     const nlohmann::ordered_json j = fieldJson(field, settings);
     if (j.is_string()) return j.get<std::string>();
     if (j.is_boolean()) return j.get<bool>() ? "on" : "off";
@@ -313,6 +406,12 @@ inline std::string rangeText(const FieldRange& range)
 template <typename Settings>
 std::optional<std::string> rangeProblem(const Field<Settings>& field, const Settings& settings)
 {
+    if (const auto* list = std::get_if<std::function<NumberList&(Settings&)>>(&field.ref)) {
+        for (const double item : (*list)(const_cast<Settings&>(settings)))
+            if (!std::isfinite(item) || item < field.range.min || item > field.range.max)
+                return field.key + ": each " + rangeText(field.range) + ", got " + numberListText((*list)(const_cast<Settings&>(settings)));
+        return std::nullopt;
+    }
     const std::optional<double> value = fieldNumber(field, settings);
     if (!value) return std::nullopt;
     const bool inRange = *value >= field.range.min && *value <= field.range.max &&

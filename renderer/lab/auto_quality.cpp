@@ -42,9 +42,9 @@ CandidateSpace candidateSpace(bool quick)
 // resolves. Unbounded when the scene shows a mirror (mip 0 is read).
 int largestUsefulFace(double minRoughness, int levels)
 {
-    const int mip = int(std::floor(bake::prefilterMipFromRoughness(float(minRoughness), float(levels), int(bake::RoughnessLayout::Quadratic))));
+    const int mip = int(std::floor(prefilterMipFromRoughness(float(minRoughness), float(levels), int(bake::RoughnessLayout::Quadratic))));
     if (mip <= 0) return std::numeric_limits<int>::max();
-    const double roughness = bake::prefilterRoughnessFromMip(float(mip), float(levels), int(bake::RoughnessLayout::Quadratic));
+    const double roughness = prefilterRoughnessFromMip(float(mip), float(levels), int(bake::RoughnessLayout::Quadratic));
     const double lobe = kLobeWidthPerAlpha * roughness * roughness;
     const double texelsAtMip0 = std::ldexp(2.0 * (kPi / 2.0) / lobe, mip); // a face spans pi/2
     int face = 1;
@@ -135,7 +135,7 @@ std::string describeSettings(const SweepPoint& p)
     else
         text = specularReadName(p.sampling) + ", prefilter face " + std::to_string(p.bake.prefilter.faceSize) + ", " + std::to_string(p.bake.prefilter.levels) + " mips, " +
                std::to_string(p.bake.prefilter.samples) + " samples at mip 1 (x" + formatNumber(p.bake.prefilter.sampleGrowth, "%.3g") + " per mip" +
-               (p.bake.prefilter.mipSampleScale.empty() ? "" : ", mip factors " + p.bake.prefilter.mipSampleScale) + ")";
+               (p.bake.prefilter.mipSampleScale.empty() ? "" : ", mip factors " + numberListText(p.bake.prefilter.mipSampleScale)) + ")";
     text += pdfFiltered(p) ? ", PDF mips" : ", no PDF mips";
     if (readsCube(p)) {
         if (p.bake.irradiance == bake::IrradianceMethod::Moments)

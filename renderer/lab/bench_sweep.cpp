@@ -352,7 +352,7 @@ bool BenchJob::step()
             const SceneInfo scene = s.harness.renderer().sceneInfo(s.frame);
             frameBox(s.frame.camera, scene.centre, scene.halfExtents, float(o.width) / float(o.height));
         }
-        s.reference = {env.name, 0, 0.0, 0.0};
+        s.reference = {env.name, 0, 0.0, 0.0, {}};
         s.point = 0;
         startBake();
         return true;

@@ -34,10 +34,6 @@
 #include "ibl/error_metrics.hpp"
 #include "io/environment.hpp"
 
-namespace iblab::bake {
-struct BakeResult;
-}
-
 namespace iblab::lab {
 
 // The error as the eye is shown it: both frames through the view's exposure, tone mapping and
@@ -60,7 +56,7 @@ struct FrameError {
 // The reference renderer's frame of a scene, read back with the G-buffer layers that say
 // which of its pixels are surfaces (the normal layer's alpha) and how rough (the view layer's).
 struct ReferenceFrame {
-    FrameReadback frame, normalLayer, viewLayer;
+    FrameReadback frame = {}, normalLayer = {}, viewLayer = {};
     int environmentWidth = 0;          // of the map it summed over
     double minResolvedRoughness = 0.0; // referenceMinResolvedRoughness of that width
     double milliseconds = 0.0;         // spent in its slices (read-backs not included)

@@ -223,7 +223,7 @@ BakeHealth measureBakeHealth(const std::string& name, const bake::BakeResult& re
         for (int row = 0; row < cube.size; ++row)
             for (int x = 0; x < cube.size; ++x)
                 power += luminance(glm::dvec3(cube.rgb(face, x, row))) *
-                         double(bake::cubeTexelSolidAngle(cube.texelDirection(face, x, row), float(cube.size)));
+                         double(cubeTexelSolidAngle(cube.texelDirection(face, x, row), float(cube.size)));
     health.energyKept = equirectPowerValue > 0.0 ? power / equirectPowerValue : (power > 0.0 ? 2.0 : 1.0);
     return health;
 }

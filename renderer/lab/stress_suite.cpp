@@ -214,12 +214,16 @@ StressOptions defaultStressOptions(bool quick)
         o.environmentWidth = 64;
         o.frameSize = 32;
         o.gridCell = 32;
-        o.bake.prefilter = {.faceSize = 16, .levels = 5, .samples = 32, .sampleGrowth = 2.0f, .mipSampleScale = "", .mipFiltering = true, .mipBias = 0.0f};
+        o.bake.prefilter = {.faceSize = 16, .levels = 5, .layout = bake::RoughnessLayout::Quadratic, .samples = 32, .sampleGrowth = 2.0f,
+                           .mipSampleScale = {}, .mipFiltering = true, .mipBias = 0.0f, .mirrorCopy = true, .brightTexels = 0,
+                           .brightThreshold = 4.0f};
         // The LUT clamps roughness 1 to its last texel centre, 1 - 0.5 / size: at 32 that alone
         // moves the rough furnace by 5%, at 128 by about 1%. 128^2 x 256 costs ~0.1 s.
         o.bake.lut = {.size = 128, .samples = 256, .schlickGgx = false, .heightCorrelatedSmith = true};
     } else {
-        o.bake.prefilter = {.faceSize = 64, .levels = 5, .samples = 64, .sampleGrowth = 2.0f, .mipSampleScale = "", .mipFiltering = true, .mipBias = 0.0f};
+        o.bake.prefilter = {.faceSize = 64, .levels = 5, .layout = bake::RoughnessLayout::Quadratic, .samples = 64, .sampleGrowth = 2.0f,
+                           .mipSampleScale = {}, .mipFiltering = true, .mipBias = 0.0f, .mirrorCopy = true, .brightTexels = 0,
+                           .brightThreshold = 4.0f};
         o.bake.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     }
     return o;

@@ -51,7 +51,7 @@ TEST(ConventionPresets, ReproduceWhatEachViewerChose)
     EXPECT_EQ(preset("filament").specularDirection, SpecularDirection::Filament);
     EXPECT_EQ(preset("learnopengl").specularDirection, SpecularDirection::Reflection);
     // Its shading reads roughness 0.5 at lod 4 x 0.75 = 3 of its 5 levels.
-    EXPECT_FLOAT_EQ(bake::prefilterMipFromRoughness(0.5f, float(filament.prefilter.levels), int(filament.prefilter.layout)), 3.0f);
+    EXPECT_FLOAT_EQ(prefilterMipFromRoughness(0.5f, float(filament.prefilter.levels), int(filament.prefilter.layout)), 3.0f);
 
     // glTF Sample Viewer: lod = 0.5 log2(6 w^2 / (N pdf)), the face-average formula without
     // 4 pi: a bias of 0.5 log2(4 pi).
@@ -60,7 +60,7 @@ TEST(ConventionPresets, ReproduceWhatEachViewerChose)
     EXPECT_FALSE(gltf.exactTexelSolidAngle);
     const float w = float(gltf.cube.faceSize), n = 1024.0f, pdf = 3.7f;
     const float theirs = 0.5f * std::log2(6.0f * w * w / (n * pdf));
-    EXPECT_NEAR(bake::sourceLodFromPdf(pdf, n, w, gltf.prefilter.mipBias), theirs, 1e-3f);
+    EXPECT_NEAR(sourceLodFromPdf(pdf, n, w, gltf.prefilter.mipBias), theirs, 1e-3f);
     EXPECT_TRUE(preset("gltf-viewer").roughFresnelOnLut);
     EXPECT_FALSE(preset("gltf-viewer").multiscatter);
 }

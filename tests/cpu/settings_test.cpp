@@ -30,7 +30,9 @@ TEST(Settings, EveryFieldSurvivesJson)
     s.sampling.normalizeByAccepted = true;
     s.sampling.freezeSampleSet = true;
     s.scene = {SceneKind::Model, "a/b.glb", 5};
-    s.view = {ViewMode::Lut, BackgroundMode::PrefilterMip, 3, glm::vec3(0.5f)};
+    s.view.background = BackgroundMode::PrefilterMip;
+    s.view.backgroundMip = 3;
+    s.view.solidColour = glm::vec3(0.5f);
     s.view.mode = ViewMode::Error;
     s.view.errorSpace = ErrorSpace::Display;
     s.view.errorScale = 0.05f;

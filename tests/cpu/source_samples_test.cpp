@@ -83,17 +83,18 @@ TEST(PrefilterSampleCounts, DefaultDoublesMipThreeAndPresetsKeepTheirRule)
     };
     EXPECT_EQ(counts(defaultPreset().prefilter), (std::vector<int>{1, 8, 24, 144, 216, 648}));
     PrefilterSettings rule = defaultPreset().prefilter;
-    rule.mipSampleScale = "";
+    rule.mipSampleScale = {};
     EXPECT_EQ(counts(rule), (std::vector<int>{1, 8, 24, 72, 216, 648}));
-    rule.mipSampleScale = "0.5,1,1,1,1,4"; // a factor beyond the last mip is ignored
+    rule.mipSampleScale = {0.5, 1, 1, 1, 1, 4}; // a factor beyond the last mip is ignored
     EXPECT_EQ(counts(rule), (std::vector<int>{1, 4, 24, 72, 216, 648}));
     EXPECT_EQ(counts(tutorialPreset().prefilter), (std::vector<int>(5, 1024)));
     EXPECT_EQ(counts(filamentPreset().prefilter), (std::vector<int>{1, 1024, 1024, 1024, 1024}));
 
-    BakeSettings bad;
+    // As the command line and presets written before the factors were a list give them.
     for (const char* list : {"1,x", "1,,2", "0", "100", ","}) {
-        bad.prefilter.mipSampleScale = list;
+        BakeSettings bad;
         try {
+            fromJson(bakeSettingsFields(), nlohmann::json{{"prefilter", {{"mip_sample_scale", list}}}}, bad, "bake settings");
             validate(bad);
             ADD_FAILURE() << "accepted \"" << list << "\"";
         } catch (const std::exception& e) {

@@ -213,10 +213,10 @@ TEST_F(GlTest, ShadedLookupReadsTheMipItsRoughnessWasBakedInto)
             const bake::CubeImage here = bake::readCubeLevel(result.prefiltered, level);
             const bake::CubeImage next = bake::readCubeLevel(result.prefiltered, level + 1);
             const float roughness = bake::prefilterMipRoughness(settings.prefilter, level);
-            const float lod = bake::prefilterMipFromRoughness(roughness, float(settings.prefilter.levels), int(layout));
+            const float lod = prefilterMipFromRoughness(roughness, float(settings.prefilter.levels), int(layout));
             ASSERT_NEAR(lod, float(level), 1e-5f) << enumName(layout);
             // Halfway in lod: the roughness whose lod is level + 0.5.
-            const float between = bake::prefilterRoughnessFromMip(float(level) + 0.5f, float(settings.prefilter.levels), int(layout));
+            const float between = prefilterRoughnessFromMip(float(level) + 0.5f, float(settings.prefilter.levels), int(layout));
             // A texel of `next` covers 2x2 of `here`; at its centre both mips are read at a
             // texel centre, so no bilinear weights enter.
             std::vector<glm::vec4> queries;
@@ -345,7 +345,7 @@ TEST_F(GlTest, MomentIrradianceOfASunIsExactAwayFromItsTerminator)
             for (int row = 0; row < source.size; ++row)
                 for (int x = 0; x < source.size; ++x) {
                     const glm::vec3 w = glm::normalize(source.texelDirection(face, x, row));
-                    const double omega = bake::cubeTexelSolidAngle(w, float(source.size));
+                    const double omega = cubeTexelSolidAngle(w, float(source.size));
                     sum += glm::dvec3(source.rgb(face, x, row)) * omega * std::max(0.0, glm::dot(n, glm::dvec3(w)));
                 }
         return sum;

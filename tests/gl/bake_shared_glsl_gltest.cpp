@@ -149,9 +149,9 @@ TEST_F(GlTest, PrefilterLodIsTheSameSourceOnBothSides)
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         const glm::vec3 d = glm::normalize(glm::vec3(inputs[i]));
         const float faceSize = inputs[i].w;
-        expectClose(gpu[i].x, bake::cubeTexelSolidAngle(d, faceSize), 1e-5, "cubeTexelSolidAngle");
-        expectClose(gpu[i].y, bake::sourceLodFromPdfAt(d, 0.37f, 64.0f, faceSize, 0.5f), 1e-5, "sourceLodFromPdfAt");
-        expectClose(gpu[i].z, bake::sourceLodFromPdf(0.37f, 64.0f, faceSize, 0.5f), 1e-5, "sourceLodFromPdf");
+        expectClose(gpu[i].x, cubeTexelSolidAngle(d, faceSize), 1e-5, "cubeTexelSolidAngle");
+        expectClose(gpu[i].y, sourceLodFromPdfAt(d, 0.37f, 64.0f, faceSize, 0.5f), 1e-5, "sourceLodFromPdfAt");
+        expectClose(gpu[i].z, sourceLodFromPdf(0.37f, 64.0f, faceSize, 0.5f), 1e-5, "sourceLodFromPdf");
         // Mip 2 of 5 is roughness 2 / 4; roughness 0.3 of 5 levels is lod 0.3 * 4.
         // Quadratic mip 2 of 5: 1 - sqrt(1 - 0.5); linear 0.3 of 5: 1.2; quadratic 0.3 of 6: 5 x 0.51.
         EXPECT_NEAR(gpu[i].w, (1.0 - std::sqrt(0.5)) + 1.2 + 2.55, 1e-5);
@@ -160,15 +160,15 @@ TEST_F(GlTest, PrefilterLodIsTheSameSourceOnBothSides)
     // four times that share reads mip 1.
     const float faceSize = 128.0f;
     const float averageTexel = float(4.0 * kPi / (6.0 * faceSize * faceSize));
-    EXPECT_NEAR(bake::sourceLodFromPdf(1.0f / (64.0f * averageTexel), 64.0f, faceSize, 0.0f), 0.0f, 1e-5f);
-    EXPECT_NEAR(bake::sourceLodFromPdf(1.0f / (64.0f * 4.0f * averageTexel), 64.0f, faceSize, 1.0f), 2.0f, 1e-5f);
+    EXPECT_NEAR(sourceLodFromPdf(1.0f / (64.0f * averageTexel), 64.0f, faceSize, 0.0f), 0.0f, 1e-5f);
+    EXPECT_NEAR(sourceLodFromPdf(1.0f / (64.0f * 4.0f * averageTexel), 64.0f, faceSize, 1.0f), 2.0f, 1e-5f);
     // The texel solid angles of a face must add up to the face's 4 pi / 6 (the formula is the
     // exact density at the texel's centre; midpoint rule over 64^2 texels).
     double face = 0.0;
     constexpr int kSize = 64;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x)
-            face += bake::cubeTexelSolidAngle(
+            face += cubeTexelSolidAngle(
                 cubeFaceUvToDirection(4, glm::vec2((x + 0.5f) / kSize, (y + 0.5f) / kSize)), float(kSize));
     EXPECT_NEAR(face, 4.0 * kPi / 6.0, 1e-3);
 }

@@ -30,9 +30,12 @@ inline bake::BakeSettings smallBakeSettings(bake::IrradianceMethod irradiance = 
                    .layout = bake::RoughnessLayout::Linear,
                    .samples = 64,
                    .sampleGrowth = 2.0f,
-                   .mipSampleScale = "",
+                   .mipSampleScale = {},
                    .mipFiltering = true,
-                   .mipBias = 0.0f};
+                   .mipBias = 0.0f,
+                   .mirrorCopy = true,
+                   .brightTexels = 0,
+                   .brightThreshold = 4.0f};
     s.lut = {.size = 16, .samples = 256, .schlickGgx = true, .heightCorrelatedSmith = true};
     return s;
 }
