@@ -280,6 +280,7 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced, con
     fieldCombo(fields, "geometry", settings);
     if (settings.method != ShadingMethod::Reference) fieldCombo(fields, "diffuse", settings);
     fieldCheckbox(fields, "multiscatter", settings);
+    if (settings.multiscatter) fieldCombo(fields, "multiscatter_model", settings);
     if (readsPrefilteredCube(settings.method)) fieldCheckbox(fields, "rough_fresnel_on_lut", settings);
     if (settings.method == ShadingMethod::SplitSum) fieldCombo(fields, "specular_direction", settings);
 }
