@@ -31,6 +31,10 @@ struct BenchCommandOptions {
     std::string out = "bench";
     bool json = false;
     bool quick = false;
+    // Every point and its reference without energy compensation (SamplingSettings::multiscatter
+    // is on by default, and the points start from the default): single scattering, as the
+    // bench measured before the default changed.
+    bool noMultiscatter = false;
     int width = 0;  // 0: the sweep's default (bench_sweep.cpp)
     int height = 0;
     int repeats = 0;
@@ -90,6 +94,12 @@ void mergeReport(bench::BenchReport& into, bench::BenchReport one)
     into.seconds += one.seconds;
 }
 
+void dropMultiscatter(const BenchCommandOptions& o, std::vector<bench::SweepPoint>& points)
+{
+    if (o.noMultiscatter)
+        for (bench::SweepPoint& p : points) p.sampling.multiscatter = false;
+}
+
 int runBench(const BenchCommandOptions& o)
 {
     try {
@@ -101,6 +111,7 @@ int runBench(const BenchCommandOptions& o)
             std::erase_if(options.points, [&](const bench::SweepPoint& p) {
                 return std::find(o.families.begin(), o.families.end(), bench::sweepFamilyName(p.family)) == o.families.end();
             });
+        dropMultiscatter(o, options.points);
         options.frame.scene = o.scene;
         if (o.roughness) options.frame.material.roughness = *o.roughness;
         if (o.width > 0) options.width = o.width;
@@ -120,6 +131,7 @@ int runBench(const BenchCommandOptions& o)
                 one.environments = {environment};
                 one.points = candidates.points;
                 for (bench::SweepPoint& preset : bench::presetPoints(o.quick)) one.points.push_back(std::move(preset));
+                dropMultiscatter(o, one.points);
                 bench::BenchReport measured = runReported(renderer, one);
                 bench::AutoChoice choice = bench::chooseAuto(measured, o.autoTargetSteps, candidates);
                 bench::markChosen(measured.points, choice);
@@ -191,6 +203,7 @@ Command addBenchCommand(CLI::App& app, ProcessClock::time_point)
     c->add_option("--out", o->out, "Directory for bench.csv, bench.json, bench.md and pareto.png")->capture_default_str();
     c->add_flag("--json", o->json, "Print the JSON report on stdout instead of the CSV's path");
     c->add_flag("--quick", o->quick, "A tiny sweep on a small builtin (seconds; for tests)");
+    c->add_flag("--no-multiscatter", o->noMultiscatter, "Every point and its reference without energy compensation (single scattering)");
     c->add_option("--width", o->width, "Image width (default 128, quick 48)")->check(CLI::Range(8, 4096));
     c->add_option("--height", o->height, "Image height (default 128, quick 48)")->check(CLI::Range(8, 4096));
     c->add_option("--repeats", o->repeats, "Timed frames per point, median reported (default 5, quick 3)")->check(CLI::Range(1, 1000));

@@ -18,7 +18,7 @@ std::string samplingSummary(const SamplingSettings& s)
     if (s.method == ShadingMethod::Sampled) text += " N=" + std::to_string(s.samples) + (s.pdfMipFiltering ? "" : " mip0");
     if (s.forcedMip >= 0) text += " mip " + std::to_string(s.forcedMip);
     text += ", " + std::string(enumName(s.geometry));
-    if (s.multiscatter) text += ", ms";
+    if (s.multiscatter) text += s.multiscatterModel == MultiscatterModel::FdezAguera ? ", ms fdez-aguera" : ", ms";
     if (s.roughFresnelOnLut && readsPrefilteredCube(s.method)) text += ", F_r on LUT";
     if (s.specularDirection != SpecularDirection::Reflection && s.method == ShadingMethod::SplitSum) text += ", " + std::string(enumName(s.specularDirection)) + " dir";
     return text;

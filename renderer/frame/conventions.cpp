@@ -6,25 +6,51 @@
 namespace iblab {
 namespace {
 
-// Sources: LearnOpenGL's "Specular IBL" chapter code; Filament.md.html ("Image based
-// lights") and its shading code (perceptualRoughnessToLod, DFG with energy compensation,
-// SH irradiance); glTF-Sample-Viewer's ibl_sampler.js and ibl.glsl (getIBLRadianceGGX uses
-// k_S = F0 + (max(1 - roughness, F0) - F0) (1 - n.v)^5, the roughness-aware Fresnel, on the
-// LUT). iblab is the lab's own default, what the GUI and `render` start with: the exact
-// F0 A + B, the fitted lobe's reads instead of the split sum's one, and no energy
-// compensation (the exact references it is measured against are single-scattering; the
-// Sampling panel's checkbox adds it).
-// Where the cube is read: Filament's getReflectedVector leans R towards N by alpha^2
-// (common/specular_lobe.glsl); LearnOpenGL's and the Sample Viewer's ibl code read at R.
+// What each engine's shading does, from its source at the commits docs/engine-export.md
+// pins (its table "Convention presets against today's engines" has every value with file
+// and line; docs/bake.md the bake side):
+// - LearnOpenGL (src/6.pbr/2.2.1.ibl_specular/2.2.1.pbr.fs lines 121-134): F_roughness(n.v)
+//   on the LUT, lod = r (levels - 1) read at R, a Schlick-GGX LUT (2.2.1.brdf.fs line 51,
+//   k = alpha / 2), an irradiance cube, and no energy compensation: it stays off here.
+// - Filament (shaders/src/surface_light_indirect.fs): SH9 diffuse, the cube read at
+//   getSpecularDominantDirection's mix(R, N, alpha^2), F0 A + B from the DFG LUT with the
+//   height-correlated Smith term, and 1 + F0 (1 / E_ss - 1) energy compensation
+//   (surface_shading_lit.fs, getEnergyCompensationPixelParams).
+// - glTF Sample Viewer (its renderer, glTF-Sample-Renderer source/Renderer/shaders/ibl.glsl
+//   lines 26-48): lod = r (levels - 1) at R, the roughness-aware Fresnel
+//   k_S = F0 + (max(1 - r, F0) - F0) (1 - n.v)^5 on the LUT, and Fdez-Aguera's multiple
+//   scattering FssEss + FmsEms (getIBLGGXFresnel), an irradiance cube (the Lambertian one).
+// - iblab, the lab's default (what the GUI and `render` start with): the exact F0 A + B,
+//   the fitted lobe's reads instead of the split sum's one, and Filament's compensation,
+//   on as every engine above but the tutorial ships it; the reference it is measured
+//   against applies the same factor with its own E_ss.
 constexpr std::array kConventions{
-    ConventionPreset{"learnopengl", "LearnOpenGL", "tutorial", GeometryTerm::SchlickGGX, true, false, DiffuseSource::IrradianceCube,
-                     SpecularDirection::Reflection},
-    ConventionPreset{"filament", "Filament", "filament", GeometryTerm::HeightCorrelatedSmith, false, true, DiffuseSource::Sh9,
-                     SpecularDirection::Filament},
-    ConventionPreset{"gltf-viewer", "glTF Sample Viewer", "gltf-viewer", GeometryTerm::HeightCorrelatedSmith, true, false,
-                     DiffuseSource::IrradianceCube, SpecularDirection::Reflection},
-    ConventionPreset{"iblab", "iblab default", "default", GeometryTerm::HeightCorrelatedSmith, false, false, DiffuseSource::IrradianceCube,
-                     SpecularDirection::Reflection, ShadingMethod::FittedLobe},
+    ConventionPreset{.name = "learnopengl",
+                     .title = "LearnOpenGL",
+                     .bakePreset = "tutorial",
+                     .geometry = GeometryTerm::SchlickGGX,
+                     .roughFresnelOnLut = true,
+                     .multiscatter = false,
+                     .diffuse = DiffuseSource::IrradianceCube},
+    ConventionPreset{.name = "filament",
+                     .title = "Filament",
+                     .bakePreset = "filament",
+                     .multiscatter = true,
+                     .diffuse = DiffuseSource::Sh9,
+                     .specularDirection = SpecularDirection::Filament},
+    ConventionPreset{.name = "gltf-viewer",
+                     .title = "glTF Sample Viewer",
+                     .bakePreset = "gltf-viewer",
+                     .roughFresnelOnLut = true,
+                     .multiscatter = true,
+                     .multiscatterModel = MultiscatterModel::FdezAguera,
+                     .diffuse = DiffuseSource::IrradianceCube},
+    ConventionPreset{.name = "iblab",
+                     .title = "iblab default",
+                     .bakePreset = "default",
+                     .multiscatter = true,
+                     .diffuse = DiffuseSource::IrradianceCube,
+                     .method = ShadingMethod::FittedLobe},
 };
 
 std::string formatted(const char* format, double value)
@@ -68,6 +94,7 @@ void applyConvention(const ConventionPreset& convention, SamplingSettings& sampl
     sampling.geometry = convention.geometry;
     sampling.roughFresnelOnLut = convention.roughFresnelOnLut;
     sampling.multiscatter = convention.multiscatter;
+    sampling.multiscatterModel = convention.multiscatterModel;
     sampling.diffuse = convention.diffuse;
     sampling.specularDirection = convention.specularDirection;
 }
@@ -86,7 +113,10 @@ std::vector<std::pair<std::string, std::string>> conventionChoices(const Convent
     rows.emplace_back("prefilter", std::to_string(p.faceSize) + "^2 x " + std::to_string(p.levels) + " mips, " + samples + " samples (mips 1+)");
     rows.emplace_back("LUT", std::to_string(bake.lut.size) + "^2 x " + std::to_string(bake.lut.samples) + " samples");
     rows.emplace_back("Fresnel on LUT", convention.roughFresnelOnLut ? "F_roughness(n.v) A + B" : "F0 A + B");
-    rows.emplace_back("energy compensation", convention.multiscatter ? "on" : "off");
+    rows.emplace_back("energy compensation", !convention.multiscatter ? "off"
+                                             : convention.multiscatterModel == MultiscatterModel::FdezAguera
+                                                 ? "on, Fdez-Aguera's 1 / (1 - F_avg E_ms)"
+                                                 : "on, Filament's 1 + F0 (1/E_ss - 1)");
     rows.emplace_back("diffuse", convention.diffuse == DiffuseSource::Sh9              ? "SH9"
                                 : bake.irradiance == bake::IrradianceMethod::Moments ? "moment cube"
                                 : bake.irradiance == bake::IrradianceMethod::Riemann ? "Riemann cube"

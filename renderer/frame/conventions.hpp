@@ -23,6 +23,7 @@ struct ConventionPreset {
     GeometryTerm geometry = GeometryTerm::HeightCorrelatedSmith;
     bool roughFresnelOnLut = false;
     bool multiscatter = false;
+    MultiscatterModel multiscatterModel = MultiscatterModel::Filament;
     DiffuseSource diffuse = DiffuseSource::Sh9;
     SpecularDirection specularDirection = SpecularDirection::Reflection;
     // The engines read the prefiltered cube once (the split sum); iblab's default reads it

@@ -20,6 +20,7 @@ IblUniforms::IblUniforms(const gl::ShaderProgram& p)
     : environmentYaw(p, "uEnvironmentYaw"), environmentIntensity(p, "uEnvironmentIntensity"), shIrradiance(p, "uShIrradiance"),
       prefilteredLevels(p, "uPrefilteredLevels"), prefilteredLayout(p, "uPrefilteredLayout"), environmentFaceSize(p, "uEnvironmentFaceSize"),
       environmentLevels(p, "uEnvironmentLevels"), geometry(p, "uGeometry"), multiscatter(p, "uMultiscatter"),
+      multiscatterModel(p, "uMultiscatterModel"),
       roughFresnelOnLut(p, "uRoughFresnelOnLut"), specularDirection(p, "uSpecularDirection"), forcedMip(p, "uForcedMip"), pdfMipFiltering(p, "uPdfMipFiltering"), mipBias(p, "uMipBias")
 {
 }
@@ -51,6 +52,7 @@ void IblUniforms::bind(const Lighting& lighting, const FrameSettings& settings) 
     environmentLevels.set(float(b.environmentCube.levels));
     geometry.set(int(settings.sampling.geometry));
     multiscatter.set(settings.sampling.multiscatter);
+    multiscatterModel.set(int(settings.sampling.multiscatterModel));
     roughFresnelOnLut.set(settings.sampling.roughFresnelOnLut);
     specularDirection.set(int(settings.sampling.specularDirection));
     forcedMip.set(float(settings.sampling.forcedMip));

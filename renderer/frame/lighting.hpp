@@ -36,6 +36,7 @@ struct IblUniforms {
     gl::Uniform<float> environmentLevels;
     gl::Uniform<int> geometry;
     gl::Uniform<bool> multiscatter;
+    gl::Uniform<int> multiscatterModel;
     gl::Uniform<bool> roughFresnelOnLut;
     gl::Uniform<int> specularDirection;
     gl::Uniform<float> forcedMip;

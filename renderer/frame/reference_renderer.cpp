@@ -24,6 +24,7 @@ FrameKey ReferenceRenderer::keyFor(const FrameSettings& settings, int width, int
     SamplingSettings model;
     model.geometry = settings.sampling.geometry;
     model.multiscatter = settings.sampling.multiscatter;
+    model.multiscatterModel = settings.sampling.multiscatterModel;
     s.sampling = model;
     s.view.mode = ViewMode::Error;
     s.view.errorSpace = {};

@@ -72,6 +72,19 @@ struct EnumNames<SpecularDirection> {
     static constexpr std::array<EnumName<SpecularDirection>, 3> entries{
         {{SpecularDirection::Reflection, "reflection"}, {SpecularDirection::Frostbite, "frostbite"}, {SpecularDirection::Filament, "filament"}}};
 };
+// The multiple-scattering compensation's form, a factor on the single-scattering specular
+// (E_ss = A + B from the LUT's third channel; both give exactly 1 for a white metal):
+// Filament's 1 + F0 (1 / E_ss - 1) (Filament.md.html, "Energy loss in specular reflectance";
+// shaders/src/surface_shading_lit.fs, getEnergyCompensationPixelParams), or Fdez-Aguera's
+// 1 / (1 - F_avg (1 - E_ss)), F_avg = F0 + (1 - F0) / 21, which is FssEss + FmsEms over FssEss
+// as the glTF Sample Viewer's getIBLGGXFresnel and Bevy's compute_multiscatter write it
+// (docs/engine-export.md cites the lines).
+enum class MultiscatterModel { Filament, FdezAguera };
+template <>
+struct EnumNames<MultiscatterModel> {
+    static constexpr std::array<EnumName<MultiscatterModel>, 2> entries{
+        {{MultiscatterModel::Filament, "filament"}, {MultiscatterModel::FdezAguera, "fdez-aguera"}}};
+};
 // Sh9: the bake's SH9 irradiance as it windowed it (BakeSettings::sh.window); Sh9Plain: the
 // same projection without the window, so that its ringing can be seen.
 enum class DiffuseSource { Sh9, Sh9Plain, IrradianceCube };
@@ -102,7 +115,13 @@ struct SamplingSettings {
     // the bake has no cube.
     DiffuseSource diffuse = DiffuseSource::IrradianceCube;
     bool cosineSampledDiffuse = false; // sampled method: diffuse from N cosine samples instead of SH9
-    bool multiscatter = false;         // Fdez-Aguera energy compensation from the LUT's third channel
+    // Multiple-scattering energy compensation from the LUT's third channel, on as Filament, the
+    // glTF Sample Viewer, three.js, Godot and Bevy ship it (docs/engine-export.md, "Convention
+    // presets against today's engines"): a rough white metal reflects 1 in the furnace instead
+    // of its single-scattering albedo. The reference renderer applies the same factor with its
+    // own exact E_ss, so errors against it measure the compensated BRDF.
+    bool multiscatter = true;
+    MultiscatterModel multiscatterModel = MultiscatterModel::Filament;
     // Split sum as LearnOpenGL writes it: prefiltered * (F_roughness(n.v) A + B), Fresnel applied
     // on top of the LUT that already integrates it. false: prefiltered * (F0 A + B), exact for
     // the split sum (Karis 2013). The convention presets turn it on for LearnOpenGL.

@@ -40,12 +40,15 @@ TEST(ConventionPresets, ReproduceWhatEachViewerChose)
     EXPECT_FALSE(learnOpenGl.prefilter.mipFiltering);
     EXPECT_EQ(preset("learnopengl").geometry, GeometryTerm::SchlickGGX);
     EXPECT_TRUE(preset("learnopengl").roughFresnelOnLut);
+    // 2.2.1.pbr.fs: prefilteredColor * (F * brdf.x + brdf.y), nothing for multiple scattering.
+    EXPECT_FALSE(preset("learnopengl").multiscatter);
 
     // Filament: quadratic lod, K = 4 (one mip blurrier), energy compensation.
     const bake::BakeSettings filament = conventionBakeSettings(preset("filament"));
     EXPECT_EQ(filament.prefilter.layout, bake::RoughnessLayout::Quadratic);
     EXPECT_FLOAT_EQ(filament.prefilter.mipBias, 1.0f);
     EXPECT_TRUE(preset("filament").multiscatter);
+    EXPECT_EQ(preset("filament").multiscatterModel, MultiscatterModel::Filament);
     EXPECT_FALSE(preset("filament").roughFresnelOnLut);
     // getReflectedVector: the prefiltered cube is read at mix(R, N, alpha^2), not at R.
     EXPECT_EQ(preset("filament").specularDirection, SpecularDirection::Filament);
@@ -62,7 +65,13 @@ TEST(ConventionPresets, ReproduceWhatEachViewerChose)
     const float theirs = 0.5f * std::log2(6.0f * w * w / (n * pdf));
     EXPECT_NEAR(sourceLodFromPdf(pdf, n, w, gltf.prefilter.mipBias), theirs, 1e-3f);
     EXPECT_TRUE(preset("gltf-viewer").roughFresnelOnLut);
-    EXPECT_FALSE(preset("gltf-viewer").multiscatter);
+    // getIBLGGXFresnel returns FssEss + FmsEms (Fdez-Aguera), the specular times
+    // 1 / (1 - F_avg E_ms).
+    EXPECT_TRUE(preset("gltf-viewer").multiscatter);
+    EXPECT_EQ(preset("gltf-viewer").multiscatterModel, MultiscatterModel::FdezAguera);
+    // The lab's default compensates as the engines do; the reference applies the same factor.
+    EXPECT_TRUE(preset("iblab").multiscatter);
+    EXPECT_EQ(preset("iblab").multiscatter, SamplingSettings{}.multiscatter);
 }
 
 TEST(ConventionPresets, ApplyingOneSetsTheSplitSumShadingItUses)
@@ -89,7 +98,7 @@ TEST(ConventionPresets, ApplyingOneSetsTheSplitSumShadingItUses)
 }
 
 // "iblab default" in the Conventions panel puts back what the lab starts with: every choice a
-// convention makes is the default's (it turned energy compensation on, which the start has off).
+// convention makes is the default's, energy compensation (Filament's form) included.
 TEST(ConventionPresets, IblabsOwnIsWhatTheLabStartsWith)
 {
     SamplingSettings sampling;

@@ -26,7 +26,8 @@ TEST(Settings, EveryFieldSurvivesJson)
     s.sampling.geometry = GeometryTerm::SchlickGGX;
     s.sampling.diffuse = DiffuseSource::IrradianceCube;
     s.sampling.cosineSampledDiffuse = true;
-    s.sampling.multiscatter = true;
+    s.sampling.multiscatter = false; // not the default (on)
+    s.sampling.multiscatterModel = MultiscatterModel::FdezAguera;
     s.sampling.normalizeByAccepted = true;
     s.sampling.freezeSampleSet = true;
     s.scene = {SceneKind::Model, "a/b.glb", 5};
@@ -42,7 +43,7 @@ TEST(Settings, EveryFieldSurvivesJson)
     s.view.compare.method = ShadingMethod::Sampled;
     s.view.compare.samples = 3;
     s.view.compare.geometry = GeometryTerm::SchlickGGX;
-    s.view.compare.multiscatter = true;
+    s.view.compare.multiscatter = false;
     s.view.compare.freezeSampleSet = true;
     s.view.msaaSamples = 8;
 
@@ -59,6 +60,8 @@ TEST(Settings, EveryFieldSurvivesJson)
     EXPECT_FLOAT_EQ(r.view.splitPosition, 0.3f);
     EXPECT_TRUE(r.sampling.freezeSampleSet);
     EXPECT_TRUE(r.view.compare.freezeSampleSet);
+    EXPECT_FALSE(r.sampling.multiscatter);
+    EXPECT_EQ(r.sampling.multiscatterModel, MultiscatterModel::FdezAguera);
     EXPECT_EQ(r.view.msaaSamples, 8);
 }
 

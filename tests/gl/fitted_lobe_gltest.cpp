@@ -82,6 +82,9 @@ TEST_F(FittedLobe, CloserToTheCpuFullIntegralThanTheSplitSum)
     // Roughness the 128-wide map resolves (>= 0.27, referenceMinResolvedRoughness).
     for (const float roughness : {0.3f, 0.5f, 0.8f}) {
         FrameSettings s = sphere(ShadingMethod::SplitSum, glm::vec3(F0), roughness);
+        // The lobe's reads against the single-scattering integral `full` below: without the
+        // compensation (on by default), which would scale both frames but not `full`.
+        s.sampling.multiscatter = false;
         // The G-buffer's N and V per pixel: the reference renderer's own, over a tiny map.
         s.view.referenceWidth = 8;
         ASSERT_TRUE(renderer().advanceReference(s, kSize, kSize, std::chrono::hours(1)).complete);

@@ -9,6 +9,7 @@
 
 #include "bake/bake_job.hpp"
 #include "frame/camera.hpp"
+#include "ibl/brdf_lut.hpp"
 #include "io/environment.hpp"
 #include "bake_test_support.hpp"
 #include "renderer_fixture.hpp"
@@ -164,6 +165,60 @@ TEST_F(Material, WhiteFurnaceSplitSumAndSampled)
             // within about 1% (measured 0.99 at roughness 1, where the lobe is widest).
             EXPECT_NEAR(centre, 1.0f, 0.02f) << enumName(method) << " roughness " << roughness;
         }
+    }
+}
+
+// Energy compensation is on by default, as the engines ship it (SamplingSettings): the
+// default shading (the fitted lobe) and the split sum reflect all of a white furnace from a
+// rough white metal, and --no-multiscatter gives back the single-scattering albedo E_ss,
+// which the CPU core integrates independently of the GPU's LUT.
+TEST_F(Material, WhiteFurnaceIsOneByDefaultAndTheSingleScatterAlbedoWithout)
+{
+    bake("builtin:white?width=64");
+    // The centre pixel's n.v and roughness 1 both read the LUT's last texel centre (clamp to
+    // edge); 4096 samples put the CPU's E_ss there within 1e-3 of exact.
+    const double lastTexel = 1.0 - 0.5 / smallBake().lut.size;
+    const double singleScatter = integrateSplitSumBrdf(lastTexel, lastTexel, 4096, GeometryTerm::HeightCorrelatedSmith).z;
+    ASSERT_LT(singleScatter, 0.9) << "roughness 1 loses energy without compensation";
+    for (ShadingMethod method : {ShadingMethod::FittedLobe, ShadingMethod::SplitSum}) {
+        FrameSettings s;
+        ASSERT_TRUE(s.sampling.multiscatter) << "the default";
+        s.scene.kind = SceneKind::Sphere;
+        s.material = {true, glm::vec3(1.0f), 1.0f, 1.0f, 1.0f, 0.5f};
+        s.sampling.method = method;
+        s.camera.distance = 0.0f;
+        // 2%: the LUT is 128^2 half floats, read at the centre pixel's n.v (a little under 1).
+        EXPECT_NEAR(luminance(render(s, 64, 64), 32, 32), 1.0f, 0.02f) << enumName(method);
+        s.sampling.multiscatter = false;
+        EXPECT_NEAR(luminance(render(s, 64, 64), 32, 32), singleScatter, 0.02) << enumName(method) << " without compensation";
+    }
+}
+
+// The two forms of the compensation agree for a white metal and differ for a coloured one:
+// a rough grey metal (F0 = 0.5) at n.v = 1 reflects (F0 A + B) (1 + F0 (1 / E_ss - 1)) with
+// Filament's and Fdez-Aguera's F0 A + B + Fms E_ms (the glTF Sample Viewer's) with the
+// other, each as the CPU core computes it from its own A and B at the LUT texel the centre
+// pixel reads (n.v and roughness 1 both clamp to the last texel centre).
+TEST_F(Material, FurnaceFollowsTheMultiscatterModel)
+{
+    bake("builtin:white?width=64");
+    const double lastTexel = 1.0 - 0.5 / smallBake().lut.size;
+    const glm::dvec3 ab = integrateSplitSumBrdf(lastTexel, lastTexel, 4096, GeometryTerm::HeightCorrelatedSmith);
+    const glm::dvec3 F0(0.5);
+    const double filament = ((F0 * ab.x + ab.y) * specularEnergyCompensation(F0, ab.z)).x;
+    const double fdezAguera = fdezAgueraSpecularAlbedo(F0, ab.x, ab.y).x;
+    // E_ss is about 0.3 here, and the forms differ by a third.
+    ASSERT_GT(std::abs(filament / fdezAguera - 1.0), 0.1) << "the forms must differ here for the test to tell them apart";
+    for (MultiscatterModel model : {MultiscatterModel::Filament, MultiscatterModel::FdezAguera}) {
+        FrameSettings s;
+        s.scene.kind = SceneKind::Sphere;
+        s.material = {true, glm::vec3(0.5f), 1.0f, 1.0f, 1.0f, 0.5f};
+        s.sampling.method = ShadingMethod::SplitSum;
+        s.sampling.multiscatterModel = model;
+        s.camera.distance = 0.0f;
+        const double expected = model == MultiscatterModel::Filament ? filament : fdezAguera;
+        // 0.5%: the LUT's half floats and its 2048 samples against the CPU's 4096.
+        EXPECT_NEAR(luminance(render(s, 64, 64), 32, 32) / expected, 1.0, 0.005) << enumName(model);
     }
 }
 

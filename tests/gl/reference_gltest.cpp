@@ -33,12 +33,15 @@ TEST_F(Reference, MatchesTheCpuIntegralsAtSamplePixels)
     const ImageRGB32F loaded = load("builtin:studio?width=128");
     const ImageRGB32F env = downsampleEquirect2x(loaded); // 64 x 32: what referenceWidth 64 sums over
     const ImageRGB32F white = paintEquirect(env.width, env.height, [](glm::dvec3) { return glm::vec3(1.0f); });
-    for (const bool variant : {false, true}) {
+    // 0: single scattering; 1 and 2: each form of the compensation, against the CPU's.
+    for (const int compensation : {0, 1, 2}) {
+        const bool variant = compensation > 0;
         FrameSettings s = sphere(glm::vec3(0.8f, 0.5f, 0.3f), 0.5f, 0.6f);
         s.environment.yawDegrees = variant ? 40.0f : 0.0f;
         s.environment.intensityEv = variant ? 0.5f : 0.0f;
         s.sampling.geometry = variant ? GeometryTerm::SchlickGGX : GeometryTerm::HeightCorrelatedSmith;
         s.sampling.multiscatter = variant;
+        s.sampling.multiscatterModel = compensation == 2 ? MultiscatterModel::FdezAguera : MultiscatterModel::Filament;
         const FrameReadback frame = reference(s);
         const FrameReadback normals = renderer().readReferenceLayer(ReferenceLayer::Normal);
         const FrameReadback views = renderer().readReferenceLayer(ReferenceLayer::View);
@@ -50,7 +53,7 @@ TEST_F(Reference, MatchesTheCpuIntegralsAtSamplePixels)
                 // 1e-4 relative: the GPU sums 2048 texels in float (float directions and
                 // solid angles) where the CPU uses double; both see the same texels, so
                 // only rounding separates them (measured below 1e-5).
-                EXPECT_NEAR(got[c], expected[c], 1e-4 * expected[c]) << "pixel " << p.x << "," << p.y << " channel " << c << " variant " << variant;
+                EXPECT_NEAR(got[c], expected[c], 1e-4 * expected[c]) << "pixel " << p.x << "," << p.y << " channel " << c << " compensation " << compensation;
         }
     }
 }
@@ -78,6 +81,7 @@ TEST_F(Reference, WhiteFurnace)
     }
 
     FrameSettings dielectric = sphere(glm::vec3(1.0f), 0.0f, 0.5f);
+    dielectric.sampling.multiscatter = false; // the single-scattering layers, checked term by term
     const FrameReadback frame = reference(dielectric);
     const FrameReadback normals = renderer().readReferenceLayer(ReferenceLayer::Normal);
     const glm::dvec3 n = glm::normalize(glm::dvec3(glm::vec3(pixelOf(normals, 24, 24))));

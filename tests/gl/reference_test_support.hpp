@@ -69,7 +69,10 @@ inline glm::dvec3 cpuReferencePixel(const ImageRGB32F& env, const ImageRGB32F& w
     glm::dvec3 specular = referenceSpecular(env, n, v, roughness, F0, s.sampling.geometry);
     if (s.sampling.multiscatter) {
         const double singleScatter = referenceSpecular(white, n, v, roughness, glm::dvec3(1.0), s.sampling.geometry).x;
-        specular *= glm::dvec3(1.0) + F0 * (1.0 / singleScatter - 1.0);
+        const glm::dvec3 averageFresnel = F0 + (glm::dvec3(1.0) - F0) / 21.0;
+        specular *= s.sampling.multiscatterModel == MultiscatterModel::FdezAguera
+                        ? glm::dvec3(1.0) / (glm::dvec3(1.0) - averageFresnel * (1.0 - singleScatter))
+                        : glm::dvec3(1.0) + F0 * (1.0 / singleScatter - 1.0);
     }
     const glm::dvec3 kD = (glm::dvec3(1.0) - fresnelSchlickRoughness(NdotV, F0, roughness)) * (1.0 - metallic);
     return (kD * base / kPi * referenceIrradiance(env, n) + specular) * intensity;

@@ -30,6 +30,9 @@ uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
 #define FITTED_LOBE 0 // 1: shadeSplitSum reads where the fitted table says (ShadingMethod::FittedLobe)
 #endif
 uniform bool uMultiscatter;
+uniform int uMultiscatterModel; // MULTISCATTER_* below, the values of iblab::MultiscatterModel
+const int MULTISCATTER_FILAMENT = 0;
+const int MULTISCATTER_FDEZ_AGUERA = 1;
 uniform bool uRoughFresnelOnLut; // LearnOpenGL's F_roughness * A + B (SamplingSettings::roughFresnelOnLut)
 uniform int uSpecularDirection;  // SPECULAR_DIRECTION_* of specular_lobe.glsl: where the split sum reads the cube
 // ShadingMethod::FittedLobe: the cube read per the fitted table (specular_approximations.hpp's
@@ -60,12 +63,22 @@ vec3 diffuseIrradiance(vec3 N)
 #endif
 }
 
-// Fdez-Aguera 2019 (Filament's "energy compensation"): single scattering misses the energy
-// of rays that bounce between microfacets; scaling by 1 + F0 (1 / E_ss - 1), with the
-// single-scattering albedo E_ss = A + B from the LUT's third channel, restores it.
+// Multiple-scattering energy compensation: single scattering misses the energy of rays that
+// bounce between microfacets; a factor on the single-scattering specular restores it, from
+// the single-scattering albedo E_ss = A + B (the LUT's third channel; the reference's own
+// sum). Both forms reflect exactly 1 for a white metal (F0 = 1) and differ for coloured F0:
+//   Filament (getEnergyCompensationPixelParams): 1 + F0 (1 / E_ss - 1);
+//   Fdez-Aguera 2019 as the glTF Sample Viewer's getIBLGGXFresnel and Bevy's
+//   compute_multiscatter write it: (FssEss + FmsEms) / FssEss = 1 / (1 - F_avg E_ms), with
+//   E_ms = 1 - E_ss and F_avg = F0 + (1 - F0) / 21.
 vec3 energyCompensation(vec3 F0, float singleScatterAlbedo)
 {
-    return uMultiscatter ? vec3(1.0) + F0 * (1.0 / max(singleScatterAlbedo, 1e-4) - 1.0) : vec3(1.0);
+    if (!uMultiscatter) return vec3(1.0);
+    if (uMultiscatterModel == MULTISCATTER_FDEZ_AGUERA) {
+        vec3 averageFresnel = F0 + (vec3(1.0) - F0) * (1.0 / 21.0);
+        return vec3(1.0) / (vec3(1.0) - averageFresnel * (1.0 - singleScatterAlbedo));
+    }
+    return vec3(1.0) + F0 * (1.0 / max(singleScatterAlbedo, 1e-4) - 1.0);
 }
 
 // The shading model every estimator shares (split sum, sampled, and the reference): a

@@ -72,6 +72,12 @@ struct StudyOptions {
     // Weigh every map alike: per cell, each map's squared error over the split sum's there
     // (the bar is a ratio per map), instead of the sum over all samples.
     bool perMapRatio = false;
+    // The energy compensation the lab shades with by default (SamplingSettings::multiscatter,
+    // Filament's 1 + F0 (1 / E_ss - 1) with the LUT's E_ss) on both the estimate's specular and
+    // the full integral's, as the bench measures it; the GPU reference divides by its own
+    // E_ss, which the 128^2 LUT matches to its precision. --no-multiscatter measures single
+    // scattering (the committed table was fitted that way).
+    bool multiscatter = true;
     // After the cells are fitted alone, `smoothPasses` passes re-fit each against its
     // objective plus `smooth` times its squared distance from the lines through its
     // neighbours (the table's second differences; fit.cpp, Smoother), in the objective's

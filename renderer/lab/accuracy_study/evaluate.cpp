@@ -17,6 +17,7 @@
 #include <fstream>
 #include <functional>
 
+#include "ibl/brdf_lut.hpp"
 #include "ibl/reference.hpp"
 
 namespace iblab::accuracy {
@@ -66,10 +67,10 @@ double rmse(const std::vector<double>& e)
 }
 
 // Evaluates `pixels` (roughness and metallic set) for every method; appends errors per method.
-void evaluatePixels(const EnvCase& env, const std::vector<Pixel>& pixels, const std::vector<Method>& ms, bool exactPrefilter, std::vector<Errors>& out)
+void evaluatePixels(const EnvCase& env, const std::vector<Pixel>& pixels, const std::vector<Method>& ms, const StudyOptions& a, std::vector<Errors>& out)
 {
     const PrefilteredLookup lookup = [&](glm::dvec3 d, double r) {
-        return exactPrefilter ? referencePrefilteredRadiance(env.image, glm::normalize(d), r) : env.prefiltered(d, r);
+        return a.exactPrefilter ? referencePrefilteredRadiance(env.image, glm::normalize(d), r) : env.prefiltered(d, r);
     };
     std::vector<Query> queries;
     for (const Pixel& p : pixels) queries.push_back({p.n, p.v, p.roughness});
@@ -79,17 +80,18 @@ void evaluatePixels(const EnvCase& env, const std::vector<Pixel>& pixels, const 
         const Pixel& p = pixels[std::size_t(i)];
         const glm::dvec3 F0 = glm::mix(glm::dvec3(kDielectricF0), kCopper, p.metallic);
         const FullIntegral& ref = refs[std::size_t(i)];
-        const Shaded r = combine(p, ref.specular(F0), ref.irradiance, F0);
         SpecularShadingInputs in;
         in.n = p.n;
         in.v = p.v;
         in.roughness = p.roughness;
         in.F0 = F0;
         in.lut = lut().sample(std::max(glm::dot(p.n, p.v), 1e-4), p.roughness);
+        const glm::dvec3 compensation = a.multiscatter ? specularEnergyCompensation(F0, in.lut.z) : glm::dvec3(1.0);
+        const Shaded r = combine(p, ref.specular(F0) * compensation, ref.irradiance, F0);
         auto& row = perPixel[std::size_t(i)];
         for (const Method& m : ms) {
-            const Shaded a = combine(p, m.specular(in, lookup), ref.irradiance, F0);
-            row.emplace_back(pixelError(a.total, r.total), pixelError(a.specular, r.specular));
+            const Shaded s = combine(p, m.specular(in, lookup) * compensation, ref.irradiance, F0);
+            row.emplace_back(pixelError(s.total, r.total), pixelError(s.specular, r.specular));
         }
     });
     if (out.size() < ms.size()) out.resize(ms.size());
@@ -158,7 +160,7 @@ int evalCommand(const StudyOptions& a)
                 std::vector<Pixel> px = sphere;
                 for (Pixel& p : px) p.roughness = r, p.metallic = metallic;
                 std::vector<Errors> one;
-                evaluatePixels(env, px, ms, a.exactPrefilter, one);
+                evaluatePixels(env, px, ms, a, one);
                 for (std::size_t m = 0; m < ms.size(); ++m) {
                     spheres[m].total.insert(spheres[m].total.end(), one[m].total.begin(), one[m].total.end());
                     spheres[m].specular.insert(spheres[m].specular.end(), one[m].specular.begin(), one[m].specular.end());
@@ -169,7 +171,7 @@ int evalCommand(const StudyOptions& a)
                             << ',' << rmse(one[m].total) << ',' << rmse(one[m].specular) << ',' << one[m].total.size() << '\n';
                 }
             }
-        evaluatePixels(env, grid, ms, a.exactPrefilter, gridErr);
+        evaluatePixels(env, grid, ms, a, gridErr);
         for (std::size_t m = 0; m < ms.size(); ++m) {
             if (a.benchScenes) row.values[m].push_back(rmse(gridErr[m].total));
             else row.values[m] = {rmse(spheres[m].total), rmse(spheres[m].specular), rmse(gridErr[m].total), rmse(gridErr[m].specular)};

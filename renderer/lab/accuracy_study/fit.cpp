@@ -19,6 +19,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "ibl/brdf_lut.hpp"
+
 namespace iblab::accuracy {
 namespace {
 
@@ -125,6 +127,10 @@ public:
     CellProblem(const StudyOptions& a, const std::vector<EnvCase>& envs, int cellCol, int cellRow, const Cell& splitSum)
         : col(cellCol), row(cellRow), NdotV((cellCol + 0.5) / a.size), roughness((cellRow + 0.5) / a.size), options_(&a), maps_(envs.size())
     {
+        lut_ = lut().sample(NdotV, roughness);
+        // The compensation (--no-multiscatter: none) is a constant of the cell for each F0.
+        compensationCopper_ = a.multiscatter ? specularEnergyCompensation(kCopper, lut_.z) : glm::dvec3(1.0);
+        compensationDielectric_ = a.multiscatter ? specularEnergyCompensation(glm::dvec3(kDielectricF0), lut_.z) : glm::dvec3(1.0);
         std::mt19937 rng(a.seed * 7919u + unsigned(cellRow * a.size + cellCol));
         std::uniform_real_distribution<double> u(0.0, 1.0);
         for (std::size_t envIndex = 0; envIndex < envs.size(); ++envIndex) {
@@ -143,11 +149,10 @@ public:
                 // The dielectric as combineLobes shades it (metallic 0, copper base colour).
                 const Pixel p{queries[k].n, queries[k].v, roughness, 0.0};
                 const glm::dvec3 diffuse = combine(p, glm::dvec3(0.0), refs[k].irradiance, glm::dvec3(kDielectricF0)).total;
-                samples_.push_back({&env, envIndex, queries[k].n, queries[k].v, refs[k].specular(kCopper), refs[k].specular(glm::dvec3(kDielectricF0)) + diffuse,
-                                    diffuse});
+                samples_.push_back({&env, envIndex, queries[k].n, queries[k].v, refs[k].specular(kCopper) * compensationCopper_,
+                                    refs[k].specular(glm::dvec3(kDielectricF0)) * compensationDielectric_ + diffuse, diffuse});
             }
         }
-        lut_ = lut().sample(NdotV, roughness);
         splitSumPerMap_ = perMapErrors(splitSum);
     }
 
@@ -176,7 +181,8 @@ private:
         const int taps = options_->taps;
         const glm::vec4& p = cell[0];
         const glm::vec4& q = cell[1];
-        const glm::dvec3 albedoCopper = kCopper * lut_.x + lut_.y, albedoDielectric = glm::dvec3(kDielectricF0 * lut_.x + lut_.y);
+        const glm::dvec3 albedoCopper = (kCopper * lut_.x + lut_.y) * compensationCopper_;
+        const glm::dvec3 albedoDielectric = glm::dvec3(kDielectricF0 * lut_.x + lut_.y) * compensationDielectric_;
         std::vector<double> perMap(maps_, 0.0);
         for (const FitSample& s : samples_) {
             double& e = perMap[s.envIndex];
@@ -188,8 +194,8 @@ private:
                     preA = glm::mix(preA, s.env->prefiltered(glm::mix(R, s.n, double(shared::lobeSecondATowardsNormal(q))), shared::lobeSecondARoughness(q)),
                                     double(shared::lobeSecondAWeight(q)));
                 const glm::dvec3 preB = s.env->prefiltered(glm::mix(R, s.n, double(p.z)), p.w);
-                const double ec = pixelError(kCopper * lut_.x * preA + lut_.y * preB, s.refCopper);
-                const glm::dvec3 specD = kDielectricF0 * lut_.x * preA + lut_.y * preB;
+                const double ec = pixelError((kCopper * lut_.x * preA + lut_.y * preB) * compensationCopper_, s.refCopper);
+                const glm::dvec3 specD = (kDielectricF0 * lut_.x * preA + lut_.y * preB) * compensationDielectric_;
                 const double ed = pixelError(specD + s.diffuseDielectric, s.refDielectric);
                 const double es = options_->mixedObjective ? pixelError(specD, s.refDielectric - s.diffuseDielectric) : 0.0;
                 e += ec * ec + ed * ed + es * es;
@@ -211,7 +217,8 @@ private:
     const StudyOptions* options_;
     std::size_t maps_;
     std::vector<FitSample> samples_;
-    glm::dvec3 lut_;                     // the split-sum LUT's (A, B) at the cell
+    glm::dvec3 lut_;                     // the split-sum LUT's (A, B, A + B) at the cell
+    glm::dvec3 compensationCopper_{1.0}, compensationDielectric_{1.0};
     std::vector<double> splitSumPerMap_; // --per-map-ratio's denominators
 };
 

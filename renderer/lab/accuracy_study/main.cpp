@@ -79,6 +79,7 @@ int main(int argc, char** argv)
             else if (k == "--bakes") a.bakes = next();
             else if (k == "--mixed-objective") a.mixedObjective = true;
             else if (k == "--per-map-ratio") a.perMapRatio = true;
+            else if (k == "--no-multiscatter") a.multiscatter = false;
             else if (k == "--roughness") a.roughnesses = parseList(next()), roughnessGiven = true;
             else if (k == "--seed") a.seed = unsigned(std::stoul(next()));
             else if (k == "--smooth") a.smooth = std::stod(next());
