@@ -511,8 +511,6 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     uniforms.roughness.set(roughness);
     uniforms.weightSum.set(weightSum);
     uniforms.mirrorCopy.set(settings.mirrorCopy ? 1 : 0);
-    // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop
-    // of a bake without the mirror copy does).
     if (lights) {
         const double alpha = double(roughness) * double(roughness);
         uniforms.brightCount.set(lights->count);
@@ -521,8 +519,8 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         uniforms.brightScale.set(float(alpha * alpha / (kPi * ggxPrefilterNormalization(roughness))));
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
     }
-    bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f,
-               exactTexelSolidAngle);
+    // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop of a bake without the mirror copy does).
+    bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
     const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
     uniforms.copyLod.set(std::clamp(copyLod, 0.0f, float(environment.levels - 1)));

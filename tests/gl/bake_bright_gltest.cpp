@@ -112,16 +112,18 @@ TEST_F(GlTest, BrightSunErrorDoesNotDependOnYaw)
 {
     // The bake has one sample table for every texel and no per-texel rotation; the sun
     // turned about the vertical crosses faces, edges and texel grids differently. Each yaw
-    // meets the bound, so no two differ by more than it.
+    // meets the bound against the exact prefilter of its own map.
     auto shaders = testing::bakeShaderLibrary();
-    double worst = 0.0, worstSampled = 0.0;
-    for (double azimuth : {0.0, 11.25, 30.0, 52.5, 78.0}) {
+    // Three yaws (one on a face edge), and the sampled contrast at one of them only: each
+    // bake of this 1024 x 512 map with its errors takes seconds on llvmpipe.
+    double worst = 0.0;
+    for (double azimuth : {0.0, 11.25, 52.5}) {
         const std::string spec = sunSpec(32.0, azimuth);
         const double e = largest(perMipErrors(shaders, spec, brightTexelsSplit()));
         EXPECT_LE(e, kPerMipBound) << spec;
         worst = std::max(worst, e);
-        worstSampled = std::max(worstSampled, largest(perMipErrors(shaders, spec, everyTexelSampled())));
     }
+    const double worstSampled = largest(perMipErrors(shaders, sunSpec(32.0, 11.25), everyTexelSampled()));
     EXPECT_LE(worst, kPerMipBound);
     EXPECT_GT(worstSampled, kPerMipBound);
 }
