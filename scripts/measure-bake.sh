@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The bake numbers of docs/performance.md, docs/bake.md and the README's headline numbers.
-#   scripts/measure-bake.sh [ENV...]        # tutorial against default preset, one table (default: every bundled map):
+#   scripts/measure-bake.sh [ENV...]        # tutorial against default preset, one table (default: every bundled map;
+#                                           # DEFAULT_ARGS=... are added to the default's bakes):
 #       the default's LUTs cached, as they are after the first bake on a machine, 3 interleaved
 #       runs each so both see the same machine load, the minimum reported, and the errors of
 #       each against the exact references (deterministic: one run)
@@ -66,13 +67,15 @@ measure_tutorial() {
     for _ in 1 2 3; do
       tutorial+=("$("$iblab" bake --env "$env" --preset tutorial --no-cache --no-errors --json | total)")
       rm -rf "$cache/bake"
-      default+=("$("$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json | total)")
+      # shellcheck disable=SC2086
+      default+=("$("$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json ${DEFAULT_ARGS:-} | total)")
     done
     local t d
     t=$(minimum <<< "${tutorial[*]}")
     d=$(minimum <<< "${default[*]}")
     rows+=("$(basename "$env") tutorial $t $("$iblab" bake --env "$env" --preset tutorial --no-cache --json | errors_row)")
-    rows+=("$(basename "$env") default $d $("$iblab" bake --env "$env" --no-cache --json | errors_row)")
+    # shellcheck disable=SC2086
+    rows+=("$(basename "$env") default $d $("$iblab" bake --env "$env" --no-cache --json ${DEFAULT_ARGS:-} | errors_row)")
   done
   echo "| map | preset | bake, ms (min of 3) | per mip (roughness > 0) | worst mip | as shaded, roughness 0, 0.1 .. 1: RMS / max |"
   echo "|---|---|---|---|---|---|"

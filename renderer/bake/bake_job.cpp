@@ -286,11 +286,11 @@ void BakeJob::plan()
 
     if (s.prefilter.brightTexels > 0 && s.prefilter.levels > 1)
         steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
-                              bright_ = splitBrightTexels(passes_, result_.environmentCube, result_.settings.prefilter);
+                              bright_ = splitBrightTexels(passes_, result_.environmentCube, image_, result_.settings.prefilter);
                           }});
     for (int level = 0; level < s.prefilter.levels; ++level)
         planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level,
-                       double(prefilterSamples(s.prefilter, level)) + s.prefilter.brightTexels / 8.0, [this](const CubeSlice& slice) {
+                       double(prefilterSamples(s.prefilter, level)) + (level > 0 ? brightTexelCap(s.prefilter, level) / 8.0 : 0.0), [this](const CubeSlice& slice) {
                            passes_.prefilter(result_.environmentCube, result_.prefiltered, slice, result_.settings.prefilter,
                                              result_.settings.exactTexelSolidAngle, bright_ ? &*bright_ : nullptr);
                        });

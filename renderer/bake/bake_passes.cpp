@@ -10,6 +10,7 @@
 #include <glm/vec4.hpp>
 
 #include "ibl/prefilter_lod.hpp"
+#include "bake/bright_texels_block.hpp"
 #include "bake/source_samples.hpp"
 #include "io/error.hpp"
 #include "ibl/conventions.hpp"
@@ -137,16 +138,17 @@ struct MomentsUniforms {
 struct PrefilterUniforms {
     explicit PrefilterUniforms(const gl::ShaderProgram& p)
         : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
-          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale")
+          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos")
     {
     }
     gl::Uniform<float> roughness;
     gl::Uniform<float> weightSum;
     gl::Uniform<int> mirrorCopy;
     gl::Uniform<float> copyLod;
-    gl::Uniform<int> brightCount; // the three absent (-1) in a program without bright texels
+    gl::Uniform<int> brightCount; // the four absent (-1) in a program without bright texels
     gl::Uniform<float> alpha2;
     gl::Uniform<float> brightScale;
+    gl::Uniform<float> nearCos;
 };
 
 struct SamplePrefilteredUniforms {
@@ -212,7 +214,7 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
     }
     for (int level = 1; level < settings.prefilter.levels; ++level)
         prefilterProgram(sampleTableCapacity(prefilterSamples(settings.prefilter, level)),
-                         prefilterMipRoughness(settings.prefilter, level) > 0.0f ? 2 * settings.prefilter.brightTexels : 0);
+                         prefilterMipRoughness(settings.prefilter, level) > 0.0f ? brightBlockCapacity(settings.prefilter) : 0);
     if (lut)
         shaders_.program({kBrdfLut});
 }
@@ -496,10 +498,11 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     const int capacity = sampleTableCapacity(sampleCount);
     const float roughness = prefilterMipRoughness(settings, slice.level);
     // The mirror level has no lobe to weight lights by: it reads the environment itself.
-    if (roughness <= 0.0f)
-        bright = nullptr;
-    const gl::ShaderProgram& program = prefilterProgram(capacity, bright ? bright->capacity : 0);
-    const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias);
+    const PrefilterBrightTexels::Level* lights = nullptr;
+    if (bright && roughness > 0.0f && std::size_t(slice.level) < bright->levels.size() && bright->levels[std::size_t(slice.level)].base >= 0)
+        lights = &bright->levels[std::size_t(slice.level)];
+    const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0);
+    const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias, settings.sampleRotation);
     float weightSum = 0.0f;
     for (const glm::vec4& sample : samples)
         weightSum += sample.z;
@@ -508,16 +511,16 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     uniforms.roughness.set(roughness);
     uniforms.weightSum.set(weightSum);
     uniforms.mirrorCopy.set(settings.mirrorCopy ? 1 : 0);
-    // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop
-    // of a bake without the mirror copy does).
-    if (bright) {
+    if (lights) {
         const double alpha = double(roughness) * double(roughness);
-        uniforms.brightCount.set(bright->count);
+        uniforms.brightCount.set(lights->count);
+        uniforms.nearCos.set(brightNearCos(brightCellFaceSize(roughness)));
         uniforms.alpha2.set(float(alpha * alpha));
         uniforms.brightScale.set(float(alpha * alpha / (kPi * ggxPrefilterNormalization(roughness))));
-        glBindBufferBase(GL_UNIFORM_BUFFER, 1, bright->texels.id());
+        glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
     }
-    bindSource(program, bright ? bright->base : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
+    // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop of a bake without the mirror copy does).
+    bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
     const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
     uniforms.copyLod.set(std::clamp(copyLod, 0.0f, float(environment.levels - 1)));

@@ -122,15 +122,18 @@ struct PrefilterSettings {
     // (one box-filtered read per texel). false: sampled like every other mip, `samples`
     // times at source lod 0, which is what LearnOpenGL does (every sample is n itself).
     bool mirrorCopy = true;
-    // At most this many of the environment's brightest texels are summed exactly, by every
-    // output texel with the GGX weight itself, and the rest is sampled (bright_texels.hpp;
-    // docs/bake.md, "The prefilter's estimator"). 0: every texel is sampled (the anchors).
-    // Off by default: on llvmpipe the split costs 2-2.7x the default bake's time, over the
-    // budget the default is held to; --prefilter-bright-texels 256 turns it on.
-    int brightTexels = 0;
-    // Texels above this multiple of the map's mean luminance are bright (fewer when more
-    // than brightTexels are): the sampled rest then has at most this dynamic range.
+    // The bright-texel split (bright_texels.hpp; docs/bake.md, "The prefilter's estimator"):
+    // the environment's brightest texels (from the float map) summed exactly by every output
+    // texel, near ones light by light and far ones merged, the rest sampled. Each texel of
+    // mip 1 sums at most this many far cells, of the rougher mips 4 times as many; 16 is what
+    // the 1.25x time budget allowed on llvmpipe (docs/bake.md). 0: every texel is sampled
+    // (the anchors).
+    int brightTexels = 16;
+    // Texels above this multiple of the map's mean luminance are bright (fewer when the caps
+    // above are reached): the sampled rest then has at most this dynamic range.
     float brightThreshold = 4.0f;
+    // Degrees the sample set is turned about each texel's normal (0: as generated).
+    float sampleRotation = 0.0f;
     bool operator==(const PrefilterSettings&) const = default;
 };
 

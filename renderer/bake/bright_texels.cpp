@@ -1,9 +1,11 @@
 #include "bake/bright_texels.hpp"
+#include "bake/bright_texels_block.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <functional>
+#include <cstdint>
+#include <map>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -11,6 +13,7 @@
 
 #include "bake/bake_passes.hpp"
 #include "ibl/conventions.hpp"
+#include "ibl/equirect.hpp"
 #include "io/error.hpp"
 
 namespace iblab::bake {
@@ -58,80 +61,315 @@ double ggxPrefilterNormalization(double roughness)
     return 4.0 * sum / kSteps;
 }
 
-BrightTexelSplit splitBrightTexels(const CubeImage& level0, int maxTexels, float thresholdOverMean)
-{
-    BrightTexelSplit split;
-    split.base = level0;
-    const int f = level0.size;
-    std::vector<double> solidAngle(std::size_t(f) * std::size_t(f));
-    for (int row = 0; row < f; ++row)
-        for (int x = 0; x < f; ++x)
-            solidAngle[std::size_t(row) * std::size_t(f) + std::size_t(x)] = approximateTexelSolidAngle(x, row, f);
+namespace {
 
+// Keeps the brightest maxCandidates (ties in texel order), brightest first, and raises the
+// floor to the first one left out.
+BrightCandidates finishCandidates(std::vector<BrightTexel> texels, float floorThreshold, float meanLuminance, int maxCandidates)
+{
+    BrightCandidates c;
+    c.meanLuminance = meanLuminance;
+    c.floorThreshold = floorThreshold;
+    std::stable_sort(texels.begin(), texels.end(), [](const BrightTexel& a, const BrightTexel& b) { return a.luminance > b.luminance; });
+    if (texels.size() > std::size_t(std::max(0, maxCandidates))) {
+        c.floorThreshold = texels[std::size_t(std::max(0, maxCandidates))].luminance;
+        // Only texels strictly above the floor are lights: drop the ties with it too.
+        while (!texels.empty() && !(texels.back().luminance > c.floorThreshold))
+            texels.pop_back();
+    }
+    c.texels = std::move(texels);
+    return c;
+}
+
+std::uint64_t cellOf(const glm::dvec3& direction, int faceSize)
+{
+    const glm::vec3 fuv = directionToCubeFaceUv(glm::vec3(direction));
+    const int x = std::clamp(int(fuv.y * float(faceSize)), 0, faceSize - 1);
+    const int row = std::clamp(int(fuv.z * float(faceSize)), 0, faceSize - 1);
+    return (std::uint64_t(fuv.x) * std::uint64_t(faceSize) + std::uint64_t(row)) * std::uint64_t(faceSize) + std::uint64_t(x);
+}
+
+// Candidates strictly above threshold: a prefix, since they are sorted brightest first.
+std::size_t countAbove(const BrightCandidates& c, float threshold)
+{
+    return std::size_t(std::partition_point(c.texels.begin(), c.texels.end(),
+                                            [&](const BrightTexel& t) { return t.luminance > threshold; }) -
+                       c.texels.begin());
+}
+
+std::size_t mergedCount(const BrightCandidates& c, std::size_t count, int cellFaceSize)
+{
+    std::vector<std::uint64_t> cells(count);
+    for (std::size_t i = 0; i < count; ++i)
+        cells[i] = cellOf(c.texels[i].direction, cellFaceSize);
+    std::sort(cells.begin(), cells.end());
+    return std::size_t(std::unique(cells.begin(), cells.end()) - cells.begin());
+}
+
+// The far field: lights further than kNearCells cells of a kFarFace cube from an output
+// texel are summed as their cell's merged light (a point at its flux centre; the error of
+// that is second order, (cell / distance)^2 of the cell's contribution, about 3% at 6 cells),
+// nearer ones light by light. The mip-1 lobe's heavy tails reach tens of degrees, so a
+// large lamp or softbox must be summed everywhere, but exactly only near it.
+constexpr int kFarFace = 32;
+constexpr double kNearCells = 6.0;
+// The lights of a level, at most this many times its cap on far cells: an output texel near
+// a cell sums each of its lights, and near a large area (a softbox) that is most of them.
+constexpr std::size_t kLightsPerFarCell = 8;
+
+int farFaceSize(int cellFaceSize) { return std::min(kFarFace, cellFaceSize); }
+
+// Block entries of a level: 2 per far cell, 2 per light.
+std::size_t hierarchyEntries(const BrightCandidates& c, std::size_t count, int cellFaceSize)
+{
+    const std::size_t lights = mergedCount(c, count, cellFaceSize);
+    const std::size_t far = farFaceSize(cellFaceSize) == cellFaceSize ? 0 : mergedCount(c, count, farFaceSize(cellFaceSize));
+    return 2 * (lights + far);
+}
+
+} // namespace
+
+BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates)
+{
+    const int w = equirect.width, h = equirect.height;
+    std::vector<double> rowSolidAngle(std::size_t(std::max(0, h)));
+    double flux = 0.0;
+    for (int y = 0; y < h; ++y) {
+        rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
+        double row = 0.0;
+        for (int x = 0; x < w; ++x)
+            row += double(std::max(0.0f, luminance(equirect.at(x, y))));
+        flux += row * rowSolidAngle[std::size_t(y)];
+    }
+    const float mean = float(flux / (4.0 * kPi));
+    const float floorThreshold = thresholdOverMean * mean;
+    std::vector<BrightTexel> texels;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 rgb = equirect.at(x, y);
+            if (const float lum = luminance(rgb); lum > floorThreshold)
+                texels.push_back({equirectTexelDirection(x, y, w, h), glm::dvec3(rgb), rowSolidAngle[std::size_t(y)], lum});
+        }
+    return finishCandidates(std::move(texels), floorThreshold, mean, maxCandidates);
+}
+
+BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMean, int maxCandidates)
+{
+    const int f = level0.size;
     double flux = 0.0;
     for (int face = 0; face < 6; ++face)
         for (int row = 0; row < f; ++row)
             for (int x = 0; x < f; ++x)
-                flux += double(std::max(0.0f, luminance(level0.rgb(face, x, row)))) * solidAngle[std::size_t(row) * std::size_t(f) + std::size_t(x)];
-    split.meanLuminance = float(flux / (4.0 * kPi));
-    if (maxTexels <= 0)
-        return split;
-
-    // T: the multiple of the mean, or the luminance of the (maxTexels + 1)-th brightest
-    // texel when more than maxTexels lie above that (only texels strictly above T are split).
-    float threshold = thresholdOverMean * split.meanLuminance;
-    std::vector<float> above;
-    for (const glm::vec4& t : level0.texels)
-        if (const float y = luminance(glm::vec3(t)); y > threshold)
-            above.push_back(y);
-    if (above.size() > std::size_t(maxTexels)) {
-        std::nth_element(above.begin(), above.begin() + maxTexels, above.end(), std::greater<float>());
-        threshold = above[std::size_t(maxTexels)];
-    }
-    split.threshold = threshold;
-
+                flux += double(std::max(0.0f, luminance(level0.rgb(face, x, row)))) * approximateTexelSolidAngle(x, row, f);
+    const float mean = float(flux / (4.0 * kPi));
+    const float floorThreshold = thresholdOverMean * mean;
+    std::vector<BrightTexel> texels;
     for (int face = 0; face < 6; ++face)
         for (int row = 0; row < f; ++row)
             for (int x = 0; x < f; ++x) {
-                glm::vec4& texel = split.base.at(face, x, row);
-                const glm::vec3 rgb(texel);
-                const float y = luminance(rgb);
-                if (!(y > threshold))
-                    continue;
-                const glm::vec3 kept = rgb * (threshold / y);
-                texel = glm::vec4(kept, texel.a);
-                const double omega = texelSolidAngle(x, row, f);
-                const glm::dvec3 excessFlux = glm::dvec3(rgb - kept) * omega;
-                const glm::vec3 direction = level0.texelDirection(face, x, row);
-                split.lights.emplace_back(direction, 0.0f);
-                split.lights.emplace_back(glm::vec3(excessFlux), 0.0f);
-                ++split.brightTexels;
+                const glm::vec3 rgb = level0.rgb(face, x, row);
+                if (const float lum = luminance(rgb); lum > floorThreshold && std::isfinite(lum))
+                    texels.push_back({glm::dvec3(level0.texelDirection(face, x, row)), glm::dvec3(rgb), texelSolidAngle(x, row, f), lum});
             }
-    return split;
+    return finishCandidates(std::move(texels), floorThreshold, mean, maxCandidates);
 }
 
-PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const PrefilterSettings& settings)
+int brightCellFaceSize(double roughness)
+{
+    // A cell of a size-S face spans about 2 / S radians; alpha / 8 of it needs S >= 16 / alpha.
+    const double alpha = std::max(roughness * roughness, 1e-6);
+    int size = 1;
+    while (size < 1024 && size < 16.0 / alpha)
+        size *= 2;
+    return size;
+}
+
+std::vector<glm::vec4> mergedBrightLights(const BrightCandidates& candidates, float threshold, int cellFaceSize)
+{
+    struct Cell {
+        glm::dvec3 weightedDirection{0.0};
+        glm::dvec3 flux{0.0};
+    };
+    std::map<std::uint64_t, Cell> cells;
+    const std::size_t count = countAbove(candidates, threshold);
+    for (std::size_t i = 0; i < count; ++i) {
+        const BrightTexel& t = candidates.texels[i];
+        const glm::dvec3 excess = t.radiance * (1.0 - double(threshold) / double(t.luminance)) * t.solidAngle;
+        Cell& cell = cells[cellOf(t.direction, cellFaceSize)];
+        cell.flux += excess;
+        cell.weightedDirection += t.direction * double(luminance(glm::vec3(excess)));
+    }
+    std::vector<glm::vec4> lights;
+    lights.reserve(2 * cells.size());
+    for (const auto& [key, cell] : cells) {
+        lights.emplace_back(glm::vec3(glm::normalize(cell.weightedDirection)), 0.0f);
+        lights.emplace_back(glm::vec3(cell.flux), 0.0f);
+    }
+    return lights;
+}
+
+namespace {
+
+// A level's block (prefilter_ggx.comp): the far cells first, two entries each,
+// (direction, index of its first light), (flux, its light count), then its lights, two
+// entries each, (direction, 0), (flux, 0), grouped by cell. Where the far cells are the
+// lights themselves (the lobe is wide enough), the lights alone, and nearCos 2 (never near).
+std::vector<glm::vec4> hierarchicalLights(const BrightCandidates& candidates, float threshold, int cellFaceSize, int& farCells)
+{
+    const std::vector<glm::vec4> lights = mergedBrightLights(candidates, threshold, cellFaceSize);
+    const int farFace = farFaceSize(cellFaceSize);
+    if (farFace == cellFaceSize) {
+        farCells = int(lights.size() / 2);
+        return lights;
+    }
+    struct Cell {
+        glm::dvec3 weightedDirection{0.0};
+        glm::dvec3 flux{0.0};
+        std::vector<std::size_t> lights;
+    };
+    std::map<std::uint64_t, Cell> cells;
+    for (std::size_t i = 0; i < lights.size(); i += 2) {
+        const glm::dvec3 direction(lights[i]), flux(lights[i + 1]);
+        Cell& cell = cells[cellOf(direction, farFace)];
+        cell.flux += flux;
+        cell.weightedDirection += direction * double(luminance(glm::vec3(flux)));
+        cell.lights.push_back(i);
+    }
+    farCells = int(cells.size());
+    std::vector<glm::vec4> block;
+    block.reserve(2 * cells.size() + lights.size());
+    std::vector<glm::vec4> grouped;
+    grouped.reserve(lights.size());
+    for (const auto& [key, cell] : cells) {
+        block.emplace_back(glm::vec3(glm::normalize(cell.weightedDirection)), float(cells.size() + grouped.size() / 2));
+        block.emplace_back(glm::vec3(cell.flux), float(cell.lights.size()));
+        for (std::size_t i : cell.lights) {
+            grouped.push_back(lights[i]);
+            grouped.push_back(lights[i + 1]);
+        }
+    }
+    block.insert(block.end(), grouped.begin(), grouped.end());
+    return block;
+}
+
+} // namespace
+
+// Cosine of the angle within which a far cell of a level is summed light by light (2: never).
+float brightNearCos(int cellFaceSize)
+{
+    if (farFaceSize(cellFaceSize) == cellFaceSize)
+        return 2.0f;
+    return float(std::cos(kNearCells * 2.0 / farFaceSize(cellFaceSize)));
+}
+
+float brightThresholdFor(const BrightCandidates& candidates, const std::vector<double>& roughness, const std::vector<int>& caps)
+{
+    const std::size_t n = candidates.texels.size();
+    auto thresholdAt = [&](std::size_t p) { return p < n ? candidates.texels[p].luminance : candidates.floorThreshold; };
+    auto fits = [&](std::size_t p) {
+        const std::size_t count = countAbove(candidates, thresholdAt(p));
+        for (std::size_t i = 0; i < roughness.size(); ++i) {
+            // The cap is on the far cells (every output texel sums each of them), the block
+            // on everything the level uploads.
+            const int cell = brightCellFaceSize(roughness[i]);
+            const auto cap = std::size_t(std::max(0, caps[i]));
+            if (mergedCount(candidates, count, farFaceSize(cell)) > cap || mergedCount(candidates, count, cell) > kLightsPerFarCell * cap ||
+                hierarchyEntries(candidates, count, cell) > std::size_t(2 * kMaxBrightLights))
+                return false;
+        }
+        return true;
+    };
+    // The merged count grows with p: the largest p that fits, by bisection (p = 0 always fits).
+    std::size_t lo = 0, hi = n;
+    while (lo < hi) {
+        const std::size_t mid = lo + (hi - lo + 1) / 2;
+        if (fits(mid))
+            lo = mid;
+        else
+            hi = mid - 1;
+    }
+    return thresholdAt(lo);
+}
+
+void clampLuminance(CubeImage& level, float threshold)
+{
+    for (glm::vec4& texel : level.texels) {
+        const glm::vec3 rgb(texel);
+        const float y = luminance(rgb);
+        if (!std::isfinite(y))
+            texel = glm::vec4(glm::vec3(threshold), texel.a);
+        else if (y > threshold)
+            texel = glm::vec4(rgb * (threshold / y), texel.a);
+    }
+}
+
+int brightBlockCapacity(const PrefilterSettings& settings) { return settings.brightTexels > 0 ? 2 * kMaxBrightLights : 0; }
+
+int brightTexelCap(const PrefilterSettings& settings, int level)
+{
+    // Mip 2 has a quarter of mip 1's texels: four times the lights cost it as much.
+    return level <= 1 ? settings.brightTexels : std::min(4 * settings.brightTexels, kMaxBrightLights);
+}
+
+PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
+                                        const PrefilterSettings& settings)
 {
     PrefilterBrightTexels out;
-    out.capacity = 2 * settings.brightTexels;
+    const int capacity = brightBlockCapacity(settings);
     GLint maxBlockBytes = 0;
     glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &maxBlockBytes);
-    if (GLint(out.capacity * sizeof(glm::vec4)) > maxBlockBytes)
-        throw Error("prefilter", std::to_string(settings.brightTexels) + " bright texels need a " +
-                                     std::to_string(out.capacity * sizeof(glm::vec4)) + "-byte uniform block; this GL driver allows " +
-                                     std::to_string(maxBlockBytes) + " (lower prefilter.bright_texels)");
-    const BrightTexelSplit split = splitBrightTexels(readCubeLevel(environment, 0), settings.brightTexels, settings.brightThreshold);
-    out.count = split.brightTexels;
-    out.threshold = split.threshold;
-    out.meanLuminance = split.meanLuminance;
-    out.base = createCubeTexture(environment.internalFormat, environment.size, environment.levels);
-    uploadCubeLevel(out.base, 0, split.base);
-    passes.generateMips(out.base);
-    // GL leaves reads undefined where the bound range is shorter than the block: padded.
-    std::vector<glm::vec4> padded(std::size_t(out.capacity), glm::vec4(0.0f));
-    std::copy(split.lights.begin(), split.lights.end(), padded.begin());
-    out.texels = gl::createBufferWith<glm::vec4>(padded);
+    if (GLint(capacity * sizeof(glm::vec4)) > maxBlockBytes)
+        throw Error("prefilter", "the bright-texel split needs a " + std::to_string(capacity * sizeof(glm::vec4)) +
+                                     "-byte uniform block; this GL driver allows " + std::to_string(maxBlockBytes) +
+                                     " (--prefilter-bright-texels 0 turns the split off)");
+    CubeImage level0 = readCubeLevel(environment, 0);
+    constexpr int kMaxCandidates = 1 << 14;
+    const BrightCandidates candidates = equirect.empty() ? brightCandidates(level0, settings.brightThreshold, kMaxCandidates)
+                                                         : brightCandidates(equirect, settings.brightThreshold, kMaxCandidates);
+    out.meanLuminance = candidates.meanLuminance;
+
+    // Two groups, mip 1 and the rougher mips, each with the threshold its caps allow.
+    std::vector<double> roughRoughness;
+    std::vector<int> roughCaps;
+    for (int level = 2; level < settings.levels; ++level)
+        if (const float r = prefilterMipRoughness(settings, level); r > 0.0f) {
+            roughRoughness.push_back(r);
+            roughCaps.push_back(brightTexelCap(settings, level));
+        }
+    const float mip1Roughness = settings.levels > 1 ? prefilterMipRoughness(settings, 1) : 0.0f;
+    const float mip1Threshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
+    const float roughThreshold = brightThresholdFor(candidates, roughRoughness, roughCaps);
+
+    std::vector<float> baseThresholds;
+    auto baseFor = [&](float threshold) {
+        for (std::size_t i = 0; i < baseThresholds.size(); ++i)
+            if (baseThresholds[i] == threshold)
+                return int(i);
+        CubeImage base = level0;
+        clampLuminance(base, threshold);
+        out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size, environment.levels));
+        uploadCubeLevel(out.bases.back(), 0, base);
+        passes.generateMips(out.bases.back());
+        baseThresholds.push_back(threshold);
+        return int(baseThresholds.size() - 1);
+    };
+    out.levels.resize(std::size_t(std::max(0, settings.levels)));
+    for (int level = 1; level < settings.levels; ++level) {
+        const float roughness = prefilterMipRoughness(settings, level);
+        if (!(roughness > 0.0f))
+            continue;
+        PrefilterBrightTexels::Level& l = out.levels[std::size_t(level)];
+        l.threshold = level == 1 ? mip1Threshold : roughThreshold;
+        l.base = baseFor(l.threshold);
+        const std::vector<glm::vec4> lights = hierarchicalLights(candidates, l.threshold, brightCellFaceSize(roughness), l.count);
+        l.capacity = capacity;
+        // GL leaves reads undefined where the bound range is shorter than the block: padded.
+        std::vector<glm::vec4> padded(std::size_t(capacity), glm::vec4(0.0f));
+        std::copy(lights.begin(), lights.begin() + std::min(lights.size(), padded.size()), padded.begin());
+        l.texels = gl::createBufferWith<glm::vec4>(padded);
+    }
     return out;
 }
+
 
 } // namespace iblab::bake

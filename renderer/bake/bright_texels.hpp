@@ -2,54 +2,104 @@
 // The prefilter's split of the environment into a bounded base and its brightest texels
 // (docs/bake.md, "The prefilter's estimator"). A small, very bright source (a sun) is what a
 // sample table shared by every texel cannot integrate: each output texel sees it through
-// the same few samples, and the result carries the table's pattern. So every texel whose
-// luminance exceeds a threshold T keeps only T (its chroma unchanged), and its excess is
-// summed exactly, as a point of light at the texel's centre with the excess times the
-// texel's solid angle as its flux, by every output texel with the GGX weight itself. The
-// base, whose largest value is T, is importance-sampled as before.
+// the same few samples, and the result carries the table's pattern. So every source texel
+// whose luminance exceeds a threshold T keeps only T (its chroma unchanged), and its excess
+// is summed exactly, as a point of light with the excess times the texel's solid angle as
+// its flux, by every output texel with the GGX weight itself. The base, whose largest value
+// is T, is importance-sampled as before.
 //
-// T is thresholdOverMean times the map's mean luminance, raised where needed so that at
-// most maxTexels texels are above it (the per-texel cost of the exact sum). The exact part
-// carries the bright sources wherever they are on the sphere; what is left to sampling has
-// the dynamic range of an overcast sky.
+// The bright texels are the float equirect's (the map as loaded), not the environment
+// cube's: a half-float cube stores a sun of 1e6 as at most 65504 and loses its flux. The
+// base is the cube's level 0 with every texel clamped to T.
+//
+// The cost of the exact sum is (output texels) x (lights), and mip 1 has four times the texels
+// of mip 2, so each mip gets its own list: texels closer together than an eighth of the
+// mip's lobe width (alpha radians) are merged into one light at their flux-weighted centre
+// (which keeps the sum's first moment; the error is second order, about 1% at the lobe's
+// peak), and those lights are grouped again in the cells of a 32^2-per-face cube: an output
+// texel sums a cell further than 6 cells from it as one light (the far field of the lobe's
+// heavy tail), and a nearer cell light by light (bright_texels_block.hpp). brightTexelCap
+// bounds the far cells of each mip (mip 1: PrefilterSettings::brightTexels, the rougher
+// mips 4 times as many) and its lights to 8 times that. T is set per group of mips (mip 1;
+// mips 2 and up) to the lowest value, at least brightThreshold x the mean luminance, at
+// which the caps hold; a group with its own T has its own base.
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "bake/baked_texture.hpp"
 #include "bake/bake_settings.hpp"
 #include "gl/handles.hpp"
+#include "ibl/image.hpp"
 
 namespace iblab::bake {
 
 class BakePasses;
 
-struct BrightTexelSplit {
-    CubeImage base;                // the environment's level 0 with every bright texel scaled down to T
-    float threshold = 0.0f;        // T, luminance (Rec. 709 weights)
-    float meanLuminance = 0.0f;    // over the sphere, by solid angle
-    int brightTexels = 0;          // texels above T
-    // One point of light per bright texel, two vec4 each: (direction, 0), (flux rgb, 0);
-    // flux = excess radiance x the texel's solid angle. Texel order (deterministic).
-    std::vector<glm::vec4> lights;
+// A source texel above the floor threshold (brightThreshold x mean).
+struct BrightTexel {
+    glm::dvec3 direction;
+    glm::dvec3 radiance;
+    double solidAngle = 0.0;
+    float luminance = 0.0f; // Rec. 709 weights
 };
 
-BrightTexelSplit splitBrightTexels(const CubeImage& level0, int maxTexels, float thresholdOverMean);
+struct BrightCandidates {
+    std::vector<BrightTexel> texels; // brightest first (ties in texel order: deterministic)
+    float floorThreshold = 0.0f;     // brightThreshold x meanLuminance
+    float meanLuminance = 0.0f;      // over the sphere, by solid angle
+};
 
-// The split on the GPU, for BakePasses::prefilter.
+// Every texel of the equirect (exact row solid angles) or of a cube level above
+// thresholdOverMean x the mean luminance, at most maxCandidates of them (the brightest;
+// the floor threshold then rises to the first one left out).
+BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates);
+BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMean, int maxCandidates);
+
+// The lights of the candidates strictly above threshold: their excess over it, merged in the
+// texels of a cellFaceSize cube (two vec4 each: (direction, 0), (flux rgb, 0)), cells in order.
+std::vector<glm::vec4> mergedBrightLights(const BrightCandidates& candidates, float threshold, int cellFaceSize);
+
+// The face size of the cube whose texels merge lights for a lobe of this roughness
+// (an eighth of alpha radians across, a power of two, at most 1024).
+int brightCellFaceSize(double roughness);
+
+// The lowest threshold (at least the floor) at which each roughness's far cells fit under its
+// cap, its lights under 8 times the cap, and its block in kMaxBrightLights lights.
+float brightThresholdFor(const BrightCandidates& candidates, const std::vector<double>& roughness, const std::vector<int>& caps);
+
+// Clamps every texel's luminance to threshold, chroma kept (the split's base). A texel that
+// is not finite (a half float that overflowed) becomes grey at the threshold.
+void clampLuminance(CubeImage& level, float threshold);
+
+// The split on the GPU, for BakePasses::prefilter. Per prefiltered mip (index = level; level
+// 0, the mirror, has none): the base it samples, its lights, their count and the uniform
+// block's size.
 struct PrefilterBrightTexels {
-    BakedTexture base;   // the split's base as a cube with the environment's size, format and mips
-    gl::Buffer texels;   // the split's lights, padded to a uniform block of 2 settings.brightTexels entries
-    int count = 0;       // lights
-    int capacity = 0;    // entries of the block (prefilter_ggx.comp's BRIGHT_CAPACITY)
-    float threshold = 0.0f;
+    std::vector<BakedTexture> bases; // one per distinct threshold
+    struct Level {
+        int base = -1; // into bases; -1: no split at this level
+        gl::Buffer texels; // bright_texels_block.hpp's layout
+        int count = 0;     // far cells
+        int capacity = 0; // entries (prefilter_ggx.comp's BRIGHT_CAPACITY)
+        float threshold = 0.0f;
+    };
+    std::vector<Level> levels;
     float meanLuminance = 0.0f;
 };
 
-// Reads the environment's level 0 back, splits it, and uploads the base (with its mips,
-// built as the environment's are) and the lights. Throws iblab::Error where the driver's
-// uniform blocks cannot hold settings.brightTexels lights.
-PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const PrefilterSettings& settings);
+// Builds the split: the candidates from the equirect when the job still holds it (else from
+// the cube's level 0), the bases from the cube's level 0 (with its mips, built as the
+// environment's are). Throws iblab::Error where the driver's uniform blocks cannot hold the lights.
+PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
+                                        const PrefilterSettings& settings);
+
+// The most entries pairs of a level's block (far cells and lights together): GL guarantees
+// 16 KB uniform blocks, llvmpipe allows 64 KB (4096 entries); a driver with less is told so.
+inline constexpr int kMaxBrightLights = 2048;
+// The most far cells mip `level` (>= 1) sums for every texel (bright_texels_block.hpp).
+int brightTexelCap(const PrefilterSettings& settings, int level);
 
 // Z(alpha) = integral of D(h) max(0, n.l) dOmega_l over the sphere, with v = n and h the
 // half vector of n and l (GGX, alpha = roughness^2): what the exact sum divides its weights

@@ -1,7 +1,9 @@
 #include "bake/source_samples.hpp"
 
+#include <cmath>
 #include <cstdint>
 
+#include "ibl/conventions.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/sampling.hpp"
 
@@ -27,7 +29,7 @@ std::vector<glm::vec4> cosineSampleTable(int sampleCount, float lodBias)
     return table;
 }
 
-std::vector<glm::vec4> ggxReflectedSampleTable(float roughness, int sampleCount, float lodBias)
+std::vector<glm::vec4> ggxReflectedSampleTable(float roughness, int sampleCount, float lodBias, float rotationDegrees)
 {
     std::vector<glm::vec4> table;
     table.reserve(std::size_t(sampleCount));
@@ -37,8 +39,10 @@ std::vector<glm::vec4> ggxReflectedSampleTable(float roughness, int sampleCount,
         return table;
     }
     const auto n = std::uint32_t(sampleCount);
+    const double turn = double(rotationDegrees) * kPi / 180.0, c = std::cos(turn), s = std::sin(turn);
     for (std::uint32_t i = 0; i < n; ++i) {
-        const glm::dvec3 h = sampleGgxHalfVector(hammersley(i, n), alpha);
+        const glm::dvec3 g = sampleGgxHalfVector(hammersley(i, n), alpha);
+        const glm::dvec3 h(c * g.x - s * g.y, s * g.x + c * g.y, g.z);
         // With n = v = +z: l = reflect(-n, h) = 2 (n.h) h - n, and v.h = n.h.
         const glm::dvec3 l = 2.0 * h.z * h - glm::dvec3(0.0, 0.0, 1.0);
         if (l.z <= 0.0)

@@ -22,6 +22,8 @@ std::vector<glm::vec4> cosineSampleTable(int sampleCount, float lodBias);
 // GGX lobe around n = v for perceptual roughness r (alpha = r^2), N Hammersley half
 // vectors reflected about n; those whose l falls below the horizon are dropped (their
 // weight n.l is 0). r = 0 puts every sample on n with w = 0 (a delta has no footprint).
-std::vector<glm::vec4> ggxReflectedSampleTable(float roughness, int sampleCount, float lodBias);
+// rotationDegrees turns the whole set about n (the tests' check that a bake does not
+// depend on where the set's points happen to fall).
+std::vector<glm::vec4> ggxReflectedSampleTable(float roughness, int sampleCount, float lodBias, float rotationDegrees = 0.0f);
 
 } // namespace iblab::bake

@@ -20,26 +20,42 @@
 
 // BRIGHT_CAPACITY > 0: the environment's brightest texels, split off by the host
 // (renderer/bake/bright_texels.hpp), summed exactly with the GGX weight of each; the source
-// cube the samples read is then the rest of the environment. Two entries per texel:
-// (direction, 0), (flux rgb, 0).
+// cube the samples read is then the rest of the environment. The block's layout is
+// bright_texels_block.hpp's: uBrightCount far cells, (direction, first light),
+// (flux, light count), then their lights, (direction, 0), (flux, 0).
 #if BRIGHT_CAPACITY > 0
 layout(std140, binding = 1) uniform BrightTexels {
     vec4 brightTexels[BRIGHT_CAPACITY];
 };
-uniform int uBrightCount;   // texels (entries / 2)
+uniform int uBrightCount;   // far cells
+uniform float uNearCos;     // a cell nearer than this cosine is summed light by light
 uniform float uAlpha2;      // alpha^2 = roughness^4
 uniform float uBrightScale; // alpha^2 / (pi Z(alpha)), Z the integral of D(h) max(0, n.l)
 
-// sum_j flux_j D(h_j) max(0, n.l_j) / Z with D = alpha^2 / (pi t^2) and
-// t = (n.h)^2 (alpha^2 - 1) + 1, (n.h)^2 = (1 + c) / 2 for c = n.l_j (v = n); written as
+// flux D(h) max(0, n.l) without the constant alpha^2 / pi, with D = alpha^2 / (pi t^2) and
+// t = (n.h)^2 (alpha^2 - 1) + 1, (n.h)^2 = (1 + c) / 2 for c = n.l (v = n); written as
 // alpha^2 + (1 - c)(1 - alpha^2) / 2 so that t keeps its precision near the lobe's peak.
+vec3 brightTerm(float c, vec3 flux)
+{
+    float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
+    return flux * (max(c, 0.0) / (t * t));
+}
+
 vec3 sumBrightTexels(vec3 n)
 {
     vec3 sum = vec3(0.0);
     for (int j = 0; j < uBrightCount; ++j) {
-        float c = dot(n, brightTexels[2 * j].xyz);
-        float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
-        sum += brightTexels[2 * j + 1].xyz * (max(c, 0.0) / (t * t));
+        vec4 cell = brightTexels[2 * j];
+        vec4 cellFlux = brightTexels[2 * j + 1];
+        float c = dot(n, cell.xyz);
+        if (c > uNearCos) {
+            int first = int(cell.w);
+            int count = int(cellFlux.w);
+            for (int k = first; k < first + count; ++k)
+                sum += brightTerm(dot(n, brightTexels[2 * k].xyz), brightTexels[2 * k + 1].xyz);
+        } else {
+            sum += brightTerm(c, cellFlux.xyz);
+        }
     }
     return sum * uBrightScale;
 }
