@@ -34,7 +34,7 @@ const std::map<std::string, CommandShape>& commandShapes()
         {"expect-pixel", {5, 6}}, {"expect-mean", {3, 7}},    {"snapshot", {1, 6}},       {"expect-changed", {1, 2}},
         {"expect-unchanged", {1, 2}}, {"screenshot", {1, 1}}, {"print", {1, 1}},          {"sleep", {1, 1}},
         {"list-items", {0, 1}},   {"timed-keys", {3, 3}},     {"timed-click", {1, 3}},    {"expect-within", {4, 4}},
-        {"remember", {1, 1}},     {"expect-same", {1, 1}},
+        {"remember", {1, 1}},     {"expect-same", {1, 1}},    {"key-events", {1, 32}},
     };
     return shapes;
 }
@@ -165,6 +165,10 @@ std::vector<ScriptStep> parseGuiScript(const std::string& text)
         if (command == "key" || command == "key-down" || command == "key-up")
             for (std::size_t i = 1; i < tokens.size(); ++i)
                 if (!parseKeyChord(tokens[i])) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown key \"" + tokens[i] + "\"");
+        if (command == "key-events")
+            for (std::size_t i = 1; i < tokens.size(); ++i)
+                if ((tokens[i][0] != '+' && tokens[i][0] != '-') || !parseKeyChord(tokens[i].substr(1)))
+                    throw std::runtime_error("line " + std::to_string(lineNumber) + ": \"" + tokens[i] + "\" is not +KEY (a press) or -KEY (a release)");
         steps.push_back({lineNumber, command, std::vector<std::string>(tokens.begin() + 1, tokens.end()), line});
     }
     return steps;

@@ -118,6 +118,11 @@ public:
                 for (int m : chord.modifiers) key(m, false);
             }
             settle();
+        } else if (c == "key-events") {
+            // Presses (+KEY) and releases (-KEY) that all arrive before the next frame, in
+            // this order: a fast chord's events on a slow frame.
+            for (const std::string& event : a) key(parseKeyChord(event.substr(1))->key, event[0] == '+');
+            settle();
         } else if (c == "key-down" || c == "key-up") {
             key(parseKeyChord(a[0])->key, c == "key-down");
             settle();
