@@ -65,10 +65,12 @@ FrameRequests InputQueue::applyFrame(ImGuiIO& io)
             if (e.code < 0 || e.code >= int(IM_ARRAYSIZE(io.MouseDown))) break;
             if (!buttonsChanged.insert(e.code).second) return requests;
             io.MouseDown[e.code] = e.pressed;
+            requests.userActed = requests.userActed || e.pressed;
             break;
         case InputEvent::Type::Scroll:
             io.MouseWheelH += float(e.x);
             io.MouseWheel += float(e.y);
+            requests.userActed = true;
             break;
         case InputEvent::Type::Key:
             if (e.code < 0 || e.code >= int(IM_ARRAYSIZE(io.KeysDown))) break;
@@ -78,6 +80,7 @@ FrameRequests InputQueue::applyFrame(ImGuiIO& io)
             if (textGiven || !keysChanged.insert(e.code).second) return requests;
             io.KeysDown[e.code] = e.pressed;
             keyPressedThisFrame = keyPressedThisFrame || (e.pressed && !isModifier(e.code));
+            requests.userActed = requests.userActed || e.pressed;
             io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] || io.KeysDown[GLFW_KEY_RIGHT_CONTROL];
             io.KeyShift = io.KeysDown[GLFW_KEY_LEFT_SHIFT] || io.KeysDown[GLFW_KEY_RIGHT_SHIFT];
             io.KeyAlt = io.KeysDown[GLFW_KEY_LEFT_ALT] || io.KeysDown[GLFW_KEY_RIGHT_ALT];
@@ -87,9 +90,13 @@ FrameRequests InputQueue::applyFrame(ImGuiIO& io)
             if (!keysChanged.empty()) return requests;
             io.AddInputCharacter(e.codepoint);
             textGiven = true;
+            requests.userActed = true;
             break;
         case InputEvent::Type::Focus: io.AddFocusEvent(e.pressed); break;
-        case InputEvent::Type::Drop: requests.dropped.insert(requests.dropped.end(), e.paths.begin(), e.paths.end()); break;
+        case InputEvent::Type::Drop:
+            requests.dropped.insert(requests.dropped.end(), e.paths.begin(), e.paths.end());
+            requests.userActed = true;
+            break;
         case InputEvent::Type::CloseRequest: requests.closeRequested = true; break;
         case InputEvent::Type::Resize:
             requests.resized = true;

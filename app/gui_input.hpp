@@ -39,6 +39,7 @@ struct InputEvent {
 struct FrameRequests {
     std::vector<std::string> dropped;
     bool closeRequested = false;
+    bool userActed = false; // a button or key pressed, text typed, the wheel turned, a file dropped
     bool resized = false;
     int width = 0, height = 0;
 };

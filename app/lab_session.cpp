@@ -20,6 +20,14 @@ std::string shortName(const std::string& spec)
     return isBuiltinSpec(spec) ? spec : std::filesystem::path(spec).filename().string();
 }
 
+// "courtyard.exr: 2048x1024"; an imported bake says what it is (its image is only its sky).
+std::string environmentLine(const Environment& env)
+{
+    const std::string size = std::to_string(env.image.width) + "x" + std::to_string(env.image.height);
+    if (env.imported) return shortName(env.source) + ": imported " + importedBakeFormat(env.imported->kind) + ", shown as made (sky " + size + ")";
+    return shortName(env.source) + ": " + size;
+}
+
 } // namespace
 
 std::string defaultEnvironmentSpec() { return defaultEnvironmentPath(assetDirectory().string()); }
@@ -97,7 +105,7 @@ ui::StatusLine LabSession::finishLoad(Environment loaded, FrameSettings& setting
     else if (lastSwitch_ && lastSwitch_->environment == pendingSpec_ && lastSwitch_->loadMs == 0.0) lastSwitch_->loadMs = loadMs; // shown early
     cache_.rememberSource(pendingSpec_.empty() ? loaded.source : pendingSpec_,
                           {loaded.contentHash, loaded.image.width, loaded.image.height});
-    const std::string text = shortName(loaded.source) + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
+    const std::string text = environmentLine(loaded);
     // Repairs, downsampling and LDR input are the loader's warnings: notes under the line,
     // since the environment loaded and is usable (the bundled courtyard has negative texels
     // from its stitching, repaired to 0, which is nobody's error).
@@ -201,9 +209,7 @@ ui::StatusLine LabSession::showRecent(const RecentEnvironment& recent, FrameSett
         switchAwaitsFrame_ = true;
     }
     const Environment& env = *recent.environment;
-    ui::StatusLine line{shortName(env.source) + ": " + std::to_string(env.image.width) + "x" + std::to_string(env.image.height) +
-                            ", kept from earlier with its bake",
-                        false, env.warnings};
+    ui::StatusLine line{environmentLine(env) + ", kept from earlier with its bake", false, env.warnings};
     rememberCurrent();
     return line;
 }
@@ -255,6 +261,9 @@ LabSession::Finished LabSession::pump(FrameSettings& settings, std::chrono::stea
     if (job_) {
         try {
             if (!job_->runFor(budget)) finished.bake = finishBake();
+            // The view shows the early bake from now on: the line names its map, not the last.
+            if (early_ && early_->shown && !early_->decoded)
+                finished.environment = ui::StatusLine{shortName(early_->spec) + ": shown from the bake cache while the file is read"};
         } catch (const std::exception& e) {
             withdrawEarlyBake();
             job_.reset();

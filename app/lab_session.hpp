@@ -43,8 +43,8 @@ public:
     // Advances background work for about `budget`: a finished load starts its bake; a
     // finished bake goes to the renderer.
     Finished pump(FrameSettings& settings, std::chrono::steady_clock::duration budget);
-    // Shows a requested environment that is among the recent ones at once (the GUI calls it
-    // after acting on the frame's input, so that the frame it then draws has the new lighting).
+    // Shows a requested environment that is among the recent ones at once (pump calls it
+    // first, so that the frame then drawn has the new lighting and the status line with it).
     Finished showRequestedRecent(FrameSettings& settings);
     bool busy() const;
     // Blocks until the environment file being decoded on the worker thread is ready, or for
