@@ -110,7 +110,7 @@ void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 vi
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     // What the numbers are: a bare number over each sphere said nothing to a newcomer.
     if (!readings.empty()) {
-        const char* caption = "Furnace: the share of a white environment each sphere reflects (luminance; 1 = all)";
+        const char* caption = "Furnace: share of white light reflected (1 = all)";
         const ImVec2 size = ImGui::CalcTextSize(caption);
         const ImVec2 at(viewOrigin.x + 10.0f, viewOrigin.y + viewHeight - size.y - 10.0f);
         draw->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2), IM_COL32(0, 0, 0, 160));
