@@ -168,12 +168,12 @@ bake::BakeSettings GuiApp::Impl::initialBake(const GuiOptions& o)
     return convention ? conventionBakeSettings(*convention) : bake::defaultPreset();
 }
 
-// The last session's sections and paths; captures and presets otherwise go to the user's
-// pictures and documents folders rather than wherever the lab was started.
+// The last session's sections and paths; captures, presets and exports otherwise go to the
+// user's pictures and documents folders rather than wherever the lab was started.
 void GuiApp::Impl::rememberFrom(const std::optional<GuiPrefs>& remembered)
 {
     const GuiPrefs prefs = remembered.value_or(GuiPrefs{});
-    panels.firstRunHint = !remembered;
+    panels.firstRunHint = !prefs.hintDismissed;
     for (const auto& [label, open] : prefs.sections) ui::sectionStates()[label] = open;
     const auto copy = [](char* field, std::size_t size, const std::string& value) {
         if (!value.empty()) std::snprintf(field, size, "%s", value.c_str());
@@ -184,7 +184,10 @@ void GuiApp::Impl::rememberFrom(const std::optional<GuiPrefs>& remembered)
          prefs.presetPath.empty() ? (userDirectory("DOCUMENTS") / panels.presetPath).string() : prefs.presetPath);
     copy(panels.environmentPath, sizeof panels.environmentPath, prefs.environmentPath);
     copy(panels.modelPath, sizeof panels.modelPath, prefs.modelPath);
-    copy(panels.exportPath, sizeof panels.exportPath, prefs.exportPath);
+    copy(panels.exportPath, sizeof panels.exportPath,
+         prefs.exportPath.empty() ? (userDirectory("DOCUMENTS") / panels.exportPath).string() : prefs.exportPath);
+    copy(panels.bakeExportPath, sizeof panels.bakeExportPath,
+         prefs.bakeExportPath.empty() ? (userDirectory("DOCUMENTS") / panels.bakeExportPath).string() : prefs.bakeExportPath);
 }
 
 void GuiApp::Impl::requestQuit()
@@ -359,6 +362,7 @@ ui::UiRequests GuiApp::Impl::drawUi(const FrameRequests& frameInput, const ViewA
     for (const std::string& dropped : frameInput.dropped) handleDrop(dropped, requests, panels);
     handleShortcuts(io, requests);
     panels.unsavedChanges = unsavedChanges();
+    drawnEnvironmentStatus = panels.environmentStatus.text;
     ui::drawControlWindow(settings, panels, stats, requests);
     ui::drawQuitDialog(panels, requests);
     ui::drawHelpWindow(panels.helpOpen);
@@ -406,6 +410,8 @@ void GuiApp::Impl::renderView(const ViewArea& area, bool interacting)
     const ViewWork work = view.render(renderer, in, Clock::now());
     if (view.newImage()) {
         ++viewImages;
+        if (firstImageOfEnvironment.environment != settings.environment.source)
+            firstImageOfEnvironment = {settings.environment.source, drawnEnvironmentStatus};
         if (errorView) panels.compare.error = renderer.measureError(settings);
         stats.resolutionScale = view.shownScale(); // of the frame on screen
     }
@@ -455,6 +461,8 @@ void GuiApp::Impl::frame()
     const FrameRequests frameInput = input.applyFrame(io);
     if (frameInput.resized && platform.kind() == PlatformKind::Offscreen) platform.resize(frameInput.width, frameInput.height);
     if (frameInput.closeRequested) requestQuit();
+    // The first-run hint has done its job once the user does something; gui.json remembers.
+    if (frameInput.userActed) panels.firstRunHint = false;
 
     const ViewArea area = viewArea();
     if (area.width <= 0 || area.height <= 0) { // minimised
@@ -466,6 +474,9 @@ void GuiApp::Impl::frame()
     pumpBackground(inputArrived);
     ui::UiRequests requests = drawUi(frameInput, area);
 
+    // A switch to a recent environment asked for here is shown by the next frame's pump,
+    // before its panel is drawn: shown now, its first image went out beside the panel drawn
+    // above, which still had the old environment's status line.
     actOn(requests, area.width, area.height);
     // On the frame that turns to the furnace view (or after a re-bake, which drops it).
     if (settings.view.mode == ViewMode::Furnace && !renderer.hasFurnaceBake()) session.ensureFurnaceBake();
@@ -505,8 +516,11 @@ int GuiApp::glErrorCount() const { return impl_->debug.errorCount(); }
 GuiPrefs GuiApp::prefs() const
 {
     const ui::PanelState& p = impl_->panels;
-    return {ui::sectionStates(), p.environmentPath, p.modelPath, p.presetPath, p.exportPath, p.capture.directory, impl_->platform.width(),
-            impl_->platform.height()};
+    GuiPrefs prefs{ui::sectionStates(), p.environmentPath, p.modelPath, p.presetPath, p.exportPath, p.capture.directory, impl_->platform.width(),
+                   impl_->platform.height()};
+    prefs.bakeExportPath = p.bakeExportPath;
+    prefs.hintDismissed = !p.firstRunHint;
+    return prefs;
 }
 
 int runGui(const GuiOptions& given)

@@ -87,6 +87,12 @@ struct GuiApp::Impl {
     WindowPixels pixels;
     int framesShown = 0;
     long long viewImages = 0; // new images of the view put on screen
+    // The environment status line as the panel drew it this frame, and as it was drawn beside
+    // the first image of the environment on screen (scripts check they agree).
+    std::string drawnEnvironmentStatus;
+    struct FirstImage {
+        std::string environment, status;
+    } firstImageOfEnvironment;
 
     Impl(GuiPlatform& p, const GuiOptions& o);
     static bake::BakeSettings initialBake(const GuiOptions& o);

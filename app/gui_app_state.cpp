@@ -6,6 +6,7 @@
 
 #include "gui_app_impl.hpp"
 #include "ui/help_window.hpp"
+#include "ui/overlays.hpp"
 #include "ui/widgets.hpp"
 
 namespace iblab::app {
@@ -28,6 +29,23 @@ std::size_t plottedPoints(const std::vector<ui::ParetoChart>& charts)
         for (const ui::ChartSeries& series : chart.series)
             for (const ui::ChartPoint& point : series.points) count += point.x > 0.0 && point.y > 0.0 && std::isfinite(point.y);
     return count;
+}
+
+// Right and bottom too, so that a script can check the window is inside the display.
+nlohmann::json chartWindowJson(const float (&rect)[4])
+{
+    return {{"x", rect[0]}, {"y", rect[1]}, {"width", rect[2]}, {"height", rect[3]}, {"right", rect[0] + rect[2]}, {"bottom", rect[1] + rect[3]}};
+}
+
+// The texts drawn over the view; with `outside`, only those not wholly inside it (cut off).
+nlohmann::json overlayTextsJson(const ui::ViewRect& view, bool outside)
+{
+    nlohmann::json texts = nlohmann::json::array();
+    for (const ui::OverlayText& t : ui::overlayTexts()) {
+        const bool inside = t.x0 >= view.x0 && t.y0 >= view.y0 && t.x1 <= view.x1 && t.y1 <= view.y1;
+        if (!outside || !inside) texts.push_back(t.text);
+    }
+    return texts;
 }
 
 // Whether the last frame drew a tooltip (ImGui's window for them is "##Tooltip_00").
@@ -55,7 +73,9 @@ nlohmann::json GuiApp::state() const
         {"quit", a.quit},
         {"platform", platformKindName(a.platform.kind())},
         {"window", {{"width", a.platform.width()}, {"height", a.platform.height()}}},
-        {"view", {{"x", p.viewRect.x0}, {"y", p.viewRect.y0}, {"width", p.viewRect.x1 - p.viewRect.x0}, {"height", p.viewRect.y1 - p.viewRect.y0}}},
+        {"view", {{"x", p.viewRect.x0}, {"y", p.viewRect.y0}, {"width", p.viewRect.x1 - p.viewRect.x0}, {"height", p.viewRect.y1 - p.viewRect.y0},
+                  {"overlay_texts", overlayTextsJson(p.viewRect, false)}, {"overlay_texts_outside", overlayTextsJson(p.viewRect, true)},
+                  {"first_image_of_environment", {{"environment", a.firstImageOfEnvironment.environment}, {"status", a.firstImageOfEnvironment.status}}}}},
         {"settings", nlohmann::json::parse(toJsonText(a.settings))},
         {"unsaved_changes", a.unsavedChanges()},
         {"panels",
@@ -76,6 +96,7 @@ nlohmann::json GuiApp::state() const
             {"model", p.modelPath},
             {"preset", p.presetPath},
             {"export", p.exportPath},
+            {"bake_export", p.bakeExportPath},
             {"capture_folder", p.capture.directory}}},
           {"compare",
            {{"reference_current", p.compare.reference.current},
@@ -90,6 +111,7 @@ nlohmann::json GuiApp::state() const
             {"charts", p.study.charts.size()},
             {"plotted_points", plottedPoints(p.study.charts)},
             {"chart_open", p.study.chartOpen},
+            {"chart_window", chartWindowJson(p.study.chartWindow)},
             {"auto_quality", {{"running", p.study.autoQuality.running}, {"have_choice", p.study.autoQuality.haveChoice}, {"applied", p.study.autoQuality.applied}, {"chosen", p.study.autoQuality.chosen}}}}}}},
         {"session", {{"busy", a.session.busy()}, {"environment", a.session.environment() ? a.session.environment()->source : ""}, {"has_bake", a.renderer.hasBake()}, {"last_switch", switchJson(a.session.lastSwitch())}}},
         {"renderer",

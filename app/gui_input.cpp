@@ -34,11 +34,22 @@ void mapGlfwKeys(ImGuiIO& io)
     io.KeyMap[ImGuiKey_Z] = GLFW_KEY_Z;
 }
 
+namespace {
+
+bool isModifier(int glfwKey)
+{
+    return glfwKey == GLFW_KEY_LEFT_CONTROL || glfwKey == GLFW_KEY_RIGHT_CONTROL || glfwKey == GLFW_KEY_LEFT_SHIFT || glfwKey == GLFW_KEY_RIGHT_SHIFT ||
+           glfwKey == GLFW_KEY_LEFT_ALT || glfwKey == GLFW_KEY_RIGHT_ALT || glfwKey == GLFW_KEY_LEFT_SUPER || glfwKey == GLFW_KEY_RIGHT_SUPER;
+}
+
+} // namespace
+
 FrameRequests InputQueue::applyFrame(ImGuiIO& io)
 {
     FrameRequests requests;
     std::set<int> buttonsChanged, keysChanged;
     bool textGiven = false;
+    bool keyPressedThisFrame = false; // a key other than a modifier
     while (!events_.empty()) {
         const InputEvent& e = events_.front();
         switch (e.type) {
@@ -54,15 +65,22 @@ FrameRequests InputQueue::applyFrame(ImGuiIO& io)
             if (e.code < 0 || e.code >= int(IM_ARRAYSIZE(io.MouseDown))) break;
             if (!buttonsChanged.insert(e.code).second) return requests;
             io.MouseDown[e.code] = e.pressed;
+            requests.userActed = requests.userActed || e.pressed;
             break;
         case InputEvent::Type::Scroll:
             io.MouseWheelH += float(e.x);
             io.MouseWheel += float(e.y);
+            requests.userActed = true;
             break;
         case InputEvent::Type::Key:
             if (e.code < 0 || e.code >= int(IM_ARRAYSIZE(io.KeysDown))) break;
+            // ImGui reads the modifiers once a frame: Ctrl released in the frame S went down
+            // (a fast Ctrl+S, released Ctrl first) made S a plain S, and the shortcut was lost.
+            if (isModifier(e.code) && keyPressedThisFrame) return requests;
             if (textGiven || !keysChanged.insert(e.code).second) return requests;
             io.KeysDown[e.code] = e.pressed;
+            keyPressedThisFrame = keyPressedThisFrame || (e.pressed && !isModifier(e.code));
+            requests.userActed = requests.userActed || e.pressed;
             io.KeyCtrl = io.KeysDown[GLFW_KEY_LEFT_CONTROL] || io.KeysDown[GLFW_KEY_RIGHT_CONTROL];
             io.KeyShift = io.KeysDown[GLFW_KEY_LEFT_SHIFT] || io.KeysDown[GLFW_KEY_RIGHT_SHIFT];
             io.KeyAlt = io.KeysDown[GLFW_KEY_LEFT_ALT] || io.KeysDown[GLFW_KEY_RIGHT_ALT];
@@ -72,9 +90,13 @@ FrameRequests InputQueue::applyFrame(ImGuiIO& io)
             if (!keysChanged.empty()) return requests;
             io.AddInputCharacter(e.codepoint);
             textGiven = true;
+            requests.userActed = true;
             break;
         case InputEvent::Type::Focus: io.AddFocusEvent(e.pressed); break;
-        case InputEvent::Type::Drop: requests.dropped.insert(requests.dropped.end(), e.paths.begin(), e.paths.end()); break;
+        case InputEvent::Type::Drop:
+            requests.dropped.insert(requests.dropped.end(), e.paths.begin(), e.paths.end());
+            requests.userActed = true;
+            break;
         case InputEvent::Type::CloseRequest: requests.closeRequested = true; break;
         case InputEvent::Type::Resize:
             requests.resized = true;

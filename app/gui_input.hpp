@@ -39,6 +39,7 @@ struct InputEvent {
 struct FrameRequests {
     std::vector<std::string> dropped;
     bool closeRequested = false;
+    bool userActed = false; // a button or key pressed, text typed, the wheel turned, a file dropped
     bool resized = false;
     int width = 0, height = 0;
 };
@@ -52,7 +53,8 @@ public:
     // Applies the events of one frame to io (mouse, wheel, keys, modifiers, text, focus)
     // and returns the rest; stops before an event that would merge with one already applied
     // (a second change of the same button or key, a move after a button change, text after
-    // a key change or a key change after text), which then waits for the next frame.
+    // a key change or a key change after text, a modifier's change after another key's
+    // press), which then waits for the next frame.
     FrameRequests applyFrame(ImGuiIO& io);
 
 private:

@@ -70,6 +70,9 @@ std::optional<GuiPrefs> loadGuiPrefs(const std::filesystem::path& path, std::str
         prefs.presetPath = stringOr(json, "preset_path");
         prefs.exportPath = stringOr(json, "export_path");
         prefs.captureFolder = stringOr(json, "capture_folder");
+        prefs.bakeExportPath = stringOr(json, "bake_export_path");
+        // A file from before the key was saved comes from a user who has run the lab already.
+        prefs.hintDismissed = !json.contains("hint_dismissed") || json["hint_dismissed"] == true;
         if (json.contains("window") && json["window"].is_array() && json["window"].size() == 2 && json["window"][0].is_number_integer() &&
             json["window"][1].is_number_integer()) {
             prefs.width = json["window"][0].get<int>();
@@ -93,7 +96,7 @@ void saveGuiPrefs(const std::filesystem::path& path, const GuiPrefs& prefs)
     if (error) throw Error(path.parent_path().string(), "cannot create the folder: " + error.message());
     nlohmann::json json = {{"sections", prefs.sections},         {"environment_path", prefs.environmentPath}, {"model_path", prefs.modelPath},
                            {"preset_path", prefs.presetPath},    {"export_path", prefs.exportPath},           {"capture_folder", prefs.captureFolder},
-                           {"window", {prefs.width, prefs.height}}};
+                           {"window", {prefs.width, prefs.height}},  {"bake_export_path", prefs.bakeExportPath},   {"hint_dismissed", prefs.hintDismissed}};
     writeTextFileAtomic(path.string(), json.dump(2) + "\n");
 }
 

@@ -143,6 +143,10 @@ std::vector<ScriptStep> parseGuiScript(const std::string& text)
         if (command == "key" || command == "key-down" || command == "key-up")
             for (std::size_t i = 1; i < tokens.size(); ++i)
                 if (!parseKeyChord(tokens[i])) throw std::runtime_error("line " + std::to_string(lineNumber) + ": unknown key \"" + tokens[i] + "\"");
+        if (command == "key-events")
+            for (std::size_t i = 1; i < tokens.size(); ++i)
+                if ((tokens[i][0] != '+' && tokens[i][0] != '-') || !parseKeyChord(tokens[i].substr(1)))
+                    throw std::runtime_error("line " + std::to_string(lineNumber) + ": \"" + tokens[i] + "\" is not +KEY (a press) or -KEY (a release)");
         steps.push_back({lineNumber, command, std::vector<std::string>(tokens.begin() + 1, tokens.end()), line});
     }
     return steps;

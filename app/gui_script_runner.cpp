@@ -105,6 +105,14 @@ void ScriptRunner::keyDownStep(const std::string& c, const std::vector<std::stri
     settle();
 }
 
+void ScriptRunner::keyEventsStep(const std::string&, const std::vector<std::string>& a)
+{
+    // Presses (+KEY) and releases (-KEY) that all arrive before the next frame, in this
+    // order: a fast chord's events on a slow frame.
+    for (const std::string& event : a) key(parseKeyChord(event.substr(1))->key, event[0] == '+');
+    settle();
+}
+
 void ScriptRunner::typeStep(const std::string&, const std::vector<std::string>& a)
 {
     typeText(a[0]);

@@ -79,6 +79,7 @@ public:
             {"key", 1, 16, &ScriptRunner::keyStep},
             {"key-down", 1, 1, &ScriptRunner::keyDownStep},
             {"key-up", 1, 1, &ScriptRunner::keyDownStep},
+            {"key-events", 1, 32, &ScriptRunner::keyEventsStep},
             {"type", 1, 1, &ScriptRunner::typeStep},
             {"set", 2, 2, &ScriptRunner::setStep},
             {"select", 2, 2, &ScriptRunner::selectStep},
@@ -130,6 +131,7 @@ private:
     void wheelStep(const std::string&, const std::vector<std::string>& a);
     void keyStep(const std::string&, const std::vector<std::string>& a);
     void keyDownStep(const std::string& c, const std::vector<std::string>& a);
+    void keyEventsStep(const std::string&, const std::vector<std::string>& a);
     void typeStep(const std::string&, const std::vector<std::string>& a);
     void setStep(const std::string&, const std::vector<std::string>& a);
     void selectStep(const std::string&, const std::vector<std::string>& a);

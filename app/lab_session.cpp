@@ -7,10 +7,23 @@
 #include "asset_paths.hpp"
 #include "io/builtin_environments.hpp"
 #include "io/error.hpp"
+#include "io/imported_bake.hpp"
 
 namespace iblab::app {
 
 using Phase = EnvironmentSwitch::Phase;
+
+namespace {
+
+// "courtyard.exr: 2048x1024"; an imported bake says what it is (its image is only its sky).
+std::string environmentLine(const Environment& env)
+{
+    const std::string size = std::to_string(env.image.width) + "x" + std::to_string(env.image.height);
+    if (env.imported) return displayName(env.source) + ": imported " + importedBakeFormat(env.imported->kind) + ", shown as made (sky " + size + ")";
+    return displayName(env.source) + ": " + size;
+}
+
+} // namespace
 
 std::string defaultEnvironmentSpec() { return defaultEnvironmentPath(assetDirectory().string()); }
 
@@ -36,8 +49,11 @@ void LabSession::requestEnvironment(const std::string& spec)
 
 void LabSession::startSwitch(const std::string& spec)
 {
-    if (const RecentEnvironment* recent = findRecent(spec)) {
-        showRecent(RecentEnvironment(*recent)); // showRecent reorders recent_: a copy
+    // A recent map is shown by the next pump, before the GUI draws its panel: shown here,
+    // after the panel was drawn, its first image went out beside the old map's status line.
+    recentToShow_.reset();
+    if (findRecent(spec)) {
+        recentToShow_ = spec;
         return;
     }
     withdrawEarlyBake();
@@ -69,7 +85,7 @@ StatusReport LabSession::finishLoad(Environment loaded)
     renderer_.setEnvironment(loaded.image);
     const std::string spec = switch_.spec().empty() ? loaded.source : switch_.spec();
     cache_.rememberSource(spec, {loaded.contentHash, loaded.image.width, loaded.image.height});
-    const std::string text = displayName(loaded.source) + ": " + std::to_string(loaded.image.width) + "x" + std::to_string(loaded.image.height);
+    const std::string text = environmentLine(loaded);
     // Repairs, downsampling and LDR input are the loader's warnings: notes under the line,
     // since the environment loaded and is usable (the bundled courtyard has negative texels
     // from its stitching, repaired to 0, which is nobody's error).
@@ -154,9 +170,7 @@ void LabSession::showRecent(const RecentEnvironment& recent)
     switch_.recentShown();
     const Environment& env = *recent.environment;
     Finished shown;
-    shown.environment = StatusReport{displayName(env.source) + ": " + std::to_string(env.image.width) + "x" + std::to_string(env.image.height) +
-                                         ", kept from earlier with its bake",
-                                     false, env.warnings};
+    shown.environment = StatusReport{environmentLine(env) + ", kept from earlier with its bake", false, env.warnings};
     shown.bake = StatusReport{"kept from earlier (baked in " + std::to_string(int(recent.bake->totalMilliseconds + 0.5)) + " ms" +
                                   (recent.bake->fromCache ? ", from cache)" : ")"),
                               false};
@@ -188,6 +202,8 @@ void LabSession::finishDecode(Finished& finished)
 
 LabSession::Finished LabSession::pump(Clock::duration budget)
 {
+    if (const std::optional<std::string> spec = std::exchange(recentToShow_, std::nullopt))
+        if (const RecentEnvironment* recent = findRecent(*spec)) showRecent(RecentEnvironment(*recent)); // showRecent reorders recent_: a copy
     // A recent environment shown since the last pump: its lines, and nothing else this pump.
     if (shownSincePump_) return *std::exchange(shownSincePump_, std::nullopt);
     // The early bake was shown in an earlier pump (or is gone): its frame has been drawn.
@@ -201,6 +217,9 @@ LabSession::Finished LabSession::pump(Clock::duration budget)
     if (job_) {
         try {
             if (!job_->runFor(budget)) finished.bake = finishBake();
+            // The view shows the early bake from now on: the line names its map, not the last.
+            if (switch_.phase() == Phase::EarlyBakeShown)
+                finished.environment = StatusReport{displayName(switch_.spec()) + ": shown from the bake cache while the file is read"};
         } catch (const std::exception& e) {
             withdrawEarlyBake();
             job_.reset();
@@ -227,7 +246,7 @@ void LabSession::waitForLoad(Clock::duration timeout) const
     if (!job_) switch_.waitForDecode(timeout);
 }
 
-bool LabSession::busy() const { return switch_.busy() || shownSincePump_.has_value() || job_ != nullptr; }
+bool LabSession::busy() const { return switch_.busy() || recentToShow_.has_value() || shownSincePump_.has_value() || job_ != nullptr; }
 
 std::string LabSession::activity() const
 {

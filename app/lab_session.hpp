@@ -131,6 +131,8 @@ private:
     EnvironmentSwitch switch_;           // declared after job_ etc.: destroyed first, it waits for its decode
     // What showing a recent environment reported, for the next pump.
     std::optional<Finished> shownSincePump_;
+    // A recent environment asked for, shown at the start of the next pump.
+    std::optional<std::string> recentToShow_;
 };
 
 } // namespace iblab::app

@@ -16,6 +16,7 @@ namespace iblab::app {
 void drawViewOverlays(const Renderer& renderer, const FrameSettings& settings, int width, int height, glm::vec2 viewOrigin,
                       const std::vector<SphereReading>& furnaceReadings, std::optional<glm::vec2> mouseInView)
 {
+    ui::clearOverlayTexts();
     if (!furnaceReadings.empty()) ui::drawSphereReadings(furnaceReadings, viewOrigin, float(height));
     const bool sceneView = settings.view.mode != ViewMode::PrefilterMips && settings.view.mode != ViewMode::Lut;
     const glm::vec2 viewSize{float(width), float(height)};

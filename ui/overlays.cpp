@@ -10,6 +10,26 @@
 #include "ui/widgets.hpp"
 
 namespace iblab::ui {
+
+namespace {
+
+std::vector<OverlayText>& texts()
+{
+    static std::vector<OverlayText> drawn;
+    return drawn;
+}
+
+void addText(ImDrawList* draw, ImVec2 at, ImU32 colour, const char* text)
+{
+    draw->AddText(at, colour, text);
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    texts().push_back({text, at.x, at.y, at.x + size.x, at.y + size.y});
+}
+
+} // namespace
+
+const std::vector<OverlayText>& overlayTexts() { return texts(); }
+void clearOverlayTexts() { texts().clear(); }
 namespace {
 
 std::string samplingSummary(const SamplingSettings& s)
@@ -50,7 +70,7 @@ void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 
     for (const DebugTile& tile : tiles) {
         const float left = viewOrigin.x + tile.rect.x, right = viewOrigin.x + tile.rect.z;
         const float top = viewOrigin.y + viewHeight - tile.rect.w, bottom = viewOrigin.y + viewHeight - tile.rect.y;
-        draw->AddText(ImVec2(left, top - 18.0f), text, tile.label.c_str());
+        addText(draw, ImVec2(left, top - 18.0f), text, tile.label.c_str());
         if (!axes) continue;
         // Unit axes on both edges: x = n.v along the bottom, y = roughness up the left side.
         for (int i = 0; i <= 4; ++i) {
@@ -64,9 +84,9 @@ void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 
             const float labelX = i == 0 ? x : i == 4 ? x - size.x : x - 0.5f * size.x;
             const float labelY = i == 0 ? y - size.y : i == 4 ? y : y - 0.5f * size.y;
             draw->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 5.0f), text);
-            draw->AddText(ImVec2(labelX, bottom + 6.0f), text, value);
+            addText(draw, ImVec2(labelX, bottom + 6.0f), text, value);
             draw->AddLine(ImVec2(left - 5.0f, y), ImVec2(left, y), text);
-            draw->AddText(ImVec2(left - 8.0f - size.x, labelY), text, value);
+            addText(draw, ImVec2(left - 8.0f - size.x, labelY), text, value);
         }
     }
     if (!probeText.empty() && !ImGui::GetIO().WantCaptureMouse) ImGui::SetTooltip("%s", probeText.c_str());
@@ -81,7 +101,7 @@ void drawSceneLabels(const std::vector<ScreenLabel>& labels, glm::vec2 viewOrigi
         const ImVec2 at(viewOrigin.x + label.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - label.pixel.y - size.y * 0.5f);
         // A dark backing keeps labels readable over a bright sky.
         draw->AddRectFilled(ImVec2(at.x - 3.0f, at.y - 1.0f), ImVec2(at.x + size.x + 3.0f, at.y + size.y + 1.0f), IM_COL32(0, 0, 0, 150), 3.0f);
-        draw->AddText(at, colour, label.text.c_str());
+        addText(draw, at, colour, label.text.c_str());
     }
 }
 
@@ -90,11 +110,11 @@ void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 vi
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     // What the numbers are: a bare number over each sphere said nothing to a newcomer.
     if (!readings.empty()) {
-        const char* caption = "Furnace: the share of a white environment each sphere reflects (luminance; 1 = all)";
+        const char* caption = "Furnace: share of white light reflected (1 = all)";
         const ImVec2 size = ImGui::CalcTextSize(caption);
         const ImVec2 at(viewOrigin.x + 10.0f, viewOrigin.y + viewHeight - size.y - 10.0f);
         draw->AddRectFilled(ImVec2(at.x - 4, at.y - 2), ImVec2(at.x + size.x + 4, at.y + size.y + 2), IM_COL32(0, 0, 0, 160));
-        draw->AddText(at, IM_COL32(255, 255, 255, 255), caption);
+        addText(draw, at, IM_COL32(255, 255, 255, 255), caption);
     }
     for (const SphereReading& r : readings) {
         char text[32];
@@ -102,7 +122,7 @@ void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 vi
         const ImVec2 size = ImGui::CalcTextSize(text);
         const ImVec2 at(viewOrigin.x + r.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - r.pixel.y - size.y * 0.5f);
         draw->AddRectFilled(ImVec2(at.x - 2, at.y - 1), ImVec2(at.x + size.x + 2, at.y + size.y + 1), IM_COL32(0, 0, 0, 160));
-        draw->AddText(at, IM_COL32(255, 255, 255, 255), text);
+        addText(draw, at, IM_COL32(255, 255, 255, 255), text);
     }
 }
 
@@ -127,10 +147,10 @@ void drawErrorLegend(const ViewSettings& view, glm::vec2 viewOrigin, glm::vec2 v
         std::snprintf(label, sizeof label, "%.3g", double(t * view.errorScale));
         const float x = origin.x + t * kBarWidth;
         draw->AddLine(ImVec2(x, origin.y + kBarHeight), ImVec2(x, origin.y + kBarHeight + 4.0f), text);
-        draw->AddText(ImVec2(x - ImGui::CalcTextSize(label).x * 0.5f, origin.y + kBarHeight + 4.0f), text, label);
+        addText(draw, ImVec2(x - ImGui::CalcTextSize(label).x * 0.5f, origin.y + kBarHeight + 4.0f), text, label);
     }
     const std::string title = std::string("relative error, ") + (view.errorSpace == ErrorSpace::Linear ? "linear HDR" : "display");
-    draw->AddText(ImVec2(origin.x, origin.y - 18.0f), text, title.c_str());
+    addText(draw, ImVec2(origin.x, origin.y - 18.0f), text, title.c_str());
 }
 
 void drawReferenceProgress(const ReferenceStatus& status, const char* meanwhile, glm::vec2 viewOrigin, glm::vec2 viewSize)
@@ -142,7 +162,7 @@ void drawReferenceProgress(const ReferenceStatus& status, const char* meanwhile,
     const ImVec2 at(viewOrigin.x + (viewSize.x - size.x) * 0.5f, viewOrigin.y + 12.0f);
     ImDrawList* draw = ImGui::GetBackgroundDrawList();
     draw->AddRectFilled(ImVec2(at.x - 6, at.y - 3), ImVec2(at.x + size.x + 6, at.y + size.y + 3), IM_COL32(0, 0, 0, 170), 4.0f);
-    draw->AddText(at, IM_COL32(255, 220, 120, 255), text);
+    addText(draw, at, IM_COL32(255, 220, 120, 255), text);
 }
 
 void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewOrigin, glm::vec2 viewSize)
@@ -163,9 +183,9 @@ void drawSplitDivider(const FrameSettings& settings, int column, glm::vec2 viewO
     const bool overlap = aX + aSize.x + 8.0f > bX;
     const ImVec2 aAt(aX, top), bAt(bX, overlap ? top + aSize.y + 8.0f : top);
     draw->AddRectFilled(ImVec2(aAt.x - 4, aAt.y - 2), ImVec2(aAt.x + aSize.x + 4, aAt.y + aSize.y + 2), background, 3.0f);
-    draw->AddText(aAt, text, a.c_str());
+    addText(draw, aAt, text, a.c_str());
     draw->AddRectFilled(ImVec2(bAt.x - 4, bAt.y - 2), ImVec2(bAt.x + bSize.x + 4, bAt.y + bSize.y + 2), background, 3.0f);
-    draw->AddText(bAt, text, b.c_str());
+    addText(draw, bAt, text, b.c_str());
 }
 
 } // namespace iblab::ui

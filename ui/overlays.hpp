@@ -13,6 +13,16 @@ namespace iblab::ui {
 
 void drawStatsOverlay(const FrameStats& stats);
 
+// A text the overlays drew over the view, with its rectangle in window pixels (y down).
+struct OverlayText {
+    std::string text;
+    float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+// The overlays' texts since clearOverlayTexts(), which the view's overlays call first each
+// frame: what scripts check (a label cut off at the view's edge, a number with no caption).
+const std::vector<OverlayText>& overlayTexts();
+void clearOverlayTexts();
+
 // Labels of the debug view's tiles (rects y up, in framebuffer pixels), unit axes on each
 // tile when `axes` (the LUTs), and the readout of the texel under the cursor.
 void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 viewOrigin, float viewHeight, const std::string& probeText);

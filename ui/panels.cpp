@@ -530,6 +530,11 @@ void drawControlWindow(FrameSettings& settings, PanelState& state, const FrameSt
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.85f, 0.4f, 1.0f));
         ImGui::TextWrapped("%s", kFirstRunHint);
         ImGui::PopStyleColor();
+        state.hintHeight = ImGui::GetItemRectSize().y;
+    } else if (state.hintHeight > 0.0f) {
+        // Gone at the user's first click or key: its space stays this session, so that what
+        // was clicked does not move up under the mouse.
+        ImGui::Dummy(ImVec2(0.0f, state.hintHeight));
     }
     drawStatsOverlay(stats);
     drawEnvironmentPanel(settings.environment, state, requests);

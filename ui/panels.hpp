@@ -118,6 +118,7 @@ struct StudyState {
     std::vector<ParetoChart> charts;
     bool chartOpen = true; // the chart's window; closing it leaves the sweep running
     AutoQualityState autoQuality;
+    float chartWindow[4] = {}; // the chart window's x, y, width, height as last drawn (pixels)
 };
 
 struct PanelState {
@@ -145,6 +146,7 @@ struct PanelState {
     QuitDialogState quitDialog;
     bool unsavedChanges = false; // settings differ from the last saved or loaded preset
     bool helpOpen = false;       // the Help window (F1)
+    float hintHeight = 0.0f;     // of the hint as drawn (its space stays after it goes)
     bool firstRunHint = false;   // the panel's first line says where to start
 };
 

@@ -42,7 +42,7 @@ void drawStudyPanel(PanelState& state, UiRequests& requests)
     ImGui::TextUnformatted("Auto quality");
     AutoQualityState& autoQuality = study.autoQuality;
     ImGui::TextWrapped("The cheapest settings whose 99th-percentile error after tone mapping stays within the target, measured on this "
-                       "environment and scene. 20 steps: 99% of the pixels within 20 of 255 levels of the reference, a difference "
+                       "environment and scene. 20 steps: 99%% of the pixels within 20 of 255 levels of the reference, a difference "
                        "seen side by side rather than at a glance.");
     sliderFloat("Target", &autoQuality.targetSteps, 0.25f, 64.0f, "p99 %.2f 8-bit steps", ImGuiSliderFlags_Logarithmic);
     ImGui::BeginDisabled(study.running);
@@ -85,6 +85,10 @@ void drawStudyChartWindow(StudyState& study)
     const ImVec2 position = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     const ImVec2 inside(std::clamp(position.x, 0.0f, std::max(0.0f, display.x - size.x)), std::clamp(position.y, 0.0f, std::max(0.0f, display.y - size.y)));
     if (inside.x != position.x || inside.y != position.y) ImGui::SetWindowPos(inside);
+    study.chartWindow[0] = inside.x;
+    study.chartWindow[1] = inside.y;
+    study.chartWindow[2] = size.x;
+    study.chartWindow[3] = size.y;
     if (!open) {
         ImGui::End();
         return;

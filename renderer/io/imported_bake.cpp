@@ -338,6 +338,16 @@ SH9Color shFromFilament(const std::array<glm::dvec3, 9>& c, const AxisMap& fileT
     return out;
 }
 
+const char* importedBakeFormat(ImportedBakeKind kind)
+{
+    switch (kind) {
+    case ImportedBakeKind::Cmgen: return "Filament cmgen bake (KTX1)";
+    case ImportedBakeKind::Khronos: return "glTF-IBL-Sampler bake (KTX2 pair)";
+    case ImportedBakeKind::Iblab: return "iblab bake (bake.json)";
+    }
+    return "bake";
+}
+
 bool isImportedBakeSpec(const std::string& spec)
 {
     if (endsWith(spec, ".ktx") || endsWith(spec, ".ktx2")) return true;

@@ -52,6 +52,9 @@ struct ImportedBake {
     std::vector<std::string> notes;        // one line each: what the import assumed or repaired
 };
 
+// What made the bake and in which format, for status lines: "Filament cmgen bake (KTX1)".
+const char* importedBakeFormat(ImportedBakeKind kind);
+
 // Whether loadEnvironment should read spec as another tool's bake.
 bool isImportedBakeSpec(const std::string& spec);
 
