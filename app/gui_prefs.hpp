@@ -14,7 +14,7 @@ struct GuiPrefs {
     std::map<std::string, bool> sections; // a collapsing section's label -> open
     std::string environmentPath, modelPath, presetPath, exportPath, captureFolder;
     int width = 0, height = 0; // 0: not remembered
-    std::string bakeExportPath;
+    std::string bakeExportPath = {};
     bool hintDismissed = false; // the first-run hint went (the user did something); a first run: false
     bool operator==(const GuiPrefs&) const = default;
 };

@@ -15,7 +15,7 @@ struct StatusReport {
     bool isError = false;
     // Details worth knowing that are no problem (texels a loader repaired, a model's
     // unsupported extension).
-    std::vector<std::string> notes;
+    std::vector<std::string> notes = {};
     // text and notes in one line ("a; b; c"), for logs and reports.
     std::string joined() const
     {

@@ -96,13 +96,13 @@ void drawStudyChartWindow(StudyState& study)
     itemRegistry().pushScope("Study chart");
     for (std::size_t i = 0; i < study.charts.size(); ++i) {
         const ParetoChart& chart = study.charts[i];
-        const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 420.0f), std::max(ImGui::GetContentRegionAvail().y, 260.0f));
+        const ImVec2 chartSize(std::max(ImGui::GetContentRegionAvail().x, 420.0f), std::max(ImGui::GetContentRegionAvail().y, 260.0f));
         const ImVec2 origin = ImGui::GetCursorScreenPos();
         ImGui::PushID(int(i));
-        canvas("##chart", size, "canvas");
+        canvas("##chart", chartSize, "canvas");
         const bool hovered = ImGui::IsItemHovered();
         ImGui::PopID();
-        const ChartHover hover = drawParetoChart(*ImGui::GetWindowDrawList(), chart, origin, size,
+        const ChartHover hover = drawParetoChart(*ImGui::GetWindowDrawList(), chart, origin, chartSize,
                                                  hovered ? std::optional<ImVec2>(ImGui::GetIO().MousePos) : std::nullopt);
         if (hover.valid()) ImGui::SetTooltip("%s", chart.series[std::size_t(hover.series)].points[std::size_t(hover.point)].tooltip.c_str());
     }

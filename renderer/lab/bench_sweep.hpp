@@ -129,7 +129,7 @@ struct ReferenceSummary {
     // Why it resolves none of the frame's surface pixels, so that no point of the environment
     // has an error: the roughness it resolves, the roughest surface pixel, and the width that
     // would resolve it. Empty when it resolves some.
-    std::string unmeasured;
+    std::string unmeasured = {};
 };
 
 struct BenchReport {

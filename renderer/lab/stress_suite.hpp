@@ -142,7 +142,7 @@ struct EnvironmentSummary {
     bool furnace = false; // StressEnvironment::furnace
     double meanLuminance = 0.0; // solid-angle mean of the loaded map
     double peakLuminance = 0.0; // brightest texel
-    std::string repair;         // the loader's repair summary
+    std::string repair = {};    // the loader's repair summary
     std::uint64_t repairedComponents = 0;
     double bakeMilliseconds = 0.0;
 };

@@ -124,8 +124,9 @@ TEST_F(PanelFields, EveryControlShowsItsRowsLabelAndSpan)
     EXPECT_GT(bound, 30);
     // A row's slider span or format is only worth having where a panel draws the row.
     for (const auto& [key, row] : rows)
-        if (!std::isnan(row.range.ui.min) || !std::isnan(row.range.ui.max) || !row.range.ui.format.empty())
+        if (!std::isnan(row.range.ui.min) || !std::isnan(row.range.ui.max) || !row.range.ui.format.empty()) {
             EXPECT_TRUE(drawnRows.count(key)) << key << " has a slider span or format, but no panel draws it";
+        }
 }
 
 // The check can fail: a slider drawn by hand records no row.

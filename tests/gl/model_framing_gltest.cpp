@@ -144,7 +144,9 @@ TEST(ClipPlanes, HoldTheSceneFromAnyDistance)
             EXPECT_GE(planes.farPlane, camera.distance + radius);
             EXPECT_LT(planes.nearPlane, planes.farPlane);
             EXPECT_GT(planes.nearPlane, 0.0f);
-            if (camera.distance > radius) EXPECT_LE(planes.nearPlane, camera.distance - radius);
+            if (camera.distance > radius) {
+                EXPECT_LE(planes.nearPlane, camera.distance - radius);
+            }
         }
 }
 
