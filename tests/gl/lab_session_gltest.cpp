@@ -259,6 +259,33 @@ TEST_F(EarlyBakeTest, TheBakeIsShownBeforeTheFileDecodes)
     EXPECT_EQ(session.bake()->contentHash, hashA);
 }
 
+// The GUI draws its panel between the frame's pump and acting on the frame's requests: a
+// recent map shown at once, on request, put its first image beside the old map's status
+// line. It is shown by the next pump instead, which reports its line with it.
+TEST_F(EarlyBakeTest, ARecentMapIsShownByTheNextPumpWithItsStatusLine)
+{
+    Renderer renderer(shaderDirectory());
+    app::LabSession session(renderer, testing::smallBakeSettings());
+    FrameSettings settings;
+    showB(session);
+    session.requestEnvironment(mapA.string());
+    pumpUntilIdle(session, settings);
+    ASSERT_EQ(session.environment()->contentHash, hashA);
+    const std::uint64_t revision = renderer.contentRevision();
+
+    session.requestEnvironment(mapB.string()); // recent: kept with its bake
+    EXPECT_EQ(session.environment()->contentHash, hashA) << "B waits for the next pump";
+    EXPECT_EQ(renderer.contentRevision(), revision) << "nothing new to draw beside A's status line";
+    EXPECT_TRUE(session.busy()) << "the app must not sleep before that pump";
+    const app::LabSession::Finished shown = session.pump(std::chrono::seconds(10));
+    EXPECT_EQ(session.environment()->contentHash, hashB);
+    EXPECT_GT(renderer.contentRevision(), revision);
+    ASSERT_TRUE(shown.environment);
+    EXPECT_NE(shown.environment->text.find("b.exr"), std::string::npos) << shown.environment->text;
+    ASSERT_TRUE(shown.environmentShown);
+    EXPECT_EQ(*shown.environmentShown, mapB.string());
+}
+
 TEST_F(EarlyBakeTest, ARecordThatNoLongerMatchesGivesWayToTheDecodedMap)
 {
     // The file rewritten with another map, its size and time kept: the record says B.
