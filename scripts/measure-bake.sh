@@ -146,7 +146,10 @@ measure_cmgen() {
     oiiotool "$map" --resize 1024x512 -o "$cache/courtyard.hdr"
     map=$cache/courtyard.hdr
   else
-    echo "measure-bake: no oiiotool: both tools read $map"
+    # Debian's cmgen (Filament 1.9.25) cannot decode the bundled maps' EXR compression
+    # ("Unknown compression type"), so it needs the .hdr copy.
+    echo "measure-bake: cmgen needs oiiotool to convert $map (Debian: apt install openimageio-tools)" >&2
+    exit 2
   fi
   "$iblab" bake --env "$map" --cache-dir "$cache" --no-errors > /dev/null # the LUTs, once
   local have_cmgen=1
