@@ -157,7 +157,7 @@ void LabSession::rememberCurrent()
     if (recent_.size() > kRecentEnvironments) recent_.pop_back();
 }
 
-void LabSession::showRecent(const RecentEnvironment& recent)
+LabSession::Finished LabSession::showRecent(const RecentEnvironment& recent)
 {
     // A bake of the environment being left (or an early bake of one asked for before) stops.
     job_.reset();
@@ -175,8 +175,8 @@ void LabSession::showRecent(const RecentEnvironment& recent)
                                   (recent.bake->fromCache ? ", from cache)" : ")"),
                               false};
     shown.environmentShown = recent.spec;
-    shownSincePump_ = std::move(shown);
     rememberCurrent();
+    return shown;
 }
 
 void LabSession::finishDecode(Finished& finished)
@@ -202,10 +202,12 @@ void LabSession::finishDecode(Finished& finished)
 
 LabSession::Finished LabSession::pump(Clock::duration budget)
 {
-    if (const std::optional<std::string> spec = std::exchange(recentToShow_, std::nullopt))
-        if (const RecentEnvironment* recent = findRecent(*spec)) showRecent(RecentEnvironment(*recent)); // showRecent reorders recent_: a copy
-    // A recent environment shown since the last pump: its lines, and nothing else this pump.
-    if (shownSincePump_) return *std::exchange(shownSincePump_, std::nullopt);
+    // A recent environment asked for since the last pump: shown now, before the GUI draws the
+    // panel that reports it; its lines, and nothing else this pump.
+    if (const std::optional<std::string> spec = std::exchange(recentToShow_, std::nullopt)) {
+        if (const RecentEnvironment* recent = findRecent(*spec)) return showRecent(RecentEnvironment(*recent)); // showRecent reorders recent_: a copy
+        startSwitch(*spec); // no longer among the recent ones: loaded as any other
+    }
     // The early bake was shown in an earlier pump (or is gone): its frame has been drawn.
     if (switch_.decodeWaits()) switch_.startDecode();
     Finished finished;
@@ -246,7 +248,7 @@ void LabSession::waitForLoad(Clock::duration timeout) const
     if (!job_) switch_.waitForDecode(timeout);
 }
 
-bool LabSession::busy() const { return switch_.busy() || recentToShow_.has_value() || shownSincePump_.has_value() || job_ != nullptr; }
+bool LabSession::busy() const { return switch_.busy() || recentToShow_.has_value() || job_ != nullptr; }
 
 std::string LabSession::activity() const
 {

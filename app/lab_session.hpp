@@ -30,8 +30,9 @@ public:
 
     // Starts loading spec (a path or builtin:NAME) in the background, or queues it behind the
     // load that is running. Until it succeeds the current environment and bake stay; a
-    // failure leaves them and reports one line. One of the last few environments is shown at
-    // once (the frame drawn next has its lighting); the next pump reports it.
+    // failure leaves them and reports one line. One of the last few environments is shown by
+    // the next pump, which reports it: the GUI pumps before it draws its panel, so the first
+    // frame with the new lighting has the new status line beside it.
     void requestEnvironment(const std::string& spec);
     // Blocking form for the commands and tests: loads, uploads and bakes to completion.
     StatusReport loadEnvironment(const std::string& spec);
@@ -109,7 +110,7 @@ private:
     static std::optional<std::filesystem::file_time_type> modificationTime(const std::string& spec);
     const RecentEnvironment* findRecent(const std::string& spec) const;
     void rememberCurrent();
-    void showRecent(const RecentEnvironment& recent);
+    Finished showRecent(const RecentEnvironment& recent);
 
     // Shows spec from the recent ones, or starts its switch: an early bake when the cache has
     // a record of the file (BakeCache::findSource), else its decode.
@@ -129,8 +130,6 @@ private:
     std::string currentSpec_;            // what environment_ was asked for as
     std::deque<RecentEnvironment> recent_; // most recent first
     EnvironmentSwitch switch_;           // declared after job_ etc.: destroyed first, it waits for its decode
-    // What showing a recent environment reported, for the next pump.
-    std::optional<Finished> shownSincePump_;
     // A recent environment asked for, shown at the start of the next pump.
     std::optional<std::string> recentToShow_;
 };
