@@ -17,6 +17,12 @@ for map in "${maps[@]}"; do
       | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"bake","map":sys.argv[1],"preset":sys.argv[2],"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"gpu_total_ms":j.get("gpu_total_ms"),"repeat_totals_ms":j.get("repeat_totals_ms")}))' "$map" "$preset" >>"$out"
   done
 done
+# The default's prefilter against the sampled-only estimator (--prefilter-bright-texels 0),
+# same maps, same process shape: what the exact bright-texel sum costs on this GPU.
+for map in "${maps[@]}"; do
+  "$iblab" bake --env "$map" --no-cache --no-errors --repeat 3 --json --prefilter-bright-texels 0 \
+    | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"bake-sampled-only","map":sys.argv[1],"timings_ms":j.get("timings_ms"),"gpu_total_ms":j.get("gpu_total_ms")}))' "$map" >>"$out"
+done
 for method in splitsum fitted-lobe sampled reference; do
   for size in "1280 720" "1920 1080"; do
     set -- $size
