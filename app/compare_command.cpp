@@ -43,6 +43,36 @@ std::string methodTitle(const SamplingSettings& sampling)
     return read.empty() ? std::string(enumName(sampling.method)) : read;
 }
 
+// Relative RMSE against the reference, and each method's ratio to the first one's. Printed as a
+// Markdown table, then the image's path.
+void printCompareTable(const CompareOptions& o, const nlohmann::ordered_json& report)
+{
+    std::printf("| map |");
+    for (ShadingMethod m : o.methods) {
+        SamplingSettings sampling = o.settings.sampling;
+        sampling.method = m;
+        std::printf(" %s |", methodTitle(sampling).c_str());
+    }
+    std::printf("\n|---|");
+    for (std::size_t i = 0; i < o.methods.size(); ++i) std::printf("---|");
+    std::printf("\n");
+    for (const auto& entry : report["environments"]) {
+        std::printf("| %s |", std::filesystem::path(entry["environment"].get<std::string>()).filename().string().c_str());
+        const double first = entry["methods"][0]["error"]["relative_rmse"].get<double>();
+        for (const auto& method : entry["methods"]) {
+            const double rmse = method["error"]["relative_rmse"].get<double>(); // NaN: not measured
+            if (std::isnan(rmse)) {
+                std::printf(" not measured |");
+                continue;
+            }
+            if (&method == &entry["methods"][0]) std::printf(" %.3f |", rmse);
+            else std::printf(" %.3f (%.2fx) |", rmse, rmse / first);
+        }
+        std::printf("\n");
+    }
+    std::printf("\n%s\n", o.output.c_str());
+}
+
 int runCompare(const CompareOptions& o)
 {
     try {
@@ -114,31 +144,7 @@ int runCompare(const CompareOptions& o)
             std::printf("%s\n", report.dump(2).c_str());
             return 0;
         }
-        // Relative RMSE against the reference, and each method's ratio to the first one's.
-        std::printf("| map |");
-        for (ShadingMethod m : o.methods) {
-            SamplingSettings sampling = o.settings.sampling;
-            sampling.method = m;
-            std::printf(" %s |", methodTitle(sampling).c_str());
-        }
-        std::printf("\n|---|");
-        for (std::size_t i = 0; i < o.methods.size(); ++i) std::printf("---|");
-        std::printf("\n");
-        for (const auto& entry : report["environments"]) {
-            std::printf("| %s |", std::filesystem::path(entry["environment"].get<std::string>()).filename().string().c_str());
-            const double first = entry["methods"][0]["error"]["relative_rmse"].get<double>();
-            for (const auto& method : entry["methods"]) {
-                const double rmse = method["error"]["relative_rmse"].get<double>(); // NaN: not measured
-                if (std::isnan(rmse)) {
-                    std::printf(" not measured |");
-                    continue;
-                }
-                if (&method == &entry["methods"][0]) std::printf(" %.3f |", rmse);
-                else std::printf(" %.3f (%.2fx) |", rmse, rmse / first);
-            }
-            std::printf("\n");
-        }
-        std::printf("\n%s\n", o.output.c_str());
+        printCompareTable(o, report);
         return 0;
     } catch (const std::exception& e) {
         return failCommand("compare", e.what());

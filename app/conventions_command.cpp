@@ -50,6 +50,60 @@ std::string percent(double fraction)
     return text;
 }
 
+// The frame's caption: the title and the choices that change the picture most; the table has
+// all of them.
+std::vector<std::string> frameCaption(const ConventionPreset& convention)
+{
+    const auto choices = conventionChoices(convention);
+    auto choice = [&](const char* aspect) {
+        for (const auto& [name, value] : choices)
+            if (name == aspect) return value;
+        return std::string();
+    };
+    return {std::string(convention.title), choice("geometry term") + ", mip bias " + choice("source-mip bias"),
+            choice("roughness per mip"), "LUT: " + choice("Fresnel on LUT") + ", energy comp. " + choice("energy compensation")};
+}
+
+// What was shown and measured: printed with --json and stored in the PNG.
+nlohmann::ordered_json conventionsReport(const FrameSettings& settings, const std::string& image, const std::vector<Row>& rows)
+{
+    nlohmann::ordered_json report;
+    report["environment"] = settings.environment.source;
+    report["material"] = {{"metallic", settings.material.metallic}, {"roughness", settings.material.roughness}};
+    report["scene"] = std::string(enumName(settings.scene.kind));
+    report["image"] = image;
+    for (const Row& row : rows) {
+        nlohmann::ordered_json entry;
+        entry["name"] = row.convention->name;
+        for (const auto& [aspect, choice] : conventionChoices(*row.convention)) entry["choices"][aspect] = choice;
+        entry["error"] = errorMetricsJson(row.error);
+        entry["timings_ms"] = {{"bake", row.bakeMs}, {"reference", row.referenceMs}};
+        report["conventions"].push_back(entry);
+    }
+    return report;
+}
+
+// The Markdown table: a column per convention, a row per choice, then the errors.
+void printConventionsTable(const std::vector<Row>& rows, const std::string& image)
+{
+    std::printf("| |");
+    for (const Row& row : rows) std::printf(" %s |", std::string(row.convention->title).c_str());
+    std::printf("\n|---|");
+    for (std::size_t i = 0; i < rows.size(); ++i) std::printf("---|");
+    std::printf("\n");
+    const std::size_t aspects = conventionChoices(*rows.front().convention).size();
+    for (std::size_t a = 0; a < aspects; ++a) {
+        std::printf("| %s |", conventionChoices(*rows.front().convention)[a].first.c_str());
+        for (const Row& row : rows) std::printf(" %s |", conventionChoices(*row.convention)[a].second.c_str());
+        std::printf("\n");
+    }
+    std::printf("| relative RMSE vs exact |");
+    for (const Row& row : rows) std::printf(" %s |", percent(row.error.relativeRmse).c_str());
+    std::printf("\n| p99 / max relative |");
+    for (const Row& row : rows) std::printf(" %s / %s |", percent(row.error.p99Relative).c_str(), percent(row.error.maxRelative).c_str());
+    std::printf("\n\n%s\n", image.c_str());
+}
+
 int runConventions(const ConventionsOptions& o)
 {
     try {
@@ -90,16 +144,7 @@ int runConventions(const ConventionsOptions& o)
 
             harness.render(frame, width, height);
             row.error = harness.compareWithReference(renderer.readHdrFrame(), frame.toneMap).linear;
-            // Title and the choices that change the picture most; the table has all of them.
-            const auto choices = conventionChoices(convention);
-            auto choice = [&](const char* aspect) {
-                for (const auto& [name, value] : choices)
-                    if (name == aspect) return value;
-                return std::string();
-            };
-            const std::vector<std::string> caption{std::string(convention.title), choice("geometry term") + ", mip bias " + choice("source-mip bias"),
-                                                   choice("roughness per mip"), "LUT: " + choice("Fresnel on LUT") + ", energy comp. " + choice("energy compensation")};
-            overlay.drawOver(renderer, frame, width, height, caption);
+            overlay.drawOver(renderer, frame, width, height, frameCaption(convention));
             grid.place(renderer.readDisplayImage(), 0, int(i));
 
             FrameSettings errorView = frame;
@@ -115,41 +160,13 @@ int runConventions(const ConventionsOptions& o)
         }
         if (gl.debug.errorCount() > 0) return failCommand("conventions", std::to_string(gl.debug.errorCount()) + " GL error(s), the first: " + gl.debug.firstError());
 
-        nlohmann::ordered_json report;
-        report["environment"] = settings.environment.source;
-        report["material"] = {{"metallic", settings.material.metallic}, {"roughness", settings.material.roughness}};
-        report["scene"] = std::string(enumName(settings.scene.kind));
-        report["image"] = o.output;
-        for (const Row& row : rows) {
-            nlohmann::ordered_json entry;
-            entry["name"] = row.convention->name;
-            for (const auto& [aspect, choice] : conventionChoices(*row.convention)) entry["choices"][aspect] = choice;
-            entry["error"] = errorMetricsJson(row.error);
-            entry["timings_ms"] = {{"bake", row.bakeMs}, {"reference", row.referenceMs}};
-            report["conventions"].push_back(entry);
-        }
+        const nlohmann::ordered_json report = conventionsReport(settings, o.output, rows);
         grid.writePng(o.output, report.dump());
 
-        if (o.json) {
+        if (o.json)
             std::printf("%s\n", report.dump(2).c_str());
-            return 0;
-        }
-        std::printf("| |");
-        for (const Row& row : rows) std::printf(" %s |", std::string(row.convention->title).c_str());
-        std::printf("\n|---|");
-        for (std::size_t i = 0; i < rows.size(); ++i) std::printf("---|");
-        std::printf("\n");
-        const std::size_t aspects = conventionChoices(*rows.front().convention).size();
-        for (std::size_t a = 0; a < aspects; ++a) {
-            std::printf("| %s |", conventionChoices(*rows.front().convention)[a].first.c_str());
-            for (const Row& row : rows) std::printf(" %s |", conventionChoices(*row.convention)[a].second.c_str());
-            std::printf("\n");
-        }
-        std::printf("| relative RMSE vs exact |");
-        for (const Row& row : rows) std::printf(" %s |", percent(row.error.relativeRmse).c_str());
-        std::printf("\n| p99 / max relative |");
-        for (const Row& row : rows) std::printf(" %s / %s |", percent(row.error.p99Relative).c_str(), percent(row.error.maxRelative).c_str());
-        std::printf("\n\n%s\n", o.output.c_str());
+        else
+            printConventionsTable(rows, o.output);
         return 0;
     } catch (const std::exception& e) {
         return failCommand("conventions", e.what());

@@ -28,6 +28,78 @@ using Clock = std::chrono::steady_clock;
 
 int fail(const std::string& reason) { return failCommand("render", reason); }
 
+struct RenderTimings {
+    double contextMs = 0.0;
+    double loadMs = 0.0;
+    double referenceMs = 0.0; // 0 when the frame shows no reference
+    double firstFrameMs = 0.0;
+    std::vector<double> frameMs; // sorted
+    std::vector<double> frameGpuMs; // sorted; empty where timer queries are not trusted
+};
+
+void timeWarmFrames(Renderer& renderer, const FrameSettings& settings, const RenderJob& job, RenderTimings& t)
+{
+    // Warm frames: the same passes again, timed one by one with glFinish, because
+    // llvmpipe's timer queries are wrong at this size; a hardware renderer's frames are
+    // also timed by GL_TIME_ELAPSED, the GPU's own time without the driver's latency.
+    for (int i = 0; i < job.timingRepeats; ++i) {
+        GpuTimeQuery gpuTime;
+        const auto start = Clock::now();
+        renderer.renderFrame(settings, job.width, job.height);
+        const std::optional<double> gpuMs = gpuTime.finish();
+        glFinish();
+        t.frameMs.push_back(millisecondsSince(start));
+        if (gpuMs) t.frameGpuMs.push_back(*gpuMs);
+    }
+    std::sort(t.frameMs.begin(), t.frameMs.end());
+    std::sort(t.frameGpuMs.begin(), t.frameGpuMs.end());
+}
+
+nlohmann::ordered_json renderReport(const RenderJob& job, const std::string& rendererName, const std::string& environment,
+                                    const std::string& scene, const FrameSettings& settings, Renderer& renderer,
+                                    const ReferenceStatus& reference, const RenderTimings& t)
+{
+    nlohmann::ordered_json report;
+    report["output"] = job.output;
+    report["width"] = job.width;
+    report["height"] = job.height;
+    report["renderer"] = rendererName;
+    report["environment"] = environment;
+    if (!scene.empty()) report["scene"] = scene;
+    if (settings.view.mode == ViewMode::Furnace)
+        for (const SphereReading& r : renderer.measureSpheres(settings))
+            report["furnace"].push_back({{"metallic", r.metallic},
+                                         {"roughness", r.roughness},
+                                         {"reflected", {r.radiance.r, r.radiance.g, r.radiance.b}}});
+    if (reference.complete) report["timings_ms"]["reference"] = t.referenceMs;
+    if (reference.complete && settings.view.mode == ViewMode::Error) {
+        const ErrorReport error = renderer.measureError(settings);
+        auto& out = report["error"];
+        out["space"] = enumName(settings.view.errorSpace);
+        out["reference_environment"] = {{"width", reference.environmentWidth},
+                                        {"height", reference.environmentHeight},
+                                        {"texel_degrees", reference.texelDegrees},
+                                        {"min_resolved_roughness", reference.minResolvedRoughness}};
+        out[settings.view.split ? "a" : "frame"] = errorMetricsJson(error.left);
+        if (error.right) out["b"] = errorMetricsJson(*error.right);
+    }
+    report["timings_ms"]["start_to_context"] = t.contextMs;
+    report["timings_ms"]["environment_load"] = t.loadMs;
+    report["timings_ms"]["start_to_first_frame"] = t.firstFrameMs;
+    if (!t.frameMs.empty()) {
+        report["timings_ms"]["frame_median"] = t.frameMs[t.frameMs.size() / 2];
+        report["timings_ms"]["frame_min"] = t.frameMs.front();
+        report["timings_ms"]["frame_repeats"] = t.frameMs.size();
+        report["timing_method"] = "steady_clock around glFinish";
+    }
+    if (!t.frameGpuMs.empty()) {
+        report["timings_ms"]["frame_gpu_median"] = t.frameGpuMs[t.frameGpuMs.size() / 2];
+        report["timings_ms"]["frame_gpu_min"] = t.frameGpuMs.front();
+        report["gpu_timing_method"] = "GL_TIME_ELAPSED query per frame";
+    }
+    return report;
+}
+
 } // namespace
 
 int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
@@ -39,7 +111,8 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
 #endif
     try {
         HeadlessGl gl(debugContext, /*echoMessages=*/true);
-        const double contextMs = millisecondsSince(processStart);
+        RenderTimings timings;
+        timings.contextMs = millisecondsSince(processStart);
 
         Renderer renderer(shaderDirectory());
         FrameSettings settings = job.settings;
@@ -52,7 +125,7 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         const auto loadStart = Clock::now();
         const StatusReport loaded = session.loadEnvironment(settings.environment.source);
         if (loaded.isError) return fail(loaded.text);
-        const double loadMs = millisecondsSince(loadStart);
+        timings.loadMs = millisecondsSince(loadStart);
         std::string sceneStatus;
         if (settings.scene.kind == SceneKind::Model) {
             const StatusReport model = LoadedModel(renderer).load(settings.scene.modelPath, /*modelShown=*/false);
@@ -64,35 +137,19 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
 
         // The error view and the reference method need the reference of this very frame: run
         // it to completion first.
-        double referenceMs = 0.0;
         ReferenceStatus reference;
         if (showsReference(settings)) {
             const auto referenceStart = Clock::now();
             reference = renderer.advanceReference(settings, job.width, job.height, std::chrono::hours(24));
             if (!reference.complete) return fail("the reference did not complete (no bake?)");
-            referenceMs = millisecondsSince(referenceStart);
+            timings.referenceMs = millisecondsSince(referenceStart);
         }
 
         renderer.renderFrame(settings, job.width, job.height);
         glFinish();
-        const double firstFrameMs = millisecondsSince(processStart);
+        timings.firstFrameMs = millisecondsSince(processStart);
 
-        // Warm frames: the same passes again, timed one by one with glFinish, because
-        // llvmpipe's timer queries are wrong at this size; a hardware renderer's frames are
-        // also timed by GL_TIME_ELAPSED, the GPU's own time without the driver's latency.
-        std::vector<double> frameMs;
-        std::vector<double> frameGpuMs;
-        for (int i = 0; i < job.timingRepeats; ++i) {
-            GpuTimeQuery gpuTime;
-            const auto t = Clock::now();
-            renderer.renderFrame(settings, job.width, job.height);
-            const std::optional<double> gpuMs = gpuTime.finish();
-            glFinish();
-            frameMs.push_back(millisecondsSince(t));
-            if (gpuMs) frameGpuMs.push_back(*gpuMs);
-        }
-        std::sort(frameMs.begin(), frameMs.end());
-        std::sort(frameGpuMs.begin(), frameGpuMs.end());
+        timeWarmFrames(renderer, settings, job, timings);
 
         // Labels (grid axes, mip roughness, furnace energy) belong in the tone-mapped PNG;
         // the EXR stays the pure linear frame.
@@ -105,44 +162,8 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         if (gl.debug.errorCount() > 0) return fail(std::to_string(gl.debug.errorCount()) + " GL error(s) while rendering; see above");
 
         if (job.json) {
-            nlohmann::ordered_json report;
-            report["output"] = job.output;
-            report["width"] = job.width;
-            report["height"] = job.height;
-            report["renderer"] = gl.context.description();
-            report["environment"] = loaded.joined();
-            if (!sceneStatus.empty()) report["scene"] = sceneStatus;
-            if (settings.view.mode == ViewMode::Furnace)
-                for (const SphereReading& r : renderer.measureSpheres(settings))
-                    report["furnace"].push_back({{"metallic", r.metallic},
-                                                 {"roughness", r.roughness},
-                                                 {"reflected", {r.radiance.r, r.radiance.g, r.radiance.b}}});
-            if (reference.complete) report["timings_ms"]["reference"] = referenceMs;
-            if (reference.complete && settings.view.mode == ViewMode::Error) {
-                const ErrorReport error = renderer.measureError(settings);
-                auto& out = report["error"];
-                out["space"] = enumName(settings.view.errorSpace);
-                out["reference_environment"] = {{"width", reference.environmentWidth},
-                                                {"height", reference.environmentHeight},
-                                                {"texel_degrees", reference.texelDegrees},
-                                                {"min_resolved_roughness", reference.minResolvedRoughness}};
-                out[settings.view.split ? "a" : "frame"] = errorMetricsJson(error.left);
-                if (error.right) out["b"] = errorMetricsJson(*error.right);
-            }
-            report["timings_ms"]["start_to_context"] = contextMs;
-            report["timings_ms"]["environment_load"] = loadMs;
-            report["timings_ms"]["start_to_first_frame"] = firstFrameMs;
-            if (!frameMs.empty()) {
-                report["timings_ms"]["frame_median"] = frameMs[frameMs.size() / 2];
-                report["timings_ms"]["frame_min"] = frameMs.front();
-                report["timings_ms"]["frame_repeats"] = frameMs.size();
-                report["timing_method"] = "steady_clock around glFinish";
-            }
-            if (!frameGpuMs.empty()) {
-                report["timings_ms"]["frame_gpu_median"] = frameGpuMs[frameGpuMs.size() / 2];
-                report["timings_ms"]["frame_gpu_min"] = frameGpuMs.front();
-                report["gpu_timing_method"] = "GL_TIME_ELAPSED query per frame";
-            }
+            const nlohmann::ordered_json report =
+                renderReport(job, gl.context.description(), loaded.joined(), sceneStatus, settings, renderer, reference, timings);
             std::printf("%s\n", report.dump(2).c_str());
         } else {
             std::printf("%s\n", job.output.c_str());

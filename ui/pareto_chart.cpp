@@ -16,6 +16,7 @@ constexpr ImU32 kGrid = IM_COL32(70, 75, 85, 255);
 constexpr ImU32 kAxis = IM_COL32(160, 165, 175, 255);
 constexpr ImU32 kText = IM_COL32(225, 228, 235, 255);
 constexpr ImU32 kFront = IM_COL32(255, 255, 255, 150);
+constexpr float kRadius = 4.0f; // of a point
 
 ImU32 seriesColour(std::size_t index, int alpha = 255)
 {
@@ -68,6 +69,47 @@ void fitRange(double& lo, double& hi)
     hi *= pad;
 }
 
+// The grid lines, ticks and their labels, the plot's frame and the x axis' name.
+void drawAxes(ImDrawList& draw, const ParetoChart& chart, const LogAxis& x, const LogAxis& y, ImVec2 plot0, ImVec2 plot1)
+{
+    for (double t : logTicks(x.lo, x.hi)) {
+        const float px = x.at(t);
+        draw.AddLine(ImVec2(px, plot0.y), ImVec2(px, plot1.y), kGrid);
+        draw.AddLine(ImVec2(px, plot1.y), ImVec2(px, plot1.y + 4.0f), kAxis);
+        const std::string label = tickLabel(t);
+        draw.AddText(ImVec2(px - ImGui::CalcTextSize(label.c_str()).x * 0.5f, plot1.y + 6.0f), kText, label.c_str());
+    }
+    for (double t : logTicks(y.lo, y.hi)) {
+        const float py = y.at(t);
+        draw.AddLine(ImVec2(plot0.x, py), ImVec2(plot1.x, py), kGrid);
+        draw.AddLine(ImVec2(plot0.x - 4.0f, py), ImVec2(plot0.x, py), kAxis);
+        const std::string label = tickLabel(t);
+        const ImVec2 textSize = ImGui::CalcTextSize(label.c_str());
+        draw.AddText(ImVec2(plot0.x - 7.0f - textSize.x, py - textSize.y * 0.5f), kText, label.c_str());
+    }
+    draw.AddRect(plot0, plot1, kAxis);
+    const ImVec2 xLabelSize = ImGui::CalcTextSize(chart.xLabel.c_str());
+    draw.AddText(ImVec2(0.5f * (plot0.x + plot1.x - xLabelSize.x), plot1.y + 22.0f), kAxis, chart.xLabel.c_str());
+}
+
+// The legend, right of the plot: a row per series, then what hollow points and the line mean.
+void drawLegend(ImDrawList& draw, const ParetoChart& chart, ImVec2 plot0, ImVec2 plot1)
+{
+    float ly = plot0.y;
+    const float lx = plot1.x + 14.0f;
+    for (std::size_t si = 0; si < chart.series.size(); ++si, ly += 16.0f) {
+        draw.AddCircleFilled(ImVec2(lx + 5.0f, ly + 7.0f), kRadius, seriesColour(si), 12);
+        draw.AddText(ImVec2(lx + 16.0f, ly), kText, chart.series[si].name.c_str());
+    }
+    ly += 8.0f;
+    draw.AddCircle(ImVec2(lx + 5.0f, ly + 7.0f), kRadius, kText, 12, 1.5f);
+    draw.AddText(ImVec2(lx + 16.0f, ly), kAxis, "hollow: dominated");
+    ly += 16.0f;
+    draw.AddLine(ImVec2(lx, ly + 7.0f), ImVec2(lx + 11.0f, ly + 7.0f), kFront, 1.5f);
+    draw.AddText(ImVec2(lx + 16.0f, ly), kAxis, "front: nothing cheaper");
+    draw.AddText(ImVec2(lx + 16.0f, ly + 14.0f), kAxis, "is more accurate");
+}
+
 } // namespace
 
 std::vector<double> logTicks(double lo, double hi)
@@ -90,7 +132,7 @@ std::vector<double> logTicks(double lo, double hi)
 
 ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 origin, ImVec2 size, std::optional<ImVec2> mouse)
 {
-    constexpr float kLeft = 62.0f, kBottom = 42.0f, kTop = 40.0f, kRadius = 4.0f;
+    constexpr float kLeft = 62.0f, kBottom = 42.0f, kTop = 40.0f;
     const ImVec2 end(origin.x + size.x, origin.y + size.y);
     // The legend takes what its longest line needs, up to half the chart.
     float legendWidth = ImGui::CalcTextSize("front: nothing cheaper").x;
@@ -115,24 +157,7 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
     const LogAxis x{xlo, xhi, plot0.x, plot1.x};
     const LogAxis y{ylo, yhi, plot1.y, plot0.y};
 
-    for (double t : logTicks(xlo, xhi)) {
-        const float px = x.at(t);
-        draw.AddLine(ImVec2(px, plot0.y), ImVec2(px, plot1.y), kGrid);
-        draw.AddLine(ImVec2(px, plot1.y), ImVec2(px, plot1.y + 4.0f), kAxis);
-        const std::string label = tickLabel(t);
-        draw.AddText(ImVec2(px - ImGui::CalcTextSize(label.c_str()).x * 0.5f, plot1.y + 6.0f), kText, label.c_str());
-    }
-    for (double t : logTicks(ylo, yhi)) {
-        const float py = y.at(t);
-        draw.AddLine(ImVec2(plot0.x, py), ImVec2(plot1.x, py), kGrid);
-        draw.AddLine(ImVec2(plot0.x - 4.0f, py), ImVec2(plot0.x, py), kAxis);
-        const std::string label = tickLabel(t);
-        const ImVec2 textSize = ImGui::CalcTextSize(label.c_str());
-        draw.AddText(ImVec2(plot0.x - 7.0f - textSize.x, py - textSize.y * 0.5f), kText, label.c_str());
-    }
-    draw.AddRect(plot0, plot1, kAxis);
-    const ImVec2 xLabelSize = ImGui::CalcTextSize(chart.xLabel.c_str());
-    draw.AddText(ImVec2(0.5f * (plot0.x + plot1.x - xLabelSize.x), plot1.y + 22.0f), kAxis, chart.xLabel.c_str());
+    drawAxes(draw, chart, x, y, plot0, plot1);
 
     const auto screen = [&](const ChartPoint& p) { return ImVec2(x.at(p.x), y.at(p.y)); };
     const auto drawable = [](const ChartPoint& p) { return p.x > 0.0 && p.y > 0.0 && std::isfinite(p.x) && std::isfinite(p.y); };
@@ -184,20 +209,7 @@ ChartHover drawParetoChart(ImDrawList& draw, const ParetoChart& chart, ImVec2 or
     if (hover.valid()) draw.AddCircle(screen(chart.series[std::size_t(hover.series)].points[std::size_t(hover.point)]), 8.0f, kText, 16, 2.0f);
     draw.PopClipRect();
 
-    // The legend, right of the plot.
-    float ly = plot0.y;
-    const float lx = plot1.x + 14.0f;
-    for (std::size_t si = 0; si < chart.series.size(); ++si, ly += 16.0f) {
-        draw.AddCircleFilled(ImVec2(lx + 5.0f, ly + 7.0f), kRadius, seriesColour(si), 12);
-        draw.AddText(ImVec2(lx + 16.0f, ly), kText, chart.series[si].name.c_str());
-    }
-    ly += 8.0f;
-    draw.AddCircle(ImVec2(lx + 5.0f, ly + 7.0f), kRadius, kText, 12, 1.5f);
-    draw.AddText(ImVec2(lx + 16.0f, ly), kAxis, "hollow: dominated");
-    ly += 16.0f;
-    draw.AddLine(ImVec2(lx, ly + 7.0f), ImVec2(lx + 11.0f, ly + 7.0f), kFront, 1.5f);
-    draw.AddText(ImVec2(lx + 16.0f, ly), kAxis, "front: nothing cheaper");
-    draw.AddText(ImVec2(lx + 16.0f, ly + 14.0f), kAxis, "is more accurate");
+    drawLegend(draw, chart, plot0, plot1);
     return hover;
 }
 

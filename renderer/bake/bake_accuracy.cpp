@@ -256,77 +256,93 @@ std::vector<glm::dvec3> fibonacciSphere(int n)
     return directions;
 }
 
-BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& environment, gl::ShaderLibrary& shaders,
-                             const AccuracyOptions& options)
-{
-    const auto start = std::chrono::steady_clock::now();
-    BakeErrors errors;
-    const BakedTexture& pre = result.prefiltered;
-    // Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
-    auto isWide = [](float roughness) { return roughness >= 0.5f; };
-    const int wideWidth = reducedWidth(environment.width, environment.height, options.maxReferenceWidthForWideLobes);
-    auto referenceWidth = [&](float roughness) { return isWide(roughness) ? wideWidth : environment.width; };
+namespace {
 
-    // What is measured where: first every reference value is requested...
+// Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
+bool isWide(float roughness) { return roughness >= 0.5f; }
+
+// What one bake's errors measure, and where: every reference value is requested from one
+// list, each group of points keeping the first of its slots.
+struct MeasurePlan {
     ReferenceList references;
-    struct LevelPlan {
+    int fullWidth = 0; // of the map the sharp lobes sum over
+    int wideWidth = 0; // of the reduced map the wide lobes and the irradiance sum over
+    struct Level {
         std::vector<CubeTexelRef> texels;
         std::vector<glm::dvec3> directions;
         float roughness = 0.0f;
         std::size_t first = 0;
     };
-    std::vector<LevelPlan> levels;
-    for (int level = 0; level < pre.levels; ++level) {
-        LevelPlan plan;
-        const CubeImage geometry(std::max(pre.size >> level, 1));
-        plan.texels = cubeTexelGrid(geometry.size, options.texelsPerFaceEdge);
-        for (const CubeTexelRef& t : plan.texels)
-            plan.directions.push_back(glm::normalize(glm::dvec3(geometry.texelDirection(t.face, t.x, t.row))));
-        plan.roughness = prefilterMipRoughness(result.settings.prefilter, level);
-        plan.first = references.prefilter(plan.directions, plan.roughness, isWide(plan.roughness));
-        levels.push_back(std::move(plan));
-    }
-    const std::vector<glm::dvec3> shadedDirections = fibonacciSphere(options.shadedDirections);
+    std::vector<Level> levels;
+    std::vector<glm::dvec3> shadedDirections;
     std::vector<float> shadedRoughness;
     std::vector<std::size_t> shadedFirst;
-    for (int i = 0; i <= options.shadedRoughnessSteps; ++i) {
-        shadedRoughness.push_back(float(i) / float(std::max(options.shadedRoughnessSteps, 1)));
-        shadedFirst.push_back(references.prefilter(shadedDirections, shadedRoughness.back(), isWide(shadedRoughness.back())));
-    }
     // The floor (AccuracyOptions::shadedFloor): per level, the texels the shaded lookups read.
     std::vector<std::pair<std::vector<CubeTexelRef>, std::size_t>> floorTexels;
-    if (options.shadedFloor)
-        for (int level = 0; level < pre.levels; ++level) {
-            std::vector<glm::dvec3> reading; // the shaded directions whose lookups read this level
-            for (float roughness : shadedRoughness) {
-                const float lod = prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout));
-                if (level == int(std::floor(lod)) || level == int(std::ceil(lod)))
-                    reading.insert(reading.end(), shadedDirections.begin(), shadedDirections.end());
-            }
-            const CubeImage geometry(pre.levelSize(level));
-            std::vector<CubeTexelRef> texels = texelsAround(geometry.size, reading);
-            std::vector<glm::dvec3> directions;
-            for (const CubeTexelRef& t : texels)
-                directions.push_back(glm::normalize(glm::dvec3(geometry.texelDirection(t.face, t.x, t.row))));
-            const float roughness = levels[std::size_t(level)].roughness;
-            floorTexels.emplace_back(std::move(texels), references.prefilter(directions, roughness, isWide(roughness)));
-        }
-    // Irradiance at texel centres: each cube at the grid texels of its own size, the SH at
-    // those of the shading cube (or of a 32^2 one when there is none).
-    const int irradianceSize = result.irradianceCube ? result.irradianceCube.size : 32;
-    const std::vector<CubeTexelRef> irradianceTexels = cubeTexelGrid(irradianceSize, options.texelsPerFaceEdge);
+    std::vector<CubeTexelRef> irradianceTexels;
     std::vector<glm::dvec3> irradianceNormals;
-    const CubeImage irradianceGeometry(irradianceSize);
-    for (const CubeTexelRef& t : irradianceTexels)
-        irradianceNormals.push_back(glm::normalize(glm::dvec3(irradianceGeometry.texelDirection(t.face, t.x, t.row))));
-    const std::size_t irradianceFirst = references.irradiance(irradianceNormals);
-    const std::size_t shadedIrradianceFirst = references.irradiance(shadedDirections);
+    std::size_t irradianceFirst = 0;
+    std::size_t shadedIrradianceFirst = 0;
     struct LutPoint {
         GeometryTerm term;
         int x, row;
         std::size_t slot;
     };
     std::vector<LutPoint> lutPoints;
+
+    int referenceWidth(float roughness) const { return isWide(roughness) ? wideWidth : fullWidth; }
+};
+
+std::vector<glm::dvec3> texelDirections(const CubeImage& geometry, const std::vector<CubeTexelRef>& texels)
+{
+    std::vector<glm::dvec3> directions;
+    for (const CubeTexelRef& t : texels)
+        directions.push_back(glm::normalize(glm::dvec3(geometry.texelDirection(t.face, t.x, t.row))));
+    return directions;
+}
+
+MeasurePlan planMeasurements(const BakeResult& result, const ImageRGB32F& environment, const AccuracyOptions& options)
+{
+    MeasurePlan plan;
+    ReferenceList& references = plan.references;
+    const BakedTexture& pre = result.prefiltered;
+    plan.fullWidth = environment.width;
+    plan.wideWidth = reducedWidth(environment.width, environment.height, options.maxReferenceWidthForWideLobes);
+    for (int level = 0; level < pre.levels; ++level) {
+        MeasurePlan::Level l;
+        const CubeImage geometry(std::max(pre.size >> level, 1));
+        l.texels = cubeTexelGrid(geometry.size, options.texelsPerFaceEdge);
+        l.directions = texelDirections(geometry, l.texels);
+        l.roughness = prefilterMipRoughness(result.settings.prefilter, level);
+        l.first = references.prefilter(l.directions, l.roughness, isWide(l.roughness));
+        plan.levels.push_back(std::move(l));
+    }
+    plan.shadedDirections = fibonacciSphere(options.shadedDirections);
+    for (int i = 0; i <= options.shadedRoughnessSteps; ++i) {
+        plan.shadedRoughness.push_back(float(i) / float(std::max(options.shadedRoughnessSteps, 1)));
+        plan.shadedFirst.push_back(references.prefilter(plan.shadedDirections, plan.shadedRoughness.back(), isWide(plan.shadedRoughness.back())));
+    }
+    if (options.shadedFloor)
+        for (int level = 0; level < pre.levels; ++level) {
+            std::vector<glm::dvec3> reading; // the shaded directions whose lookups read this level
+            for (float roughness : plan.shadedRoughness) {
+                const float lod = prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout));
+                if (level == int(std::floor(lod)) || level == int(std::ceil(lod)))
+                    reading.insert(reading.end(), plan.shadedDirections.begin(), plan.shadedDirections.end());
+            }
+            const CubeImage geometry(pre.levelSize(level));
+            std::vector<CubeTexelRef> texels = texelsAround(geometry.size, reading);
+            const std::vector<glm::dvec3> directions = texelDirections(geometry, texels);
+            const float roughness = plan.levels[std::size_t(level)].roughness;
+            plan.floorTexels.emplace_back(std::move(texels), references.prefilter(directions, roughness, isWide(roughness)));
+        }
+    // Irradiance at texel centres: each cube at the grid texels of its own size, the SH at
+    // those of the shading cube (or of a 32^2 one when there is none).
+    const int irradianceSize = result.irradianceCube ? result.irradianceCube.size : 32;
+    plan.irradianceTexels = cubeTexelGrid(irradianceSize, options.texelsPerFaceEdge);
+    plan.irradianceNormals = texelDirections(CubeImage(irradianceSize), plan.irradianceTexels);
+    plan.irradianceFirst = references.irradiance(plan.irradianceNormals);
+    plan.shadedIrradianceFirst = references.irradiance(plan.shadedDirections);
     for (GeometryTerm term : kGeometryTerms) {
         const BakedTexture& lut = result.lut(term);
         if (!lut)
@@ -336,96 +352,111 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
             for (int i = 0; i < n; ++i) {
                 const int x = (2 * i + 1) * lut.size / (2 * n);
                 const int row = (2 * j + 1) * lut.size / (2 * n);
-                lutPoints.push_back({term, x, row, references.lut((x + 0.5) / lut.size, (row + 0.5) / lut.size, term)});
+                plan.lutPoints.push_back({term, x, row, references.lut((x + 0.5) / lut.size, (row + 0.5) / lut.size, term)});
             }
     }
+    return plan;
+}
 
-    // ... then computed, or read from the cache: they depend on nothing but the map's
-    // pixels and the list (the bake's sizes and layout decide the directions).
-    std::vector<glm::dvec3> values;
+// The reference values, computed or read from the cache: they depend on nothing but the map's
+// pixels and the list (the bake's sizes and layout decide the directions).
+std::vector<glm::dvec3> referenceValues(const MeasurePlan& plan, const BakeResult& result, const ImageRGB32F& environment,
+                                        const AccuracyOptions& options, BakeErrors& errors)
+{
     std::filesystem::path cached;
     if (!options.referenceCacheDirectory.empty()) {
-        const std::string key = hex16(fnv1a(references.digest(), fnv1a("iblab-reference-1|" + std::to_string(result.contentHash) + "|" +
-                                                                        std::to_string(wideWidth) + "|" +
-                                                                        std::to_string(options.lutReferenceSamples))));
+        const std::string key = hex16(fnv1a(plan.references.digest(), fnv1a("iblab-reference-1|" + std::to_string(result.contentHash) + "|" +
+                                                                             std::to_string(plan.wideWidth) + "|" +
+                                                                             std::to_string(options.lutReferenceSamples))));
         cached = options.referenceCacheDirectory / (key + ".bin");
-        if (auto loaded = loadReferenceValues(cached, references.size(), errors.notes)) {
-            values = std::move(*loaded);
+        if (auto loaded = loadReferenceValues(cached, plan.references.size(), errors.notes)) {
             errors.referencesFromCache = true;
+            return std::move(*loaded);
         }
     }
-    if (!errors.referencesFromCache) {
-        values = references.evaluate(environment, downsampleEquirectToWidth(environment, options.maxReferenceWidthForWideLobes),
-                                     options.lutReferenceSamples);
-        if (!cached.empty()) storeReferenceValues(cached, values, errors.notes);
-    }
-    errors.referenceMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    auto slice = [&](std::size_t first, std::size_t count) { return std::span<const glm::dvec3>(values).subspan(first, count); };
+    std::vector<glm::dvec3> values = plan.references.evaluate(
+        environment, downsampleEquirectToWidth(environment, options.maxReferenceWidthForWideLobes), options.lutReferenceSamples);
+    if (!cached.empty()) storeReferenceValues(cached, values, errors.notes);
+    return values;
+}
 
+// The prefiltered cube against its references: at texel centres per level, as shaded (read
+// where and how shading reads it), and with the floor, an exact cube read the same way.
+void comparePrefilter(const MeasurePlan& plan, std::span<const glm::dvec3> values, const BakeResult& result, gl::ShaderLibrary& shaders,
+                      const AccuracyOptions& options, BakeErrors& errors)
+{
+    const BakedTexture& pre = result.prefiltered;
     for (int level = 0; level < pre.levels; ++level) {
-        const LevelPlan& plan = levels[std::size_t(level)];
+        const MeasurePlan::Level& l = plan.levels[std::size_t(level)];
         const CubeImage image = readCubeLevel(pre, level);
         std::vector<glm::dvec3> baked;
-        for (const CubeTexelRef& t : plan.texels) baked.emplace_back(image.rgb(t.face, t.x, t.row));
-        errors.prefilter.push_back({level, plan.roughness, relativeRmse(baked, slice(plan.first, baked.size())),
-                                    int(baked.size()), referenceWidth(plan.roughness)});
+        for (const CubeTexelRef& t : l.texels) baked.emplace_back(image.rgb(t.face, t.x, t.row));
+        errors.prefilter.push_back({level, l.roughness, relativeRmse(baked, values.subspan(l.first, baked.size())), int(baked.size()),
+                                    plan.referenceWidth(l.roughness)});
     }
 
+    const std::vector<glm::dvec3>& directions = plan.shadedDirections;
     std::vector<glm::vec4> queries;
-    for (float roughness : shadedRoughness)
-        for (const glm::dvec3& d : shadedDirections)
+    for (float roughness : plan.shadedRoughness)
+        for (const glm::dvec3& d : directions)
             queries.emplace_back(glm::vec3(d), roughness);
     const std::vector<glm::vec3> shaded = BakePasses(shaders).samplePrefiltered(pre, result.settings.prefilter.layout, queries);
     double sumSquares = 0.0;
-    for (std::size_t r = 0; r < shadedRoughness.size(); ++r) {
-        const float roughness = shadedRoughness[r];
-        const auto first = shaded.begin() + std::ptrdiff_t(r * shadedDirections.size());
-        const std::vector<glm::dvec3> baked(first, first + std::ptrdiff_t(shadedDirections.size()));
-        const double rmse = relativeRmse(baked, slice(shadedFirst[r], baked.size()));
+    for (std::size_t r = 0; r < plan.shadedRoughness.size(); ++r) {
+        const float roughness = plan.shadedRoughness[r];
+        const auto first = shaded.begin() + std::ptrdiff_t(r * directions.size());
+        const std::vector<glm::dvec3> baked(first, first + std::ptrdiff_t(directions.size()));
+        const double rmse = relativeRmse(baked, values.subspan(plan.shadedFirst[r], baked.size()));
         errors.prefilterShaded.push_back({roughness, prefilterMipFromRoughness(roughness, float(pre.levels), int(result.settings.prefilter.layout)),
-                                          rmse, int(shadedDirections.size()), referenceWidth(roughness)});
+                                          rmse, int(directions.size()), plan.referenceWidth(roughness)});
         sumSquares += rmse * rmse;
     }
     if (!errors.prefilterShaded.empty())
         errors.prefilterShadedRms = std::sqrt(sumSquares / double(errors.prefilterShaded.size()));
+    if (!options.shadedFloor)
+        return;
 
-    if (options.shadedFloor) {
-        const BakedTexture exact = createCubeTexture(pre.internalFormat, pre.size, pre.levels);
-        for (int level = 0; level < pre.levels; ++level) {
-            CubeImage image(pre.levelSize(level));
-            const auto& [texels, first] = floorTexels[std::size_t(level)];
-            for (std::size_t i = 0; i < texels.size(); ++i)
-                image.at(texels[i].face, texels[i].x, texels[i].row) = glm::vec4(glm::vec3(values[first + i]), 1.0f);
-            uploadCubeLevel(exact, level, image);
-        }
-        const std::vector<glm::vec3> read = BakePasses(shaders).samplePrefiltered(exact, result.settings.prefilter.layout, queries);
-        double floorSquares = 0.0;
-        for (std::size_t r = 0; r < shadedRoughness.size(); ++r) {
-            const auto first = read.begin() + std::ptrdiff_t(r * shadedDirections.size());
-            const std::vector<glm::dvec3> exactRead(first, first + std::ptrdiff_t(shadedDirections.size()));
-            ShadedRoughnessError e = errors.prefilterShaded[r];
-            e.relativeRmse = relativeRmse(exactRead, slice(shadedFirst[r], exactRead.size()));
-            errors.prefilterShadedFloor.push_back(e);
-            floorSquares += e.relativeRmse * e.relativeRmse;
-        }
-        errors.prefilterShadedFloorRms = std::sqrt(floorSquares / double(errors.prefilterShadedFloor.size()));
+    const BakedTexture exact = createCubeTexture(pre.internalFormat, pre.size, pre.levels);
+    for (int level = 0; level < pre.levels; ++level) {
+        CubeImage image(pre.levelSize(level));
+        const auto& [texels, first] = plan.floorTexels[std::size_t(level)];
+        for (std::size_t i = 0; i < texels.size(); ++i)
+            image.at(texels[i].face, texels[i].x, texels[i].row) = glm::vec4(glm::vec3(values[first + i]), 1.0f);
+        uploadCubeLevel(exact, level, image);
     }
+    const std::vector<glm::vec3> read = BakePasses(shaders).samplePrefiltered(exact, result.settings.prefilter.layout, queries);
+    double floorSquares = 0.0;
+    for (std::size_t r = 0; r < plan.shadedRoughness.size(); ++r) {
+        const auto first = read.begin() + std::ptrdiff_t(r * directions.size());
+        const std::vector<glm::dvec3> exactRead(first, first + std::ptrdiff_t(directions.size()));
+        ShadedRoughnessError e = errors.prefilterShaded[r];
+        e.relativeRmse = relativeRmse(exactRead, values.subspan(plan.shadedFirst[r], exactRead.size()));
+        errors.prefilterShadedFloor.push_back(e);
+        floorSquares += e.relativeRmse * e.relativeRmse;
+    }
+    errors.prefilterShadedFloorRms = std::sqrt(floorSquares / double(errors.prefilterShadedFloor.size()));
+}
 
-    const auto irradianceReference = slice(irradianceFirst, irradianceNormals.size());
+// SH9 and the irradiance cube against the irradiance references: at texel centres, then as
+// shaded.
+void compareIrradiance(const MeasurePlan& plan, std::span<const glm::dvec3> values, const BakeResult& result, gl::ShaderLibrary& shaders,
+                       BakeErrors& errors)
+{
+    const auto irradianceReference = values.subspan(plan.irradianceFirst, plan.irradianceNormals.size());
     std::vector<glm::dvec3> sh;
     std::vector<glm::dvec3> shWindowed;
-    for (const glm::dvec3& n : irradianceNormals) {
+    for (const glm::dvec3& n : plan.irradianceNormals) {
         sh.push_back(evaluate(result.sh.irradiance, n));
         shWindowed.push_back(evaluate(result.sh.irradianceWindowed, n));
     }
     errors.shIrradiance = relativeErrors(sh, irradianceReference);
     errors.shIrradianceWindowed = relativeErrors(shWindowed, irradianceReference);
-    errors.irradianceReferenceWidth = wideWidth;
+    errors.irradianceReferenceWidth = plan.wideWidth;
     errors.irradianceMethod = result.settings.irradiance;
     if (result.irradianceCube) {
         const CubeImage image = readCubeLevel(result.irradianceCube, 0);
         std::vector<glm::dvec3> baked;
-        for (const CubeTexelRef& t : irradianceTexels) baked.emplace_back(image.rgb(t.face, t.x, t.row));
+        for (const CubeTexelRef& t : plan.irradianceTexels) baked.emplace_back(image.rgb(t.face, t.x, t.row));
         errors.irradianceCube = relativeErrors(baked, irradianceReference);
     }
 
@@ -433,32 +464,53 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     // Fibonacci directions, which counts the interpolation between texel centres that the
     // texel-centre numbers above leave out, and compares cubes of different sizes on the
     // same directions. A one-level cube read at roughness 0 is read at lod 0.
-    const auto shadedReference = slice(shadedIrradianceFirst, shadedDirections.size());
+    const auto shadedReference = values.subspan(plan.shadedIrradianceFirst, plan.shadedDirections.size());
     std::vector<glm::dvec3> shShaded;
-    for (const glm::dvec3& d : shadedDirections)
+    for (const glm::dvec3& d : plan.shadedDirections)
         shShaded.push_back(evaluate(result.sh.irradiance, d));
     errors.shIrradianceShaded = relativeErrors(shShaded, shadedReference);
     if (result.irradianceCube) {
         std::vector<glm::vec4> irradianceQueries;
-        for (const glm::dvec3& d : shadedDirections) irradianceQueries.emplace_back(glm::vec3(d), 0.0f);
+        for (const glm::dvec3& d : plan.shadedDirections) irradianceQueries.emplace_back(glm::vec3(d), 0.0f);
         const std::vector<glm::vec3> read =
             BakePasses(shaders).samplePrefiltered(result.irradianceCube, RoughnessLayout::Linear, irradianceQueries);
         errors.irradianceCubeShaded = relativeErrors(std::vector<glm::dvec3>(read.begin(), read.end()), shadedReference);
     }
+}
 
+// Each BRDF LUT's largest absolute difference from its references over the grid of points.
+void compareLuts(const MeasurePlan& plan, std::span<const glm::dvec3> values, const BakeResult& result, BakeErrors& errors)
+{
     for (GeometryTerm term : kGeometryTerms) {
         const BakedTexture& lut = result.lut(term);
         if (!lut)
             continue;
         const Image2D image = read2D(lut);
         double worst = 0.0;
-        for (const LutPoint& p : lutPoints)
+        for (const MeasurePlan::LutPoint& p : plan.lutPoints)
             if (p.term == term) {
                 const glm::dvec3 d = glm::abs(glm::dvec3(glm::vec3(image.at(p.x, p.row))) - values[p.slot]);
                 worst = std::max({worst, d.x, d.y, d.z});
             }
         errors.lutMaxAbs[std::size_t(term)] = worst;
     }
+}
+
+} // namespace
+
+BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& environment, gl::ShaderLibrary& shaders,
+                             const AccuracyOptions& options)
+{
+    const auto start = std::chrono::steady_clock::now();
+    BakeErrors errors;
+    // First every reference value is requested, then they are computed (or read from the
+    // cache) in one go, then the bake is read and compared with them.
+    const MeasurePlan plan = planMeasurements(result, environment, options);
+    const std::vector<glm::dvec3> values = referenceValues(plan, result, environment, options, errors);
+    errors.referenceMilliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    comparePrefilter(plan, values, result, shaders, options, errors);
+    compareIrradiance(plan, values, result, shaders, errors);
+    compareLuts(plan, values, result, errors);
     errors.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return errors;
 }

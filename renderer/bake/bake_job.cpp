@@ -188,6 +188,41 @@ void BakeJob::planImported()
         totalCost_ += step.cost;
 }
 
+// The irradiance cube's steps, by method; they read the environment cube of face envFace.
+void BakeJob::planIrradiance(int envFace)
+{
+    const BakeSettings& s = result_.settings;
+    switch (s.irradiance) {
+    case IrradianceMethod::None: break;
+    case IrradianceMethod::Riemann: {
+        const double perTexel = double(BakePasses::riemannPhiSteps(s.riemann.sampleDelta)) *
+                                double(BakePasses::riemannThetaSteps(s.riemann.sampleDelta));
+        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.riemann.faceSize, 0, perTexel, [this](const CubeSlice& slice) {
+            passes_.irradianceRiemann(result_.environmentCube, result_.irradianceCube, slice, result_.settings.riemann,
+                                      result_.settings.exactTexelSolidAngle);
+        });
+        break;
+    }
+    case IrradianceMethod::Importance:
+        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.importance.faceSize, 0, s.importance.samples, [this](const CubeSlice& slice) {
+            passes_.irradianceImportance(result_.environmentCube, result_.irradianceCube, slice, result_.settings.importance,
+                                         result_.settings.exactTexelSolidAngle);
+        });
+        break;
+    case IrradianceMethod::Moments: {
+        steps_.push_back({irradiancePhase(s.irradiance), StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
+                              momentTexels_ = passes_.buildIrradianceMoments(result_.environmentCube, result_.settings.moments);
+                          }});
+        const double groups = 6.0 * s.moments.sourceFaceSize * s.moments.sourceFaceSize;
+        // A group costs a few multiply-adds, about a tenth of a filtered texture read.
+        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.moments.faceSize, 0, groups / 10.0, [this](const CubeSlice& slice) {
+            passes_.irradianceMoments(momentTexels_, result_.irradianceCube, slice);
+        });
+        break;
+    }
+    }
+}
+
 void BakeJob::plan()
 {
     if (imported_) {
@@ -254,35 +289,7 @@ void BakeJob::plan()
                           out.irradianceWindowed = applyWindow(out.irradiance, sh.window, out.windowWidth);
                       }});
 
-    switch (s.irradiance) {
-    case IrradianceMethod::None: break;
-    case IrradianceMethod::Riemann: {
-        const double perTexel = double(BakePasses::riemannPhiSteps(s.riemann.sampleDelta)) *
-                                double(BakePasses::riemannThetaSteps(s.riemann.sampleDelta));
-        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.riemann.faceSize, 0, perTexel, [this](const CubeSlice& slice) {
-            passes_.irradianceRiemann(result_.environmentCube, result_.irradianceCube, slice, result_.settings.riemann,
-                                      result_.settings.exactTexelSolidAngle);
-        });
-        break;
-    }
-    case IrradianceMethod::Importance:
-        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.importance.faceSize, 0, s.importance.samples, [this](const CubeSlice& slice) {
-            passes_.irradianceImportance(result_.environmentCube, result_.irradianceCube, slice, result_.settings.importance,
-                                         result_.settings.exactTexelSolidAngle);
-        });
-        break;
-    case IrradianceMethod::Moments: {
-        steps_.push_back({irradiancePhase(s.irradiance), StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
-                              momentTexels_ = passes_.buildIrradianceMoments(result_.environmentCube, result_.settings.moments);
-                          }});
-        const double groups = 6.0 * s.moments.sourceFaceSize * s.moments.sourceFaceSize;
-        // A group costs a few multiply-adds, about a tenth of a filtered texture read.
-        planCubeSlices(irradiancePhase(s.irradiance), StepGroup::Environment, s.moments.faceSize, 0, groups / 10.0, [this](const CubeSlice& slice) {
-            passes_.irradianceMoments(momentTexels_, result_.irradianceCube, slice);
-        });
-        break;
-    }
-    }
+    planIrradiance(envFace);
 
     if (s.prefilter.brightTexels > 0 && s.prefilter.levels > 1)
         steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {

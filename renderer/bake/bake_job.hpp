@@ -98,6 +98,7 @@ private:
     void plan();
     // An imported bake (Environment::imported): its cubes are uploaded, not baked.
     void planImported();
+    void planIrradiance(int envFace);
     void planLuts();
     void planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
                         const std::function<void(const CubeSlice&)>& run);

@@ -290,6 +290,84 @@ std::vector<StressMethod> stressMethods()
     return methods;
 }
 
+namespace {
+
+// The grid of thumbnails: opaque black, a column per method and roughness, labelled.
+void layOutGrid(StressGrid& grid, const std::vector<StressMethod>& methods, std::size_t environments, const StressOptions& options)
+{
+    const int cell = options.gridCell;
+    const int columns = int(methods.size() * options.roughnesses.size());
+    grid.width = kGridLabelWidth + columns * cell;
+    grid.height = kGridHeaderHeight + int(environments) * cell;
+    grid.rgba.assign(std::size_t(grid.width) * std::size_t(grid.height) * 4, 0);
+    for (std::size_t i = 3; i < grid.rgba.size(); i += 4) grid.rgba[i] = 255;
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+        const int left = kGridLabelWidth + int(m * options.roughnesses.size()) * cell;
+        grid.labels.push_back({left + 2, 2, methods[m].name});
+        for (std::size_t r = 0; r < options.roughnesses.size(); ++r)
+            grid.labels.push_back({left + int(r) * cell + 2, 18, "r " + formatValue(options.roughnesses[r])});
+    }
+}
+
+EnvironmentSummary summarizeEnvironment(const StressEnvironment& env, const Environment& loaded, double power)
+{
+    EnvironmentSummary summary{env.name, loaded.source, env.breaks, env.furnace};
+    summary.meanLuminance = power / (4.0 * kPi);
+    for (std::size_t i = 0; i < loaded.image.texelCount(); ++i)
+        summary.peakLuminance = std::max(summary.peakLuminance, luminance(glm::dvec3(loaded.image.at(int(i % std::size_t(loaded.image.width)),
+                                                                                                      int(i / std::size_t(loaded.image.width))))));
+    summary.repair = loaded.repair.summary();
+    summary.repairedComponents = loaded.repair.repairedComponents();
+    return summary;
+}
+
+// Every method at every roughness on one baked environment (grid row `row`): measured against
+// the exact sphere, classified, and its thumbnail pasted.
+void renderEnvironment(lab::Harness& harness, Renderer& renderer, const StressEnvironment& env, std::size_t row, const ImageRGB32F& image,
+                       double meanLuminance, const FrameSettings& base, const std::vector<SpherePixel>& pixels,
+                       const std::vector<StressMethod>& methods, StressReport& report)
+{
+    const StressOptions& options = report.options;
+    const int size = options.frameSize;
+    const int cell = options.gridCell;
+    const ReferenceMaps maps(image);
+    const double epsilon = 1e-4 * meanLuminance + 1e-6;
+    // Exposure that puts the environment's mean near mid-grey in the thumbnails.
+    const float exposure = meanLuminance > 0.0 ? float(std::clamp(std::log2(0.4 / meanLuminance), -12.0, 12.0)) : 0.0f;
+    for (std::size_t r = 0; r < options.roughnesses.size(); ++r) {
+        const float roughness = options.roughnesses[r];
+        for (bool multiscatter : env.furnace ? std::vector<bool>{false, true} : std::vector<bool>{false}) {
+            std::optional<ExactSphere> references[2];
+            for (std::size_t m = 0; m < methods.size(); ++m) {
+                const StressMethod& method = methods[m];
+                const SurfaceMaterial material = surfaceMaterial(method.material, roughness);
+                std::optional<ExactSphere>& reference = references[int(method.material)];
+                if (!reference) reference.emplace(maps, material, multiscatter, base.sampling.geometry, size * size);
+                FrameSettings settings = base;
+                settings.sampling = method.sampling;
+                settings.sampling.multiscatter = multiscatter;
+                settings.material.metallic = float(material.metallic);
+                settings.material.roughness = roughness;
+                settings.toneMap.exposureEv = exposure;
+                harness.render(settings, size, size);
+
+                RenderMeasurement measured = measureRender(renderer.readHdrFrame(), pixels, *reference, epsilon);
+                measured.environment = env.name;
+                measured.method = method.name;
+                measured.roughness = roughness;
+                measured.multiscatter = multiscatter;
+                classifyRender(measured, method, env.furnace, report.findings);
+                report.renders.push_back(std::move(measured));
+                if (!multiscatter)
+                    pasteThumbnail(report.grid, renderer.readDisplayImage(), cell, kGridLabelWidth + int(m * options.roughnesses.size() + r) * cell,
+                                   kGridHeaderHeight + int(row) * cell);
+            }
+        }
+    }
+}
+
+} // namespace
+
 StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
 {
     const auto start = Clock::now();
@@ -301,19 +379,7 @@ StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
     for (const StressMethod& m : methods) report.methods.push_back(m.name);
 
     const int size = options.frameSize;
-    const int cell = options.gridCell;
-    const int columns = int(methods.size() * options.roughnesses.size());
-    StressGrid& grid = report.grid;
-    grid.width = kGridLabelWidth + columns * cell;
-    grid.height = kGridHeaderHeight + int(environments.size()) * cell;
-    grid.rgba.assign(std::size_t(grid.width) * std::size_t(grid.height) * 4, 0);
-    for (std::size_t i = 3; i < grid.rgba.size(); i += 4) grid.rgba[i] = 255;
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-        const int left = kGridLabelWidth + int(m * options.roughnesses.size()) * cell;
-        grid.labels.push_back({left + 2, 2, methods[m].name});
-        for (std::size_t r = 0; r < options.roughnesses.size(); ++r)
-            grid.labels.push_back({left + int(r) * cell + 2, 18, "r " + formatValue(options.roughnesses[r])});
-    }
+    layOutGrid(report.grid, methods, environments.size(), options);
 
     FrameSettings base;
     base.scene.kind = SceneKind::Sphere;
@@ -338,14 +404,8 @@ StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
         const StressEnvironment& env = environments[e];
         if (options.progress) options.progress(env.name + " (" + std::to_string(e + 1) + "/" + std::to_string(environments.size()) + ")");
         const Environment& loaded = harness.loadEnvironment(env.spec);
-        EnvironmentSummary summary{env.name, loaded.source, env.breaks, env.furnace};
         const double power = equirectPower(loaded.image);
-        summary.meanLuminance = power / (4.0 * kPi);
-        for (std::size_t i = 0; i < loaded.image.texelCount(); ++i)
-            summary.peakLuminance = std::max(summary.peakLuminance, luminance(glm::dvec3(loaded.image.at(int(i % std::size_t(loaded.image.width)),
-                                                                                                          int(i / std::size_t(loaded.image.width))))));
-        summary.repair = loaded.repair.summary();
-        summary.repairedComponents = loaded.repair.repairedComponents();
+        EnvironmentSummary summary = summarizeEnvironment(env, loaded, power);
 
         const bake::BakeResult& result = harness.bake(options.bake);
         summary.bakeMilliseconds = result.totalMilliseconds;
@@ -353,41 +413,8 @@ StressReport runStressSuite(Renderer& renderer, const StressOptions& options)
             report.lut = measureLut(result.lut(GeometryTerm::HeightCorrelatedSmith), options.bake.lut.samples, GeometryTerm::HeightCorrelatedSmith);
         measureBake(env.name, result, power, report);
 
-        const ReferenceMaps maps(loaded.image);
-        const double epsilon = 1e-4 * summary.meanLuminance + 1e-6;
-        // Exposure that puts the environment's mean near mid-grey in the thumbnails.
-        const float exposure = summary.meanLuminance > 0.0 ? float(std::clamp(std::log2(0.4 / summary.meanLuminance), -12.0, 12.0)) : 0.0f;
-        for (std::size_t r = 0; r < options.roughnesses.size(); ++r) {
-            const float roughness = options.roughnesses[r];
-            for (bool multiscatter : env.furnace ? std::vector<bool>{false, true} : std::vector<bool>{false}) {
-                std::optional<ExactSphere> references[2];
-                for (std::size_t m = 0; m < methods.size(); ++m) {
-                    const StressMethod& method = methods[m];
-                    const SurfaceMaterial material = surfaceMaterial(method.material, roughness);
-                    std::optional<ExactSphere>& reference = references[int(method.material)];
-                    if (!reference) reference.emplace(maps, material, multiscatter, base.sampling.geometry, size * size);
-                    FrameSettings settings = base;
-                    settings.sampling = method.sampling;
-                    settings.sampling.multiscatter = multiscatter;
-                    settings.material.metallic = float(material.metallic);
-                    settings.material.roughness = roughness;
-                    settings.toneMap.exposureEv = exposure;
-                    harness.render(settings, size, size);
-
-                    RenderMeasurement measured = measureRender(renderer.readHdrFrame(), pixels, *reference, epsilon);
-                    measured.environment = env.name;
-                    measured.method = method.name;
-                    measured.roughness = roughness;
-                    measured.multiscatter = multiscatter;
-                    classifyRender(measured, method, env.furnace, report.findings);
-                    report.renders.push_back(std::move(measured));
-                    if (!multiscatter)
-                        pasteThumbnail(grid, renderer.readDisplayImage(), cell, kGridLabelWidth + int(m * options.roughnesses.size() + r) * cell,
-                                       kGridHeaderHeight + int(e) * cell);
-                }
-            }
-        }
-        grid.labels.push_back({4, kGridHeaderHeight + int(e) * cell + cell / 2 - 6, env.name});
+        renderEnvironment(harness, renderer, env, e, loaded.image, summary.meanLuminance, base, pixels, methods, report);
+        report.grid.labels.push_back({4, kGridHeaderHeight + int(e) * options.gridCell + options.gridCell / 2 - 6, env.name});
         report.environments.push_back(summary);
         harness.retireBake();
     }
