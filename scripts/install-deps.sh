@@ -20,6 +20,9 @@ packages=(
   libxxhash-dev
   # Tests: GoogleTest; zlib for the CRCs of the malformed-PNG corpus the tests write.
   libgtest-dev zlib1g-dev
+  # Tests: universal-ctags gives each function's first and last line, members defined in
+  # their class and lambdas included, to the function-length check (layers.functions_*).
+  universal-ctags
   # Tests: the Khronos glTF samples that model_framing_gltest draws (models from millimetres
   # to hundreds of units across; the tests skip with a message without them).
   assimp-testmodels
