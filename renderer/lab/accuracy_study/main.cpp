@@ -11,6 +11,7 @@
 
 using namespace iblab::accuracy;
 
+namespace iblab::accuracy {
 namespace {
 
 const char* const kUsage =
@@ -39,6 +40,7 @@ std::vector<double> parseList(const std::string& text)
 }
 
 } // namespace
+} // namespace iblab::accuracy
 
 int main(int argc, char** argv)
 {
