@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "bake/bake_result.hpp"
 #include "io/environment.hpp"
@@ -55,7 +56,7 @@ public:
     }
     // The file is on its way (decoding, or waiting for an early bake to decode after).
     bool loading() const { return phase_ == Phase::Decoding || phase_ == Phase::EarlyBake || phase_ == Phase::EarlyBakeShown; }
-    bool busy() const { return loading() || phase_ == Phase::Baking || queued_.has_value(); }
+    bool busy() const { return loading() || phase_ == Phase::Baking || queued_.has_value() || recentNext_.has_value(); }
     // The switch's bake is shown and its first frame is not reported yet.
     bool awaitsFrame() const { return timing_ && (phase_ == Phase::AwaitingFrame || (phase_ == Phase::EarlyBakeShown && !earlyFrameDrawn_)); }
     // The map the activity line names: the newest request.
@@ -63,13 +64,27 @@ public:
 
     // --- the request ---
     // The user waits from their latest request, queued or not: the timing starts again.
-    void timeFrom(const std::string& spec) { requested_ = Clock::now(), timing_ = SwitchTiming{.environment = spec}; }
+    void timeFrom(const std::string& spec)
+    {
+        requested_ = Clock::now();
+        timing_ = SwitchTiming{.environment = spec};
+    }
     // Another map asked for while one decodes: it replaces any queued before it.
     void queue(const std::string& spec) { queued_ = spec; }
     std::optional<std::string> takeQueued() { return std::exchange(queued_, std::nullopt); }
     bool hasQueued() const { return queued_.has_value(); }
     // A switch to spec starts (after withdrawEarlyBake of any before it): it decodes.
     void begin(const std::string& spec);
+
+    // --- a recent map (one LabSession kept with its bake) ---
+    // Asked for: the next pump shows it, before the GUI draws the panel that reports it (shown
+    // at once, its first image went out beside the old map's status line). A payload beside
+    // the phase, not a phase: until that pump the phase stays what it was, as the view still
+    // shows it, and a map that is no longer recent by then switches from it (withdrawing an
+    // early bake, say). A later request replaces it.
+    void showRecentNext(const std::string& spec) { recentNext_ = spec; }
+    void dropRecentNext() { recentNext_.reset(); }
+    std::optional<std::string> takeRecentNext() { return std::exchange(recentNext_, std::nullopt); }
 
     // --- the decode ---
     // The file waits for its early bake's first frame, or a decode already runs.
@@ -118,6 +133,7 @@ private:
     Phase phase_ = Phase::Idle;
     std::string spec_;
     std::optional<std::string> queued_;
+    std::optional<std::string> recentNext_; // a recent map the next pump shows
     std::future<Environment> decode_;
     std::uint64_t earlyContentHash_ = 0;                // what the record says the file decodes to
     std::shared_ptr<const bake::BakeResult> previous_;  // the bake shown before the early one

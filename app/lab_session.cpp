@@ -49,11 +49,10 @@ void LabSession::requestEnvironment(const std::string& spec)
 
 void LabSession::startSwitch(const std::string& spec)
 {
-    // A recent map is shown by the next pump, before the GUI draws its panel: shown here,
-    // after the panel was drawn, its first image went out beside the old map's status line.
-    recentToShow_.reset();
+    // A recent map is shown by the next pump (EnvironmentSwitch::showRecentNext says why).
+    switch_.dropRecentNext();
     if (findRecent(spec)) {
-        recentToShow_ = spec;
+        switch_.showRecentNext(spec);
         return;
     }
     withdrawEarlyBake();
@@ -204,7 +203,7 @@ LabSession::Finished LabSession::pump(Clock::duration budget)
 {
     // A recent environment asked for since the last pump: shown now, before the GUI draws the
     // panel that reports it; its lines, and nothing else this pump.
-    if (const std::optional<std::string> spec = std::exchange(recentToShow_, std::nullopt)) {
+    if (const std::optional<std::string> spec = switch_.takeRecentNext()) {
         if (const RecentEnvironment* recent = findRecent(*spec)) return showRecent(RecentEnvironment(*recent)); // showRecent reorders recent_: a copy
         startSwitch(*spec); // no longer among the recent ones: loaded as any other
     }
@@ -234,7 +233,7 @@ LabSession::Finished LabSession::pump(Clock::duration budget)
 
 LabSession::FrameReport LabSession::update(const FrameUpdate& frame)
 {
-    if (frame.presented) frameDrawn(*frame.presented);
+    if (frame.presented) switch_.frameDrawn(*frame.presented);
     if (frame.waitForDecode > Clock::duration::zero()) waitForLoad(frame.waitForDecode);
     FrameReport report;
     report.finished = pump(frame.budget);
@@ -248,7 +247,7 @@ void LabSession::waitForLoad(Clock::duration timeout) const
     if (!job_) switch_.waitForDecode(timeout);
 }
 
-bool LabSession::busy() const { return switch_.busy() || recentToShow_.has_value() || job_ != nullptr; }
+bool LabSession::busy() const { return switch_.busy() || job_ != nullptr; }
 
 std::string LabSession::activity() const
 {

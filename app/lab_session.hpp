@@ -89,8 +89,6 @@ public:
     // The furnace view's bake of builtin:white (small and quick; made once, on first use).
     void ensureFurnaceBake();
 
-    // A frame showing the switch's bake was presented (the GUI says so through update).
-    void frameDrawn(Clock::time_point presented = Clock::now()) { switch_.frameDrawn(presented); }
     const std::optional<SwitchTiming>& lastSwitch() const { return switch_.lastSwitch(); }
 
     const Environment* environment() const { return environment_.get(); } // null before the first load
@@ -130,8 +128,6 @@ private:
     std::string currentSpec_;            // what environment_ was asked for as
     std::deque<RecentEnvironment> recent_; // most recent first
     EnvironmentSwitch switch_;           // declared after job_ etc.: destroyed first, it waits for its decode
-    // A recent environment asked for, shown at the start of the next pump.
-    std::optional<std::string> recentToShow_;
 };
 
 } // namespace iblab::app

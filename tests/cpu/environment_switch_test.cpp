@@ -1,7 +1,10 @@
 // The environment switch's phases (app/environment_switch.hpp) without GL: which phases hold
-// the view's last image, when the switch is busy, and that its timing runs from the request
-// through the decode and the bake to the first frame presented.
+// the view's last image, when the switch is busy (a recent map waiting for the next pump
+// included), and that its timing runs from the request through the decode and the bake to the
+// first frame presented.
 #include <chrono>
+#include <optional>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +54,25 @@ TEST(EnvironmentSwitch, HoldsTheLastImageUntilItsOwnBakeIsShown)
 
 // A bake read early from the cache is shown before the file decodes: the view draws it, and
 // the decode that confirms it comes after its first frame.
+TEST(EnvironmentSwitch, ARecentMapWaitsForTheNextPumpWithoutChangingThePhase)
+{
+    EnvironmentSwitch s;
+    s.timeFrom("a.exr");
+    s.showRecentNext("a.exr");
+    EXPECT_TRUE(s.busy()) << "the pump that shows it is still to come";
+    EXPECT_EQ(s.phase(), Phase::Idle) << "the view shows what it showed until that pump";
+    EXPECT_FALSE(s.loading());
+    s.showRecentNext("b.exr"); // a later request replaces it
+    EXPECT_EQ(s.takeRecentNext(), std::optional<std::string>("b.exr"));
+    EXPECT_FALSE(s.takeRecentNext()) << "shown once";
+    EXPECT_FALSE(s.busy());
+
+    s.showRecentNext("a.exr");
+    s.dropRecentNext(); // a switch to a map that is not recent
+    EXPECT_FALSE(s.takeRecentNext());
+    EXPECT_FALSE(s.busy());
+}
+
 TEST(EnvironmentSwitch, AnEarlyBakeIsDrawnAndTheDecodeFollowsItsFirstFrame)
 {
     EnvironmentSwitch s;
