@@ -48,6 +48,24 @@ nlohmann::json overlayTextsJson(const ui::ViewRect& view, bool outside)
     return texts;
 }
 
+// The texts drawn over the view that overlap another one (a title running into the next
+// tile's title).
+nlohmann::json overlappingOverlayTextsJson()
+{
+    nlohmann::json texts = nlohmann::json::array();
+    const std::vector<ui::OverlayText>& drawn = ui::overlayTexts();
+    for (std::size_t i = 0; i < drawn.size(); ++i) {
+        for (std::size_t j = 0; j < drawn.size(); ++j) {
+            const ui::OverlayText &a = drawn[i], &b = drawn[j];
+            if (i != j && a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1) {
+                texts.push_back(a.text);
+                break;
+            }
+        }
+    }
+    return texts;
+}
+
 // Whether the last frame drew a tooltip (ImGui's window for them is "##Tooltip_00").
 bool tooltipShown()
 {
@@ -75,6 +93,7 @@ nlohmann::json GuiApp::state() const
         {"window", {{"width", a.platform.width()}, {"height", a.platform.height()}}},
         {"view", {{"x", p.viewRect.x0}, {"y", p.viewRect.y0}, {"width", p.viewRect.x1 - p.viewRect.x0}, {"height", p.viewRect.y1 - p.viewRect.y0},
                   {"overlay_texts", overlayTextsJson(p.viewRect, false)}, {"overlay_texts_outside", overlayTextsJson(p.viewRect, true)},
+                  {"overlay_texts_overlapping", overlappingOverlayTextsJson()},
                   {"first_image_of_environment", {{"environment", a.firstImageOfEnvironment.environment}, {"status", a.firstImageOfEnvironment.status}}}}},
         {"settings", nlohmann::json::parse(toJsonText(a.settings))},
         {"unsaved_changes", a.unsavedChanges()},

@@ -70,9 +70,19 @@ void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 
     for (const DebugTile& tile : tiles) {
         const float left = viewOrigin.x + tile.rect.x, right = viewOrigin.x + tile.rect.z;
         const float top = viewOrigin.y + viewHeight - tile.rect.w, bottom = viewOrigin.y + viewHeight - tile.rect.y;
-        addText(draw, ImVec2(left, top - 18.0f), text, tile.label.c_str());
+        // A title wider than its tile ran into the next tile's or past the view's edge (both
+        // LUT titles in a view under about 350 px): such a tile shows its short title.
+        const bool fits = ImGui::CalcTextSize(tile.label.c_str()).x <= right - left;
+        addText(draw, ImVec2(left, top - 18.0f), text, (fits ? tile.label : tile.shortLabel).c_str());
         if (!axes) continue;
         // Unit axes on both edges: x = n.v along the bottom, y = roughness up the left side.
+        // Every tick is drawn, but a small tile labels only every second one (or the ends),
+        // as far apart as the labels need: five of them ran into each other under ~150 px.
+        // An end label is aligned to its tick's outer side and the next one centred on its
+        // tick, so two ticks carry both labels when they are 1.5 labels apart (plus a gap).
+        const float labelWidth = 1.5f * ImGui::CalcTextSize("0.00").x + 6.0f, labelHeight = 1.5f * ImGui::GetTextLineHeight() + 4.0f;
+        const auto labelStep = [](float span, float need) { return span / 4.0f >= need ? 1 : span / 2.0f >= need ? 2 : 4; };
+        const int xStep = labelStep(right - left, labelWidth), yStep = labelStep(bottom - top, labelHeight);
         for (int i = 0; i <= 4; ++i) {
             const float t = float(i) / 4.0f;
             char value[8];
@@ -84,9 +94,9 @@ void drawDebugOverlay(const std::vector<DebugTile>& tiles, bool axes, glm::vec2 
             const float labelX = i == 0 ? x : i == 4 ? x - size.x : x - 0.5f * size.x;
             const float labelY = i == 0 ? y - size.y : i == 4 ? y : y - 0.5f * size.y;
             draw->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 5.0f), text);
-            addText(draw, ImVec2(labelX, bottom + 6.0f), text, value);
+            if (i % xStep == 0) addText(draw, ImVec2(labelX, bottom + 6.0f), text, value);
             draw->AddLine(ImVec2(left - 5.0f, y), ImVec2(left, y), text);
-            addText(draw, ImVec2(left - 8.0f - size.x, labelY), text, value);
+            if (i % yStep == 0) addText(draw, ImVec2(left - 8.0f - size.x, labelY), text, value);
         }
     }
     if (!probeText.empty() && !ImGui::GetIO().WantCaptureMouse) ImGui::SetTooltip("%s", probeText.c_str());

@@ -57,7 +57,9 @@ std::vector<DebugTile> debugTiles(ViewMode mode, const std::vector<float>& mipRo
             char label[64];
             const float roughness = std::size_t(m) < mipRoughness.size() ? mipRoughness[std::size_t(m)] : 0.0f;
             std::snprintf(label, sizeof label, "mip %d: roughness %.2f", m, roughness);
-            tiles.push_back({rects[std::size_t(m)], label, m});
+            char shortLabel[32];
+            std::snprintf(shortLabel, sizeof shortLabel, "mip %d r %.2f", m, roughness);
+            tiles.push_back({rects[std::size_t(m)], label, shortLabel, m});
         }
     } else if (mode == ViewMode::Lut) {
         // Inset for the axis ticks the UI draws left of and below each square.
@@ -68,8 +70,9 @@ std::vector<DebugTile> debugTiles(ViewMode mode, const std::vector<float>& mipRo
             r.z = r.x + side;
             r.w = r.y + side;
         }
-        tiles.push_back({rects[0], "Schlick-GGX, k = alpha/2 (x: n.v, y: roughness)", int(GeometryTerm::SchlickGGX)});
-        tiles.push_back({rects[1], "height-correlated Smith (x: n.v, y: roughness)", int(GeometryTerm::HeightCorrelatedSmith)});
+        tiles.push_back({rects[0], "Schlick-GGX, k = alpha/2 (x: n.v, y: roughness)", "Schlick-GGX", int(GeometryTerm::SchlickGGX)});
+        tiles.push_back({rects[1], "height-correlated Smith (x: n.v, y: roughness)", "height-correlated Smith",
+                         int(GeometryTerm::HeightCorrelatedSmith)});
     }
     return tiles;
 }

@@ -12,7 +12,8 @@ namespace iblab {
 
 struct DebugTile {
     glm::vec4 rect{0.0f}; // (x0, y0, x1, y1) in pixels, y up (GL window coordinates)
-    std::string label;    // "mip 2: roughness 0.50", "Schlick-GGX (k = alpha/2)"
+    std::string label;      // "mip 2: roughness 0.50", "Schlick-GGX, k = alpha/2 (x: n.v, y: roughness)"
+    std::string shortLabel; // for a tile narrower than label: "mip 2 r 0.50", "Schlick-GGX"
     int index = 0;        // the mip, or the LUT variant (GeometryTerm)
 };
 
