@@ -34,14 +34,20 @@ BakeSettings tutorialPreset()
     s.cube.faceSize = 512;
     s.irradiance = IrradianceMethod::Riemann;
     s.riemann = {.faceSize = 32, .sampleDelta = 0.025f, .mipFiltering = false, .mipBias = 0.0f};
-    // LearnOpenGL's prefilter samples every mip, the mirror level included (below).
+    // LearnOpenGL's prefilter samples every mip, the mirror level included (below). Each
+    // sample reads the source mip its pdf picks (2.2.1.prefilter.fs lines 90-98: saTexel the
+    // face average of the 512 cube, mip 0.5 log2(saSample / saTexel), mip 0 at roughness 0),
+    // trilinearly from the mip chain ibl_specular.cpp lines 171 and 209 set up: bias 0
+    // against the face-average texel. Its two 0.0001 guards are left out: they move no
+    // sample's lod by more than 0.06 mip (source_samples_test).
+    s.exactTexelSolidAngle = false;
     s.prefilter = {.faceSize = 128,
                    .levels = 5,
                    .layout = RoughnessLayout::Linear,
                    .samples = 1024,
                    .sampleGrowth = 1.0f,
                    .mipSampleScale = {},
-                   .mipFiltering = false,
+                   .mipFiltering = true,
                    .mipBias = 0.0f,
                    .mirrorCopy = false,
                    .brightTexels = 0,

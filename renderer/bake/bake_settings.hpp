@@ -178,7 +178,8 @@ inline constexpr std::int64_t kUnslicedBake = std::int64_t(1) << 62;
 inline constexpr std::array<GeometryTerm, 2> kGeometryTerms{GeometryTerm::SchlickGGX, GeometryTerm::HeightCorrelatedSmith};
 
 // LearnOpenGL's settings: cube 512, irradiance 32x32 by Riemann sum (delta 0.025, mip 0),
-// prefilter 128 with 5 mips x 1024 samples read at source mip 0, LUT 512^2 x 1024 samples
+// prefilter 128 with 5 mips x 1024 samples, each read at the source mip its pdf picks
+// (bias 0, face-average texel), LUT 512^2 x 1024 samples
 // (Schlick-GGX only, as the tutorial). SH9 is computed as well (it costs milliseconds).
 BakeSettings tutorialPreset();
 // The fast and accurate choice (docs/bake.md has the measurements): cube sized from the

@@ -1,5 +1,7 @@
 // The convention presets (renderer/conventions.hpp): each names a valid bake preset, bakes
 // only the LUT it shades with, and reproduces the published choices that make viewers differ.
+#include <cmath>
+#include <numbers>
 #include <set>
 #include <string>
 
@@ -37,7 +39,19 @@ TEST(ConventionPresets, ReproduceWhatEachViewerChose)
 {
     const bake::BakeSettings learnOpenGl = conventionBakeSettings(preset("learnopengl"));
     EXPECT_EQ(learnOpenGl.prefilter.layout, bake::RoughnessLayout::Linear);
-    EXPECT_FALSE(learnOpenGl.prefilter.mipFiltering);
+    // 2.2.1.prefilter.fs lines 92-96: each sample reads mip 0.5 log2(saSample / saTexel),
+    // saTexel = 4 pi / (6 512^2), saSample = 1 / (N pdf) (its 0.0001 guards aside:
+    // source_samples_test), mip 0 at roughness 0; not source mip 0 throughout.
+    EXPECT_TRUE(learnOpenGl.prefilter.mipFiltering);
+    EXPECT_FALSE(learnOpenGl.exactTexelSolidAngle);
+    EXPECT_EQ(learnOpenGl.cube.faceSize, 512);
+    {
+        const float resolution = 512.0f, n = 1024.0f, pdf = 0.37f;
+        const float saTexel = 4.0f * std::numbers::pi_v<float> / (6.0f * resolution * resolution);
+        const float saSample = 1.0f / (n * pdf);
+        EXPECT_NEAR(sourceLodFromPdf(pdf, n, float(learnOpenGl.cube.faceSize), learnOpenGl.prefilter.mipBias),
+                    0.5f * std::log2(saSample / saTexel), 1e-3f);
+    }
     EXPECT_EQ(preset("learnopengl").geometry, GeometryTerm::SchlickGGX);
     EXPECT_TRUE(preset("learnopengl").roughFresnelOnLut);
     // 2.2.1.pbr.fs: prefilteredColor * (F * brdf.x + brdf.y), nothing for multiple scattering.

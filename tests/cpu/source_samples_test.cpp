@@ -1,7 +1,10 @@
 // The bake's sample tables (renderer/bake/source_samples.hpp) against the samplers they are
 // built from: each entry is the sampler's direction, and its lod term, completed with the
 // texel's term, is the PDF-based lod prefilter_lod.glsl computes from the pdf directly.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -74,6 +77,38 @@ TEST(SourceSamples, RoughnessZeroIsEverySampleOnTheNormal)
 // How many samples each prefiltered mip draws: the default doubles mip 3 on the tripling rule
 // (docs/bake.md), a preset with its own rule keeps it, and a malformed scale list is refused
 // naming its key.
+// The tutorial preset's source lods against LearnOpenGL's own (2.2.1.prefilter.fs lines
+// 87-96): pdf = D (n.h) / (4 h.v) + 0.0001, saSample = 1 / (N pdf + 0.0001), saTexel the
+// face average of its 512 cube. The preset drops the two guards; this bounds what that
+// moves, on every sample of every mip it bakes.
+TEST(SourceSamples, TutorialLodsAreLearnOpenGlsWithinItsGuards)
+{
+    const BakeSettings tutorial = tutorialPreset();
+    const PrefilterSettings& p = tutorial.prefilter;
+    ASSERT_TRUE(p.mipFiltering);
+    ASSERT_FALSE(tutorial.exactTexelSolidAngle);
+    const double resolution = tutorial.cube.faceSize; // LOGL: 512.0
+    const double saTexel = 4.0 * std::numbers::pi / (6.0 * resolution * resolution);
+    const float maxLod = float(std::log2(resolution));
+    double worst = 0.0;
+    for (int level = 1; level < p.levels; ++level) {
+        const float roughness = prefilterRoughnessFromMip(float(level), float(p.levels), int(p.layout));
+        const int n = prefilterSamples(p, level);
+        const double a2 = std::pow(double(roughness), 4.0);
+        for (const glm::vec4& e : ggxReflectedSampleTable(roughness, n, p.mipBias)) {
+            const glm::dvec3 h = glm::normalize(glm::dvec3(glm::vec3(e)) + glm::dvec3(0.0, 0.0, 1.0));
+            const double t = h.z * h.z * (a2 - 1.0) + 1.0;
+            const double pdf = a2 / (std::numbers::pi * t * t) / 4.0 + 0.0001; // v = n: n.h = h.v
+            const double saSample = 1.0 / (double(n) * pdf + 0.0001);
+            const float theirs = std::clamp(float(0.5 * std::log2(saSample / saTexel)), 0.0f, maxLod);
+            const float ours = std::clamp(sourceLodFromSampleTerm(e.w, cubeAverageTexelSolidAngle(float(resolution))), 0.0f, maxLod);
+            worst = std::max(worst, double(std::abs(ours - theirs)));
+        }
+    }
+    EXPECT_LT(worst, 0.06);
+    std::printf("tutorial preset: largest source-lod difference from LearnOpenGL's guarded formula %.4f mip\n", worst);
+}
+
 TEST(PrefilterSampleCounts, DefaultDoublesMipThreeAndPresetsKeepTheirRule)
 {
     auto counts = [](const PrefilterSettings& p) {

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -42,6 +43,31 @@ TEST(EngineExportCli, WritesTheEnginesFilesAndRefusesAMissingOut)
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "studio" / "studio_ibl.ktx"));
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "studio" / "studio_skybox.ktx"));
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "studio" / "sh.txt"));
+}
+
+// `iblab measure` on an exported bake (cmgen's layout, read back by the import) answers in
+// the measures and JSON keys of `iblab bake --json`'s "errors", one entry per level it holds.
+TEST(EngineExportCli, MeasureReportsAForeignBakeInTheBakesErrorKeys)
+{
+    testing::TempDirectory dir("export-measure");
+    const std::string out = (dir.path() / "axes").string();
+    std::string baked;
+    ASSERT_EQ(runIblab("bake --env 'builtin:axes?width=64' --no-cache --prefilter-size 64 --export filament --json --out '" + out + "'", baked), 0)
+        << baked;
+    std::string measured;
+    ASSERT_EQ(runIblab("measure --env 'builtin:axes?width=64' --no-cache --json --bake '" + out + "/axes_ibl.ktx'", measured), 0) << measured;
+    const auto b = nlohmann::json::parse(baked.substr(baked.find('{')))["errors"];
+    const auto m = nlohmann::json::parse(measured.substr(measured.find('{')))["errors"];
+    std::vector<std::string> bakeKeys, measureKeys;
+    for (const auto& [key, value] : b.items()) bakeKeys.push_back(key);
+    for (const auto& [key, value] : m.items()) measureKeys.push_back(key);
+    EXPECT_EQ(measureKeys, bakeKeys);
+    // A 64 face in cmgen's layout: (6 + 1) - 4 levels, each measured with the bake's keys.
+    ASSERT_EQ(m["prefilter"].size(), 3u) << measured;
+    for (const auto& level : m["prefilter"]) {
+        for (const auto& [key, value] : b["prefilter"][0].items()) EXPECT_TRUE(level.contains(key)) << key;
+        EXPECT_LT(level["relative_rmse"].get<double>(), 0.05) << level.dump(); // a smooth map, read back in half floats
+    }
 }
 
 } // namespace

@@ -4,6 +4,7 @@
 // reader is absent (scripts/install-deps.sh installs them all).
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -298,6 +299,26 @@ FilamentSh readShTxt(const std::filesystem::path& path)
         if (std::sscanf(line.c_str(), " (%lf, %lf, %lf)", &sh[std::size_t(i)].x, &sh[std::size_t(i)].y, &sh[std::size_t(i)].z) != 3)
             ADD_FAILURE() << path << ": cannot read line " << i << ": " << line;
     return sh;
+}
+
+// The `filament` layout's mip count against cmgen's own _ibl.ktx (KTX 1.1 header field
+// numberOfMipmapLevels, bytes 56-59) at face sizes around its 16^2 minimum
+// (iblRoughnessPrefilter: (log2 size + 1) - log2 16, every level when the face is not above
+// 16): cmgen's generated UV grid (an input name that is no file) keeps it fast.
+TEST(EngineExportLayout, FilamentMipCountIsCmgens)
+{
+    if (std::system("command -v cmgen > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "cmgen is not installed (Debian's libfilament-tools, scripts/install-deps.sh)";
+    TempDirectory dir("export-cmgen-levels");
+    for (int size : {16, 64, 256}) {
+        const std::filesystem::path out = dir.path() / ("c" + std::to_string(size));
+        const std::string command = "cmgen -q --format=ktx --size=" + std::to_string(size) + " --ibl-samples=2 --deploy='" + out.string() + "' uv4 > /dev/null 2>&1";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        std::ifstream in(out / (out.filename().string() + "_ibl.ktx"), std::ios::binary);
+        std::uint32_t header[16] = {};
+        ASSERT_TRUE(in.read(reinterpret_cast<char*>(header), sizeof header)) << size;
+        EXPECT_EQ(header[14], std::uint32_t(bake::engineLayout(bake::EngineFormat::Filament, size).levels)) << "face " << size;
+    }
 }
 
 // The exported SH against cmgen's on the same map: within 3% per band. Maps: a repository
