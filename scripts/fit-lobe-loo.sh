@@ -8,7 +8,7 @@
 # leave-one-out table on the map it left out, and the full fit on maps no fit has seen: the
 # unseen pmndrs maps (../shared/assets/hdri/pmndrs) and the synthetic ones of
 # scripts/heldout-maps.py. The committed table (what the build shades with) is measured beside
-# each. Prints Markdown tables: per map and scene the split sum's relative RMSE, each table's,
+# each. Prints Markdown tables, worst case first: per map and scene the split sum's relative RMSE, each table's,
 # its ratio to the split sum's, then the worst and median ratio of (i) the leave-one-out tables
 # on their left-out maps and (ii) the full fit on the unseen maps.
 #   scripts/fit-lobe-loo.sh [OUT_DIR]        (default build/lobe-loo; a rerun keeps the tables,
@@ -90,7 +90,7 @@ if all(os.path.exists(f"{out}/loo-{m}.csv") for m in maps):
           "beside it the full fit (all 8 maps, this one included) and the committed table. Relative RMSE (ratio to the split sum's):\n")
     print("| map | scene | split sum | left out (fitted without it) | full fit | committed |")
     print("|---|---|---|---|---|---|")
-    loo, full, committed = [], [], []
+    loo, full, committed, lines = [], [], [], []
     for m in maps:
         rows = read(f"{out}/loo-{m}.csv")
         for s in scenes:
@@ -100,14 +100,16 @@ if all(os.path.exists(f"{out}/loo-{m}.csv") for m in maps):
             for name, acc in [(f"loo-{m}", loo), ("full", full), ("committed", committed)]:
                 acc.append(p[name] / e0)
                 cells.append(f"{p[name]:.3f} ({p[name] / e0:.2f})")
-            print(f"| {m} | {scene_name[s]} | {e0:.3f} | " + " | ".join(cells) + " |")
+            lines.append((p[f"loo-{m}"] / e0, f"| {m} | {scene_name[s]} | {e0:.3f} | " + " | ".join(cells) + " |"))
+    for _, line in sorted(lines, key=lambda l: -l[0]):  # worst case first
+        print(line)
     print(f"| **ratio** | | | {summary(loo)} | {summary(full)} | {summary(committed)} |\n")
 rows = read(f"{out}/unseen.csv")
 print("Maps no fit has seen (pmndrs, synthetic): the full fit and the committed table. Relative RMSE (ratio to the split sum's):\n")
 print("| map | scene | split sum | full fit | committed |")
 print("|---|---|---|---|---|")
 full, committed = [], []
-for (env, s), p in sorted(rows.items(), key=lambda kv: (kv[0][0], scenes.index(kv[0][1]))):
+for (env, s), p in sorted(rows.items(), key=lambda kv: -kv[1]["full"] / kv[1]["split-sum"]):  # worst case first
     e0 = p["split-sum"]
     full.append(p["full"] / e0)
     committed.append(p["committed"] / e0)

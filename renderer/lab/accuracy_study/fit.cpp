@@ -385,15 +385,14 @@ int fitCommand(const StudyOptions& a)
 {
     const auto t0 = Clock::now();
     std::vector<EnvCase> envs;
-    bool leftOut = false;
-    for (const auto& [spec, set] : environmentList("bundled", {})) {
-        if (!a.leaveOut.empty() && std::filesystem::path(spec).stem().string() == a.leaveOut) {
-            leftOut = true;
-            continue;
-        }
-        envs.push_back(loadCase(spec, set, a.width, true, a.bakes));
+    std::vector<std::pair<std::string, std::string>> maps = environmentList("bundled", {});
+    if (!a.leaveOut.empty()) {
+        // Checked before the maps load, so that a misspelt name costs nothing.
+        const auto left = std::remove_if(maps.begin(), maps.end(), [&](const auto& m) { return std::filesystem::path(m.first).stem().string() == a.leaveOut; });
+        if (left == maps.end()) throw std::runtime_error("--leave-out " + a.leaveOut + ": no bundled map of that name (assets/environments)");
+        maps.erase(left, maps.end());
     }
-    if (!a.leaveOut.empty() && !leftOut) throw std::runtime_error("--leave-out " + a.leaveOut + ": no bundled map of that name (assets/environments)");
+    for (const auto& [spec, set] : maps) envs.push_back(loadCase(spec, set, a.width, true, a.bakes));
     std::fprintf(stderr, "fit on %zu bundled maps at %d wide (%.1f s to load and prefilter)\n", envs.size(), a.width, secondsSince(t0));
 
     LobeFitTable initTable;
