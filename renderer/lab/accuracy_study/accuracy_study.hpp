@@ -84,6 +84,9 @@ struct StudyOptions {
     // units. 0: cells fitted alone, as before.
     double smooth = 0.0;
     int smoothPasses = 4;
+    // Leave-one-out (scripts/fit-lobe-loo.sh): fit on the bundled maps but this one (its
+    // study name, e.g. city), to measure the table on a map it has not seen.
+    std::string leaveOut;
 };
 
 int evalCommand(const StudyOptions& options);

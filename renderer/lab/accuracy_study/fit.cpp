@@ -1,4 +1,4 @@
-// accuracy_study fit refits the lobe table on the 8 bundled maps only and writes it as a C++
+// accuracy_study fit refits the lobe table on the 8 bundled maps only (--leave-out: 7) and writes it as a C++
 // include (report.cpp). Per (n.v, roughness) cell, random (n, v) pairs on every map give the
 // full integral for copper and for a dielectric; Nelder-Mead then moves the cell's reads
 // (direction towards the normal, roughness; two of each for the Fresnel split) to minimise
@@ -11,7 +11,9 @@
 #include "accuracy_study.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <mutex>
@@ -85,6 +87,14 @@ struct FitSample {
     glm::dvec3 diffuseDielectric;
 };
 
+// FNV-1a of a map's name, 32 bits: one of the seeds of its frames.
+unsigned nameHash(const std::string& name)
+{
+    std::uint32_t h = 2166136261u;
+    for (const char c : name) h = (h ^ std::uint32_t(static_cast<unsigned char>(c))) * 16777619u;
+    return h;
+}
+
 // A cell's texels: the first plane's, and layout 4's second (ignored by the others).
 using Cell = std::array<glm::vec4, 2>;
 
@@ -121,7 +131,8 @@ void setCell(LobeFitTable& table, int col, int row, const Cell& cell)
 
 // One cell's fitting problem: `--frames` random frames (n uniform on the sphere, v at the
 // cell's n.v with a random azimuth) on every map with their full integrals, seeded by the
-// cell alone, and the objective of a candidate cell.
+// cell and the map's name, so that a map's frames (and their cached integrals) are the same
+// whichever maps are fitted with it (--leave-out), and the objective of a candidate cell.
 class CellProblem {
 public:
     CellProblem(const StudyOptions& a, const std::vector<EnvCase>& envs, int cellCol, int cellRow, const Cell& splitSum)
@@ -131,10 +142,11 @@ public:
         // The compensation (--no-multiscatter: none) is a constant of the cell for each F0.
         compensationCopper_ = a.multiscatter ? specularEnergyCompensation(kCopper, lut_.z) : glm::dvec3(1.0);
         compensationDielectric_ = a.multiscatter ? specularEnergyCompensation(glm::dvec3(kDielectricF0), lut_.z) : glm::dvec3(1.0);
-        std::mt19937 rng(a.seed * 7919u + unsigned(cellRow * a.size + cellCol));
         std::uniform_real_distribution<double> u(0.0, 1.0);
         for (std::size_t envIndex = 0; envIndex < envs.size(); ++envIndex) {
             const EnvCase& env = envs[envIndex];
+            std::seed_seq seeds{a.seed, unsigned(cellRow * a.size + cellCol), nameHash(env.name)};
+            std::mt19937 rng(seeds);
             std::vector<Query> queries;
             for (int k = 0; k < a.frames; ++k) {
                 const double z = 2.0 * u(rng) - 1.0, phi = 2.0 * kPi * u(rng);
@@ -373,7 +385,14 @@ int fitCommand(const StudyOptions& a)
 {
     const auto t0 = Clock::now();
     std::vector<EnvCase> envs;
-    for (const auto& [spec, set] : environmentList("bundled", {})) envs.push_back(loadCase(spec, set, a.width, true, a.bakes));
+    std::vector<std::pair<std::string, std::string>> maps = environmentList("bundled", {});
+    if (!a.leaveOut.empty()) {
+        // Checked before the maps load, so that a misspelt name costs nothing.
+        const auto left = std::remove_if(maps.begin(), maps.end(), [&](const auto& m) { return std::filesystem::path(m.first).stem().string() == a.leaveOut; });
+        if (left == maps.end()) throw std::runtime_error("--leave-out " + a.leaveOut + ": no bundled map of that name (assets/environments)");
+        maps.erase(left, maps.end());
+    }
+    for (const auto& [spec, set] : maps) envs.push_back(loadCase(spec, set, a.width, true, a.bakes));
     std::fprintf(stderr, "fit on %zu bundled maps at %d wide (%.1f s to load and prefilter)\n", envs.size(), a.width, secondsSince(t0));
 
     LobeFitTable initTable;

@@ -21,13 +21,14 @@ const char* const kUsage =
     "                           [--bench-scenes] [--bakes DIR]\n"
     "       accuracy_study fit  [--width 256] [--taps 1|2|3|4] [--frames 96] [--size 16] [--out FILE.inc]\n"
     "                           [--min-roughness 0.15] [--mixed-objective] [--init TABLE.inc] [--seed 14] [--bakes DIR]\n"
-    "                           [--per-map-ratio] [--smooth 0] [--smooth-passes 4]\n"
+    "                           [--per-map-ratio] [--smooth 0] [--smooth-passes 4] [--leave-out MAP]\n"
     "eval measures every method against the full integral on the bench's scenes (markdown on stdout);\n"
     "fit refits the lobe table on the 8 bundled maps (renderer/ibl/specular_lobe_fit.inc by default).\n"
     "--bench-scenes: the GPU measure's scenes (scripts/measure-lobe.sh): a copper sphere per --roughness, the grid.\n"
     "--bakes DIR: read each map's prefiltered cube from DIR/<map>/ (scripts/accuracy-bakes.sh writes them).\n"
     "--smooth W: after fitting each cell alone, --smooth-passes passes re-fit every cell with W times its\n"
     "squared distance from the lines through its neighbours added to its objective (no rings between cells).\n"
+    "--leave-out MAP: fit on the bundled maps but MAP (leave-one-out; scripts/fit-lobe-loo.sh).\n"
     "See docs/accuracy-study.md. Caches: <build>/accuracy_cache (delete it to recompute).\n";
 
 std::vector<double> parseList(const std::string& text)
@@ -86,6 +87,7 @@ int main(int argc, char** argv)
             else if (k == "--seed") a.seed = unsigned(std::stoul(next()));
             else if (k == "--smooth") a.smooth = std::stod(next());
             else if (k == "--smooth-passes") a.smoothPasses = std::stoi(next());
+            else if (k == "--leave-out") a.leaveOut = next();
             else {
                 std::fprintf(stderr, "unknown option %s\n%s", k.c_str(), kUsage);
                 return 2;

@@ -96,7 +96,8 @@ std::string lobeTableInclude(const LobeFitTable& table, const StudyOptions& a)
       << (a.multiscatter ? "" : " --no-multiscatter") << (a.bakes.empty() ? "" : " --bakes DIR")
       << (a.init.empty() ? std::string() : " --init " + std::filesystem::path(a.init).filename().string());
     if (a.smooth > 0.0) o << " --smooth " << a.smooth << " --smooth-passes " << a.smoothPasses;
-    o << "` on the 8 bundled maps\n"
+    if (!a.leaveOut.empty()) o << " --leave-out " << a.leaveOut;
+    o << "` on the " << (a.leaveOut.empty() ? "8 bundled maps" : "bundled maps but " + a.leaveOut) << "\n"
       << "// (assets/environments), " << a.frames << " random (n, v) per map and cell; objective: the mean squared per-pixel\n"
       << "// relative error (common/error_metrics.glsl) of copper's specular plus that of a dielectric's specular + diffuse\n"
       << "// (F0 0.04, copper base colour)" << (a.mixedObjective ? " and of the dielectric's specular alone (--mixed-objective)" : "")

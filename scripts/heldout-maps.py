@@ -1,0 +1,59 @@
+# Synthetic maps that no fit or bake setting has seen (issue #29): two small suns, a thin
+# bright strip, a sun on a cube corner, a 1e6 sun on a cube edge, a sun near the pole, 24
+# lamps on a dark sky. 1024 x 512 Radiance .hdr, flat RGBE, the same bytes every run (seeded).
+#   python3 scripts/heldout-maps.py OUT_DIR [NAME ...]      (scripts/fit-lobe-loo.sh calls it)
+import math, os, random, sys
+W, H = 1024, 512
+def direction(x, y):
+    phi = ((x + 0.5) / W - 0.5) * 2 * math.pi
+    th = (y + 0.5) / H * math.pi
+    s = math.sin(th)
+    return (s * math.sin(phi), math.cos(th), -s * math.cos(phi))
+def norm(v):
+    l = math.sqrt(sum(c * c for c in v)); return tuple(c / l for c in v)
+def ea(el, az):
+    el, az = math.radians(el), math.radians(az)
+    return (math.cos(el) * math.sin(az), math.sin(el), -math.cos(el) * math.cos(az))
+def rgbe(r, g, b):
+    m = max(r, g, b)
+    if m < 1e-32: return b'\0\0\0\0'
+    e = math.frexp(m)[1]; sc = 256.0 / 2 ** e
+    return bytes((min(255, int(r * sc)), min(255, int(g * sc)), min(255, int(b * sc)), e + 128))
+def write(name, fn):
+    out = bytearray(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (H, W))
+    for y in range(H):
+        for x in range(W):
+            out += rgbe(*fn(direction(x, y)))
+    open(name, "wb").write(out)
+def disc(d, c, deg):
+    return sum(a * b for a, b in zip(d, c)) > math.cos(math.radians(deg / 2))
+def sky(d, lo, hi):  # a gradient sky, bluish
+    t = 0.5 * (d[1] + 1)
+    v = lo + (hi - lo) * t
+    return (0.7 * v, 0.85 * v, v)
+random.seed(29)
+maps = {}
+s1, s2 = ea(30, 20), ea(12, -140)
+maps["twosuns"] = lambda d: tuple(a + (2e4 if disc(d, s1, 0.5) else 0) + (5e3 if disc(d, s2, 0.5) else 0) for a in sky(d, 0.02, 0.3))
+ax = norm((1, 0.02, -0.3))
+def strip(d):
+    # a thin arc: within 0.2 degrees of a great circle through ax and +y, 40 degrees long
+    n = norm((ax[2], 0, -ax[0]))
+    dist = abs(sum(a * b for a, b in zip(d, n)))
+    on = dist < math.sin(math.radians(0.1)) and d[1] > 0 and d[1] < math.sin(math.radians(40)) and sum(a * b for a, b in zip(d, ax)) > 0
+    return tuple(a + (800 if on else 0) for a in sky(d, 0.05, 0.5))
+maps["strip"] = strip
+corner = norm((1, 1, 1))
+maps["corner"] = lambda d: tuple(a + (1e5 if disc(d, corner, 0.5) else 0) for a in sky(d, 0.2, 1.0))
+yaw = random.uniform(0, 360)
+edge = ea(0.3, 45 + yaw % 1)  # near the vertical edge between two side faces
+maps["edge1e6"] = lambda d: tuple(a + (1e6 if disc(d, edge, 0.5) else 0) for a in sky(d, 0.5, 2.0))
+pole = ea(84, random.uniform(0, 360))
+maps["pole"] = lambda d: tuple(a + (3e4 if disc(d, pole, 0.5) else 0) for a in sky(d, 0.05, 0.4))
+lamps = [ea(random.uniform(-10, 60), random.uniform(0, 360)) for _ in range(24)]
+maps["lamps"] = lambda d: tuple(a + (300 if any(disc(d, c, 2) for c in lamps) else 0) for a in sky(d, 0.01, 0.05))
+out = sys.argv[1]
+os.makedirs(out, exist_ok=True)
+for name in sys.argv[2:] or maps:
+    write(os.path.join(out, "%s.hdr" % name), maps[name])
+    print(name, flush=True)
