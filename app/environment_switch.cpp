@@ -104,4 +104,13 @@ void EnvironmentSwitch::frameDrawn(Clock::time_point presented)
     else earlyFrameDrawn_ = true;
 }
 
+// Out of line: inlined into a caller, GCC 12 reports the moved-from string as maybe
+// uninitialised (-Wmaybe-uninitialized, a false positive of std::optional's move).
+std::optional<std::string> EnvironmentSwitch::takeRecentNext()
+{
+    std::optional<std::string> next = std::move(recentNext_);
+    recentNext_.reset();
+    return next;
+}
+
 } // namespace iblab::app

@@ -84,7 +84,7 @@ public:
     // early bake, say). A later request replaces it.
     void showRecentNext(const std::string& spec) { recentNext_ = spec; }
     void dropRecentNext() { recentNext_.reset(); }
-    std::optional<std::string> takeRecentNext() { return std::exchange(recentNext_, std::nullopt); }
+    std::optional<std::string> takeRecentNext();
 
     // --- the decode ---
     // The file waits for its early bake's first frame, or a decode already runs.
