@@ -138,7 +138,8 @@ struct MomentsUniforms {
 struct PrefilterUniforms {
     explicit PrefilterUniforms(const gl::ShaderProgram& p)
         : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
-          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos")
+          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos"),
+          exactLevel(p, "uExactLevel"), exactFaceSize(p, "uExactFaceSize")
     {
     }
     gl::Uniform<float> roughness;
@@ -149,6 +150,8 @@ struct PrefilterUniforms {
     gl::Uniform<float> alpha2;
     gl::Uniform<float> brightScale;
     gl::Uniform<float> nearCos;
+    gl::Uniform<int> exactLevel; // -1: the base is sampled
+    gl::Uniform<int> exactFaceSize;
 };
 
 struct SamplePrefilteredUniforms {
@@ -518,6 +521,10 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         uniforms.alpha2.set(float(alpha * alpha));
         uniforms.brightScale.set(float(alpha * alpha / (kPi * ggxPrefilterNormalization(roughness))));
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
+        const BakedTexture& base = bright->bases[std::size_t(lights->base)];
+        const int exactLevel = exactSumSourceLevel(settings, base.size, base.levels, roughness);
+        uniforms.exactLevel.set(exactLevel);
+        uniforms.exactFaceSize.set(exactLevel >= 0 ? base.levelSize(exactLevel) : 0);
     }
     // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop of a bake without the mirror copy does).
     bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
