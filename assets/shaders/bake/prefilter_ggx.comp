@@ -60,14 +60,13 @@ vec3 sumBrightTexels(vec3 n)
     return sum * uBrightScale;
 }
 
-// uExactLevel >= 0: the base summed over every texel of its mip uExactLevel (a face of
-// uExactFaceSize, texels at most alpha / 2 across, so that the weight is nearly constant
+// uExactFaceSize > 0: the base summed over every texel of its mip with a face of that size
+// (texels at most alpha / 2 across, so that the weight is nearly constant
 // over each; the host chooses it, bright_texels.hpp's exactSumSourceLevel), each texel
 // weighted by D(h) max(0, n.l) times its solid angle, and normalised by the weights' sum:
 // a constant map stays exact. Every lane reads the same source texel at the same time.
 // Where the samples see a large bright area through a few reads that move with the texel,
 // this sees every texel of it with its weight.
-uniform int uExactLevel;
 uniform int uExactFaceSize;
 
 vec3 exactBaseSum(vec3 n)
@@ -75,7 +74,7 @@ vec3 exactBaseSum(vec3 n)
     vec3 sum = vec3(0.0);
     float weightSum = 0.0;
     float size = float(uExactFaceSize);
-    float lod = float(uExactLevel);
+    float lod = round(log2(uSourceFaceSize / size)); // the base's mip 0 is the environment's size
     for (int face = 0; face < 6; ++face)
         for (int row = 0; row < uExactFaceSize; ++row)
             for (int x = 0; x < uExactFaceSize; ++x) {
@@ -107,7 +106,7 @@ void main()
     }
     vec3 radiance;
 #if BRIGHT_CAPACITY > 0
-    if (uExactLevel >= 0)
+    if (uExactFaceSize > 0)
         radiance = exactBaseSum(n);
     else
 #endif
