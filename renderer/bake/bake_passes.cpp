@@ -138,7 +138,7 @@ struct MomentsUniforms {
 struct PrefilterUniforms {
     explicit PrefilterUniforms(const gl::ShaderProgram& p)
         : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
-          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos")
+          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos"), exactFaceSize(p, "uExactFaceSize")
     {
     }
     gl::Uniform<float> roughness;
@@ -149,6 +149,7 @@ struct PrefilterUniforms {
     gl::Uniform<float> alpha2;
     gl::Uniform<float> brightScale;
     gl::Uniform<float> nearCos;
+    gl::Uniform<int> exactFaceSize; // of the base's mip summed exactly; 0: the base is sampled
 };
 
 struct SamplePrefilteredUniforms {
@@ -498,14 +499,12 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     const int capacity = sampleTableCapacity(sampleCount);
     const float roughness = prefilterMipRoughness(settings, slice.level);
     // The mirror level has no lobe to weight lights by: it reads the environment itself.
-    const PrefilterBrightTexels::Level* lights = nullptr;
-    if (bright && roughness > 0.0f && std::size_t(slice.level) < bright->levels.size() && bright->levels[std::size_t(slice.level)].base >= 0)
-        lights = &bright->levels[std::size_t(slice.level)];
+    const bool split = bright && roughness > 0.0f && std::size_t(slice.level) < bright->levels.size() && bright->levels[std::size_t(slice.level)].base >= 0;
+    const PrefilterBrightTexels::Level* lights = split ? &bright->levels[std::size_t(slice.level)] : nullptr;
     const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0);
     const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias, settings.sampleRotation);
     float weightSum = 0.0f;
-    for (const glm::vec4& sample : samples)
-        weightSum += sample.z;
+    for (const glm::vec4& sample : samples) weightSum += sample.z;
     const gl::Buffer table = bindSampleTable(program, capacity, samples);
     const PrefilterUniforms& uniforms = program.uniforms<PrefilterUniforms>();
     uniforms.roughness.set(roughness);
@@ -518,12 +517,13 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         uniforms.alpha2.set(float(alpha * alpha));
         uniforms.brightScale.set(float(alpha * alpha / (kPi * ggxPrefilterNormalization(roughness))));
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
+        const int exactLevel = exactSumSourceLevel(settings, environment.size, environment.levels, roughness); // the bases' sizes
+        uniforms.exactFaceSize.set(exactLevel >= 0 ? environment.levelSize(exactLevel) : 0);
     }
     // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop of a bake without the mirror copy does).
     bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
-    const float copyLod = std::log2(float(environment.size) / float(out.levelSize(slice.level)));
-    uniforms.copyLod.set(std::clamp(copyLod, 0.0f, float(environment.levels - 1)));
+    uniforms.copyLod.set(std::clamp(std::log2(float(environment.size) / float(out.levelSize(slice.level))), 0.0f, float(environment.levels - 1)));
     dispatchCube(program, out, slice);
 }
 

@@ -132,6 +132,13 @@ struct PrefilterSettings {
     // Texels above this multiple of the map's mean luminance are bright (fewer when the caps
     // above are reached): the sampled rest then has at most this dynamic range.
     float brightThreshold = 4.0f;
+    // With the split, a mip whose base can be summed exactly over a source mip with texels at
+    // most half of alpha radians across (and at least an 8 face), of at most this many texels,
+    // is summed so (every texel of that mip, GGX-weighted, normalised by the weights' sum)
+    // instead of sampled: 1536 (a 16^2 face) takes mips 4 and 5 of the default (roughness 0.55
+    // and 1), whose sampled bases aliased large bright areas (docs/bake.md). 0: every mip's
+    // base is sampled.
+    int exactSumTexels = 1536;
     // Degrees the sample set is turned about each texel's normal (0: as generated).
     float sampleRotation = 0.0f;
     bool operator==(const PrefilterSettings&) const = default;

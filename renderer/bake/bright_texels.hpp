@@ -95,6 +95,12 @@ struct PrefilterBrightTexels {
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
                                         const PrefilterSettings& settings);
 
+// The mip of a base (face baseSize, baseLevels mips) that level `roughness` sums exactly
+// instead of sampling (PrefilterSettings::exactSumTexels): the smallest whose texels are at
+// most alpha / 2 across at a face centre and whose face is at least 8 (the finest where
+// none is), or -1 where it has more than exactSumTexels texels.
+int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness);
+
 // The most entries pairs of a level's block (far cells and lights together): GL guarantees
 // 16 KB uniform blocks, llvmpipe allows 64 KB (4096 entries); a driver with less is told so.
 inline constexpr int kMaxBrightLights = 2048;

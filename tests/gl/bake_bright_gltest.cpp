@@ -128,6 +128,25 @@ TEST_F(GlTest, BrightSunErrorDoesNotDependOnYaw)
     EXPECT_GT(worstSampled, kPerMipBound);
 }
 
+TEST_F(GlTest, LargeBrightAreasMeetThePerMipBoundAtEveryMip)
+{
+    // Six discs of 15 degrees at 200 over a black sky: far more bright texels than the caps
+    // hold, so the threshold rises and most of their radiance stays in the base. Sampled,
+    // the rough mips (4, 5) see the discs through a table that every texel shares and alias
+    // them (0.038 and 0.054); summed over every texel of a small source mip they do not.
+    auto shaders = testing::bakeShaderLibrary();
+    const std::string spec = "builtin:lights?width=1024&count=6&size=15&intensity=200";
+    const std::vector<double> errors = perMipErrors(shaders, spec, brightTexelsSplit());
+    ASSERT_EQ(errors.size(), 5u);
+    for (std::size_t m = 0; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << spec << " mip " << m + 1;
+    EXPECT_LE(std::max(errors[3], errors[4]), 0.02) << spec;
+    bake::BakeSettings sampledBase = brightTexelsSplit();
+    sampledBase.prefilter.exactSumTexels = 0;
+    const std::vector<double> sampled = perMipErrors(shaders, spec, sampledBase);
+    EXPECT_GT(std::max(sampled[3], sampled[4]), kPerMipBound) << spec;
+}
+
 // Every prefiltered texel of the default bake of a white environment, within 0.1% of 1 (the
 // half-float store rounds 1 by at most 4.9e-4). A guard on the sampled part's normalisation:
 // a uniform map has no texel above the threshold, so this cannot tell the estimators apart.

@@ -59,6 +59,34 @@ vec3 sumBrightTexels(vec3 n)
     }
     return sum * uBrightScale;
 }
+
+// uExactFaceSize > 0: the base summed over every texel of its mip with a face of that size
+// (texels at most alpha / 2 across, so that the weight is nearly constant
+// over each; the host chooses it, bright_texels.hpp's exactSumSourceLevel), each texel
+// weighted by D(h) max(0, n.l) times its solid angle, and normalised by the weights' sum:
+// a constant map stays exact. Every lane reads the same source texel at the same time.
+// Where the samples see a large bright area through a few reads that move with the texel,
+// this sees every texel of it with its weight.
+uniform int uExactFaceSize;
+
+vec3 exactBaseSum(vec3 n)
+{
+    vec3 sum = vec3(0.0);
+    float weightSum = 0.0;
+    float size = float(uExactFaceSize);
+    float lod = round(log2(uSourceFaceSize / size)); // the base's mip 0 is the environment's size
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < uExactFaceSize; ++row)
+            for (int x = 0; x < uExactFaceSize; ++x) {
+                vec3 l = cubeFaceUvToDirection(face, (vec2(x, row) + 0.5) / size);
+                float c = dot(n, l);
+                float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
+                float w = max(c, 0.0) / (t * t) * cubeTexelSolidAngle(l, size);
+                sum += w * textureLod(uEnvironment, l, lod).rgb;
+                weightSum += w;
+            }
+    return sum / weightSum;
+}
 #endif
 
 uniform float uRoughness;      // perceptual; 0 selects the mirror level
@@ -76,14 +104,22 @@ void main()
         storeOutput(texel, textureLod(uEnvironment, n, uCopyLod).rgb);
         return;
     }
-    mat3 frame = tangentFrame(n);
-    vec3 sum = vec3(0.0);
-    int count = uSampleCount;
-    for (int i = 0; i < count; ++i) {
-        vec4 s = sourceSamples[i];
-        sum += readSource(s.w, frame * s.xyz) * s.z;
+    vec3 radiance;
+#if BRIGHT_CAPACITY > 0
+    if (uExactFaceSize > 0)
+        radiance = exactBaseSum(n);
+    else
+#endif
+    {
+        mat3 frame = tangentFrame(n);
+        vec3 sum = vec3(0.0);
+        int count = uSampleCount;
+        for (int i = 0; i < count; ++i) {
+            vec4 s = sourceSamples[i];
+            sum += readSource(s.w, frame * s.xyz) * s.z;
+        }
+        radiance = sum / uWeightSum;
     }
-    vec3 radiance = sum / uWeightSum;
 #if BRIGHT_CAPACITY > 0
     radiance += sumBrightTexels(n);
 #endif
