@@ -19,30 +19,8 @@ set(exceptions
   "renderer/lab/bench_sweep.cpp|sweepPoints"
   "renderer/lab/auto_quality.cpp|autoCandidates")
 
-if(NOT CTAGS)
-  message(FATAL_ERROR "universal-ctags not found: the function-length check needs it to find functions "
-                      "(Debian package universal-ctags, in scripts/install-deps.sh); reconfigure once it is installed")
-endif()
-execute_process(COMMAND ${CTAGS} --version OUTPUT_VARIABLE version RESULT_VARIABLE failed)
-if(failed OR NOT version MATCHES "Universal Ctags")
-  message(FATAL_ERROR "${CTAGS} is not universal-ctags (it prints no \"Universal Ctags\" version): the "
-                      "function-length check needs universal-ctags' JSON output with each function's end line")
-endif()
-
-file(GLOB_RECURSE sources ${SOURCE_DIR}/app/*.cpp ${SOURCE_DIR}/app/*.hpp ${SOURCE_DIR}/ui/*.cpp ${SOURCE_DIR}/ui/*.hpp
-                          ${SOURCE_DIR}/renderer/*.cpp ${SOURCE_DIR}/renderer/*.hpp)
-if(DEFINED EXTRA_FILE)
-  list(APPEND sources ${EXTRA_FILE})
-endif()
-execute_process(COMMAND ${CTAGS} --languages=C++ --langmap=C++:+.hpp --kinds-C++=f --fields=+ne-P
-                        --output-format=json -o - ${sources}
-                OUTPUT_VARIABLE tags RESULT_VARIABLE failed ERROR_VARIABLE errors)
-if(failed)
-  message(FATAL_ERROR "${CTAGS} failed (${failed}): ${errors}")
-endif()
-# One tag a line; a ";" would split a tag (none of the fields asked for holds one).
-string(REPLACE ";" "," tags "${tags}")
-string(REPLACE "\n" ";" tags "${tags}")
+include(${CMAKE_CURRENT_LIST_DIR}/ctags_tags.cmake)
+ctags_tags(tags WHAT "the function-length check" ARGS --kinds-C++=f --fields=+ne-P)
 set(too_long "")
 set(functions 0)
 foreach(tag IN LISTS tags)

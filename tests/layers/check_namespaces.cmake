@@ -28,29 +28,8 @@ set(exceptions
   # The OpenImageIO codec's entry point, found by dlsym under its C name.
   "renderer/io/image_codec_oiio.cpp|iblab_image_codec")
 
-if(NOT CTAGS)
-  message(FATAL_ERROR "universal-ctags not found: the namespace check needs it to find definitions "
-                      "(Debian package universal-ctags, in scripts/install-deps.sh); reconfigure once it is installed")
-endif()
-execute_process(COMMAND ${CTAGS} --version OUTPUT_VARIABLE version RESULT_VARIABLE failed)
-if(failed OR NOT version MATCHES "Universal Ctags")
-  message(FATAL_ERROR "${CTAGS} is not universal-ctags (it prints no \"Universal Ctags\" version)")
-endif()
-
-file(GLOB_RECURSE sources ${SOURCE_DIR}/app/*.cpp ${SOURCE_DIR}/app/*.hpp ${SOURCE_DIR}/ui/*.cpp ${SOURCE_DIR}/ui/*.hpp
-                          ${SOURCE_DIR}/renderer/*.cpp ${SOURCE_DIR}/renderer/*.hpp)
-if(DEFINED EXTRA_FILE)
-  list(APPEND sources ${EXTRA_FILE})
-endif()
-execute_process(COMMAND ${CTAGS} --languages=C++ --langmap=C++:+.hpp --kinds-C++=csugtvfpx --fields=+nKZ-P
-                        --fields-C++=+{specialization} --output-format=json -o - ${sources}
-                OUTPUT_VARIABLE tags RESULT_VARIABLE failed ERROR_VARIABLE errors)
-if(failed)
-  message(FATAL_ERROR "${CTAGS} failed (${failed}): ${errors}")
-endif()
-# One tag a line; a ";" would split a tag (none of the fields asked for holds one).
-string(REPLACE ";" "," tags "${tags}")
-string(REPLACE "\n" ";" tags "${tags}")
+include(${CMAKE_CURRENT_LIST_DIR}/ctags_tags.cmake)
+ctags_tags(tags WHAT "the namespace check" ARGS --kinds-C++=csugtvfpx --fields=+nKZ-P --fields-C++=+{specialization})
 set(wrong "")
 set(checked 0)
 foreach(tag IN LISTS tags)
