@@ -13,7 +13,8 @@
 #   scripts/measure-bake.sh unseen          # the default prefilter's per-mip errors on maps that chose none of its
 #                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6)
 #   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms), minimum and median of ROUNDS
-#                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved
+#                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved;
+#                                           # BASELINE_ARGS="..." bakes the baseline (or this build) with those options
 # Every time is the minimum of 3 interleaved runs (cmgen: of ROUNDS, default 7, since the
 # processes differ by less than a shared machine's noise in 3); process times are wall clock around the
 # whole process (start, context, load, bake, errors, cache writes, exit).
@@ -295,21 +296,29 @@ PY
 measure_phases() {
   local map=${1:-assets/environments/courtyard.exr}
   local baseline=${IBLAB_BASELINE:-} rounds=${ROUNDS:-8}
-  local builds=("$iblab")
-  [ -n "$baseline" ] && builds+=("$baseline")
-  local reports=()
-  for build in "${builds[@]}"; do
-    "$build" bake --env "$map" --cache-dir "$cache/$(echo "$build" | md5sum | cut -c1-8)" --no-errors > /dev/null # the LUTs, once
+  # BASELINE_ARGS: options the baseline bakes with (the same build with another setting when
+  # IBLAB_BASELINE is unset: BASELINE_ARGS="--prefilter-bright-texels 0" times the sampled-only
+  # prefilter against the default in one run).
+  local baseline_args=${BASELINE_ARGS:-}
+  [ -z "$baseline" ] && [ -n "$baseline_args" ] && baseline=$iblab
+  local builds=("$iblab") options=("")
+  [ -n "$baseline" ] && builds+=("$baseline") && options+=("$baseline_args")
+  local reports=() names=()
+  for i in "${!builds[@]}"; do
+    names+=("${builds[$i]}${options[$i]:+ ${options[$i]}}")
+    # shellcheck disable=SC2086
+    "${builds[$i]}" bake --env "$map" --cache-dir "$cache/$(echo "${names[$i]}" | md5sum | cut -c1-8)" --no-errors ${options[$i]} > /dev/null # the LUTs, once
     reports+=("$(mktemp -p "$cache")")
   done
   for _ in $(seq "$rounds"); do
     for i in "${!builds[@]}"; do
-      local dir="$cache/$(echo "${builds[$i]}" | md5sum | cut -c1-8)"
+      local dir="$cache/$(echo "${names[$i]}" | md5sum | cut -c1-8)"
       rm -rf "$dir/bake"
-      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors --json | python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)["timings_ms"]))' >> "${reports[$i]}"
+      # shellcheck disable=SC2086
+      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors --json ${options[$i]} | python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)["timings_ms"]))' >> "${reports[$i]}"
     done
   done
-  python3 - "$map" "$rounds" "${builds[@]}" -- "${reports[@]}" <<'PY'
+  python3 - "$map" "$rounds" "${names[@]}" -- "${reports[@]}" <<'PY'
 import json, statistics, sys
 args = sys.argv[1:]
 map_name, rounds = args[0], args[1]
