@@ -138,9 +138,8 @@ PY
 # iblab against Filament's cmgen on courtyard at 1024x512 as .hdr (oiiotool converts it; without
 # it both read the .exr): cmgen --size=128 --ibl-samples=64 --ibl-ld (a fast cmgen: its defaults
 # are a 256 face and 1024 samples, which scripts/compare-cmgen.sh times), iblab bake at its
-# default preset (prefilter 256, more samples, the
-# moment irradiance cube, SH9), LUTs cached, with and without the errors against the exact
-# references. The one-run line's "programs compiled meanwhile": while the map decoded, so
+# default preset (prefilter 256, more samples, the moment irradiance cube, SH9), LUTs cached,
+# with and without the errors against the exact references. The one-run line's "programs compiled meanwhile": while the map decoded, so
 # outside the bake's own total (0 for builds before that overlap).
 measure_cmgen() {
   local map=assets/environments/courtyard.exr
