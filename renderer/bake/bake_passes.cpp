@@ -16,9 +16,12 @@
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
 #include "gl/uniform.hpp"
+#include "bake/bake_pass_uniforms.hpp"
 
 namespace iblab::bake {
 namespace {
+
+using namespace detail;
 
 constexpr const char* kEquirectToCube = "bake/equirect_to_cube.comp";
 constexpr const char* kSh9Project = "bake/sh9_project.comp";
@@ -31,6 +34,7 @@ constexpr GLsizeiptr kMomentTexelBytes = 6 * 4 * sizeof(float);
 constexpr const char* kPrefilter = "bake/prefilter_ggx.comp";
 constexpr const char* kBrdfLut = "bake/brdf_lut.comp";
 constexpr const char* kDownsample = "bake/downsample.comp";
+constexpr const char* kClampLuminance = "bake/clamp_luminance.comp";
 constexpr const char* kSamplePrefiltered = "bake/sample_prefiltered.comp";
 
 const char* imageFormatName(GLenum internalFormat) { return internalFormat == GL_RGBA16F ? "rgba16f" : "rgba32f"; }
@@ -64,114 +68,12 @@ void clearPassBindings()
     glBindTextureUnit(1, 0);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, 0);
 }
 
 GLuint groupsFor(int n) { return GLuint((n + 7) / 8); }
-
-// The uniforms each bake shader declares, located once per program link (gl/uniform.hpp).
-struct DownsampleUniforms {
-    explicit DownsampleUniforms(const gl::ShaderProgram& p) : sourceSize(p, "uSourceSize"), targetSize(p, "uTargetSize") {}
-    gl::Uniform<glm::ivec2> sourceSize;
-    gl::Uniform<glm::ivec2> targetSize;
-};
-
-// bake/cube_texel.glsl's, for every pass that writes a slice of a cube.
-struct CubeSliceUniforms {
-    explicit CubeSliceUniforms(const gl::ShaderProgram& p)
-        : firstFace(p, "uFirstFace"), faceSize(p, "uFaceSize"), rowOffset(p, "uRowOffset"), rowCount(p, "uRowCount"), storeMax(p, "uStoreMax"),
-          output(p, "uOutput")
-    {
-    }
-    gl::Uniform<int> firstFace;
-    gl::Uniform<int> faceSize;
-    gl::Uniform<int> rowOffset;
-    gl::Uniform<int> rowCount;
-    gl::Uniform<float> storeMax;
-    gl::Uniform<int> output;
-};
-
-struct EquirectToCubeUniforms {
-    explicit EquirectToCubeUniforms(const gl::ShaderProgram& p) : equirect(p, "uEquirect") {}
-    gl::Uniform<int> equirect;
-};
-
-struct Sh9ProjectUniforms {
-    explicit Sh9ProjectUniforms(const gl::ShaderProgram& p) : equirect(p, "uEquirect"), rowsPerGroup(p, "uRowsPerGroup") {}
-    gl::Uniform<int> equirect;
-    gl::Uniform<int> rowsPerGroup;
-};
-
-// bake/source_read.glsl's.
-struct SourceReadUniforms {
-    explicit SourceReadUniforms(const gl::ShaderProgram& p)
-        : environment(p, "uEnvironment"), mipFiltering(p, "uMipFiltering"), sourceFaceSize(p, "uSourceFaceSize"),
-          exactTexelSolidAngle(p, "uExactTexelSolidAngle"), maxSourceLod(p, "uMaxSourceLod")
-    {
-    }
-    gl::Uniform<int> environment;
-    gl::Uniform<int> mipFiltering;
-    gl::Uniform<float> sourceFaceSize;
-    gl::Uniform<int> exactTexelSolidAngle;
-    gl::Uniform<float> maxSourceLod;
-};
-
-struct RiemannUniforms {
-    explicit RiemannUniforms(const gl::ShaderProgram& p) : phiSteps(p, "uPhiSteps"), thetaSteps(p, "uThetaSteps"), mipBias(p, "uMipBias") {}
-    gl::Uniform<int> phiSteps;
-    gl::Uniform<int> thetaSteps;
-    gl::Uniform<float> mipBias;
-};
-
-struct MomentsBuildUniforms {
-    explicit MomentsBuildUniforms(const gl::ShaderProgram& p) : groupFaceSize(p, "uGroupFaceSize"), fineFaceSize(p, "uFineFaceSize") {}
-    gl::Uniform<int> groupFaceSize;
-    gl::Uniform<int> fineFaceSize;
-};
-
-struct MomentsUniforms {
-    explicit MomentsUniforms(const gl::ShaderProgram& p) : groupCount(p, "uGroupCount") {}
-    gl::Uniform<int> groupCount;
-};
-
-struct PrefilterUniforms {
-    explicit PrefilterUniforms(const gl::ShaderProgram& p)
-        : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
-          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos"), exactFaceSize(p, "uExactFaceSize")
-    {
-    }
-    gl::Uniform<float> roughness;
-    gl::Uniform<float> weightSum;
-    gl::Uniform<int> mirrorCopy;
-    gl::Uniform<float> copyLod;
-    gl::Uniform<int> brightCount; // the four absent (-1) in a program without bright texels
-    gl::Uniform<float> alpha2;
-    gl::Uniform<float> brightScale;
-    gl::Uniform<float> nearCos;
-    gl::Uniform<int> exactFaceSize; // of the base's mip summed exactly; 0: the base is sampled
-};
-
-struct SamplePrefilteredUniforms {
-    explicit SamplePrefilteredUniforms(const gl::ShaderProgram& p) : count(p, "uCount"), prefiltered(p, "uPrefiltered"), levels(p, "uLevels"), layout(p, "uLayout") {}
-    gl::Uniform<int> count;
-    gl::Uniform<int> prefiltered;
-    gl::Uniform<float> levels;
-    gl::Uniform<int> layout;
-};
-
-struct BrdfLutUniforms {
-    explicit BrdfLutUniforms(const gl::ShaderProgram& p)
-        : size(p, "uSize"), sampleCount(p, "uSampleCount"), geometry(p, "uGeometry"), rowOffset(p, "uRowOffset"), rowCount(p, "uRowCount"), lut(p, "uLut")
-    {
-    }
-    gl::Uniform<int> size;
-    gl::Uniform<int> sampleCount;
-    gl::Uniform<int> geometry;
-    gl::Uniform<int> rowOffset;
-    gl::Uniform<int> rowCount;
-    gl::Uniform<int> lut;
-};
 
 // Levels of a full mip chain down to 1 texel on the longer side.
 int fullMipLevels(int width, int height) { return std::bit_width(unsigned(std::max({width, height, 1}))); }
@@ -200,6 +102,8 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
     if (equirectLevels > 1)
         shaders_.program({kDownsample}, {{"CUBE", "0"}, {"FORMAT", imageFormatName(GL_RGBA32F)}});
     shaders_.program({kDownsample}, {{"CUBE", "1"}, {"FORMAT", imageFormatName(format)}});
+    if (settings.prefilter.brightTexels > 0)
+        shaders_.program({kClampLuminance}, {{"FORMAT", imageFormatName(format)}});
     if (settings.sh.device == ShDevice::Gpu)
         shaders_.program({kSh9Project});
     switch (settings.irradiance) {
@@ -347,6 +251,30 @@ void BakePasses::equirectToCube(GLuint equirect, const BakedTexture& cube, const
 void BakePasses::generateMips(const BakedTexture& texture)
 {
     downsampleChain(texture.id(), texture.target, texture.internalFormat, texture.size, texture.size, texture.levels);
+}
+
+void BakePasses::clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds)
+{
+    if (bases.empty() || bases.size() > 2 || thresholds.size() != bases.size())
+        throw Error("prefilter", "the bright-texel split builds one or two bases, each with its threshold");
+    const BakedTexture& first = bases.front();
+    const gl::ShaderProgram& program = shaders_.program({kClampLuminance}, {{"FORMAT", imageFormatName(environment.internalFormat)}});
+    const ClampLuminanceUniforms& uniforms = program.uniforms<ClampLuminanceUniforms>();
+    glUseProgram(program.id());
+    uniforms.size.set(first.size);
+    uniforms.step.set(environment.size / first.size);
+    uniforms.thresholds.set(glm::vec2(thresholds.front(), thresholds.back()));
+    uniforms.targets.set(int(bases.size()));
+    glBindImageTexture(1, environment.id(), 0, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
+    glBindImageTexture(0, first.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
+    glBindImageTexture(2, bases.back().id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
+    glDispatchCompute(groupsFor(first.size), groupsFor(first.size), 6);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, environment.internalFormat);
+    glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, first.internalFormat);
+    clearPassBindings();
+    for (const BakedTexture& base : bases)
+        generateMips(base);
 }
 
 SH9Color BakePasses::projectSh9(GLuint equirect, int width, int height)
@@ -517,8 +445,8 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         uniforms.alpha2.set(float(alpha * alpha));
         uniforms.brightScale.set(float(alpha * alpha / (kPi * ggxPrefilterNormalization(roughness))));
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
-        const int exactLevel = exactSumSourceLevel(settings, environment.size, environment.levels, roughness); // the bases' sizes
-        uniforms.exactFaceSize.set(exactLevel >= 0 ? environment.levelSize(exactLevel) : 0);
+        uniforms.exactCount.set(lights->exactCount);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights->exactCount > 0 ? lights->exactTexels.id() : 0);
     }
     // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop of a bake without the mirror copy does).
     bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);

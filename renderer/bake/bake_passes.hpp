@@ -70,6 +70,11 @@ public:
     void equirectToCube(GLuint equirect, const BakedTexture& cube, const CubeSlice& slice);
     // Levels 1.. from level 0 by 2x2 box averages (downsample.comp), per face for cubes.
     void generateMips(const BakedTexture& texture);
+    // The bright-texel split's bases (bright_texels.hpp), one per threshold (at most 2): level
+    // 0 of `environment` with each texel's luminance clamped to the threshold, box-averaged
+    // into level 0 of the base (the same format, a face a power of two smaller or equal;
+    // clamp_luminance.comp, which reads each texel once for both), then each base's mips.
+    void clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds);
 
     // Radiance L_lm on the GPU: float sums over groups of rows, each row weighted by its
     // exact solid angle, the groups added in double on the host (see sh9_project.comp).

@@ -7,11 +7,14 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <unordered_set>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "bake/bake_passes.hpp"
+#include "bake/source_samples.hpp"
+#include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
 #include "io/error.hpp"
@@ -63,21 +66,35 @@ double ggxPrefilterNormalization(double roughness)
 
 namespace {
 
+// A texel above the floor, by its index in scan order, before its direction is computed.
+struct RankedTexel {
+    float luminance;
+    std::uint32_t index;
+    bool operator<(const RankedTexel& o) const { return luminance != o.luminance ? luminance > o.luminance : index < o.index; }
+};
+
 // Keeps the brightest maxCandidates (ties in texel order), brightest first, and raises the
-// floor to the first one left out.
-BrightCandidates finishCandidates(std::vector<BrightTexel> texels, float floorThreshold, float meanLuminance, int maxCandidates)
+// floor to the first one left out; only those kept become BrightTexels (makeTexel(index)),
+// so that a map with a million texels above the floor sorts and converts 16384 of them.
+template <class MakeTexel>
+BrightCandidates finishCandidates(std::vector<RankedTexel> ranked, float floorThreshold, float meanLuminance, int maxCandidates,
+                                  MakeTexel makeTexel)
 {
     BrightCandidates c;
     c.meanLuminance = meanLuminance;
     c.floorThreshold = floorThreshold;
-    std::stable_sort(texels.begin(), texels.end(), [](const BrightTexel& a, const BrightTexel& b) { return a.luminance > b.luminance; });
-    if (texels.size() > std::size_t(std::max(0, maxCandidates))) {
-        c.floorThreshold = texels[std::size_t(std::max(0, maxCandidates))].luminance;
+    const auto keep = std::size_t(std::max(0, maxCandidates));
+    if (ranked.size() > keep) {
+        std::nth_element(ranked.begin(), ranked.begin() + std::ptrdiff_t(keep), ranked.end());
+        c.floorThreshold = ranked[keep].luminance;
+        ranked.resize(keep);
         // Only texels strictly above the floor are lights: drop the ties with it too.
-        while (!texels.empty() && !(texels.back().luminance > c.floorThreshold))
-            texels.pop_back();
+        std::erase_if(ranked, [&](const RankedTexel& t) { return !(t.luminance > c.floorThreshold); });
     }
-    c.texels = std::move(texels);
+    std::sort(ranked.begin(), ranked.end());
+    c.texels.reserve(ranked.size());
+    for (const RankedTexel& t : ranked)
+        c.texels.push_back(makeTexel(t.index));
     return c;
 }
 
@@ -97,13 +114,16 @@ std::size_t countAbove(const BrightCandidates& c, float threshold)
                        c.texels.begin());
 }
 
-std::size_t mergedCount(const BrightCandidates& c, std::size_t count, int cellFaceSize)
+// The distinct cells of a cellFaceSize cube among the first p candidates, for every p
+// (index p): what a threshold that keeps those p merges them into, counted once for all.
+std::vector<std::uint32_t> distinctCellsByPrefix(const BrightCandidates& c, int cellFaceSize)
 {
-    std::vector<std::uint64_t> cells(count);
-    for (std::size_t i = 0; i < count; ++i)
-        cells[i] = cellOf(c.texels[i].direction, cellFaceSize);
-    std::sort(cells.begin(), cells.end());
-    return std::size_t(std::unique(cells.begin(), cells.end()) - cells.begin());
+    std::vector<std::uint32_t> counts(c.texels.size() + 1, 0);
+    std::unordered_set<std::uint64_t> seen;
+    seen.reserve(c.texels.size());
+    for (std::size_t i = 0; i < c.texels.size(); ++i)
+        counts[i + 1] = counts[i] + (seen.insert(cellOf(c.texels[i].direction, cellFaceSize)).second ? 1 : 0);
+    return counts;
 }
 
 // The far field: lights further than kNearCells cells of a kFarFace cube from an output
@@ -119,38 +139,35 @@ constexpr std::size_t kLightsPerFarCell = 8;
 
 int farFaceSize(int cellFaceSize) { return std::min(kFarFace, cellFaceSize); }
 
-// Block entries of a level: 2 per far cell, 2 per light.
-std::size_t hierarchyEntries(const BrightCandidates& c, std::size_t count, int cellFaceSize)
-{
-    const std::size_t lights = mergedCount(c, count, cellFaceSize);
-    const std::size_t far = farFaceSize(cellFaceSize) == cellFaceSize ? 0 : mergedCount(c, count, farFaceSize(cellFaceSize));
-    return 2 * (lights + far);
-}
-
 } // namespace
 
 BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates)
 {
     const int w = equirect.width, h = equirect.height;
     std::vector<double> rowSolidAngle(std::size_t(std::max(0, h)));
+    std::vector<float> lum(std::size_t(std::max(0, w)) * std::size_t(std::max(0, h)));
     double flux = 0.0;
     for (int y = 0; y < h; ++y) {
         rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
+        const float* rgb = &equirect.texels[equirect.offset(0, y)];
+        float* rowLum = &lum[std::size_t(y) * std::size_t(w)];
         double row = 0.0;
-        for (int x = 0; x < w; ++x)
-            row += double(std::max(0.0f, luminance(equirect.at(x, y))));
+        for (int x = 0; x < w; ++x) {
+            rowLum[x] = 0.2126f * rgb[3 * x] + 0.7152f * rgb[3 * x + 1] + 0.0722f * rgb[3 * x + 2];
+            row += double(std::max(0.0f, rowLum[x]));
+        }
         flux += row * rowSolidAngle[std::size_t(y)];
     }
     const float mean = float(flux / (4.0 * kPi));
     const float floorThreshold = thresholdOverMean * mean;
-    std::vector<BrightTexel> texels;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const glm::vec3 rgb = equirect.at(x, y);
-            if (const float lum = luminance(rgb); lum > floorThreshold)
-                texels.push_back({equirectTexelDirection(x, y, w, h), glm::dvec3(rgb), rowSolidAngle[std::size_t(y)], lum});
-        }
-    return finishCandidates(std::move(texels), floorThreshold, mean, maxCandidates);
+    std::vector<RankedTexel> ranked;
+    for (std::size_t i = 0; i < lum.size(); ++i)
+        if (lum[i] > floorThreshold)
+            ranked.push_back({lum[i], std::uint32_t(i)});
+    return finishCandidates(std::move(ranked), floorThreshold, mean, maxCandidates, [&](std::uint32_t i) {
+        const int x = int(i % std::uint32_t(w)), y = int(i / std::uint32_t(w));
+        return BrightTexel{equirectTexelDirection(x, y, w, h), glm::dvec3(equirect.at(x, y)), rowSolidAngle[std::size_t(y)], lum[i]};
+    });
 }
 
 BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMean, int maxCandidates)
@@ -163,15 +180,18 @@ BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMe
                 flux += double(std::max(0.0f, luminance(level0.rgb(face, x, row)))) * approximateTexelSolidAngle(x, row, f);
     const float mean = float(flux / (4.0 * kPi));
     const float floorThreshold = thresholdOverMean * mean;
-    std::vector<BrightTexel> texels;
-    for (int face = 0; face < 6; ++face)
-        for (int row = 0; row < f; ++row)
-            for (int x = 0; x < f; ++x) {
-                const glm::vec3 rgb = level0.rgb(face, x, row);
-                if (const float lum = luminance(rgb); lum > floorThreshold && std::isfinite(lum))
-                    texels.push_back({glm::dvec3(level0.texelDirection(face, x, row)), glm::dvec3(rgb), texelSolidAngle(x, row, f), lum});
-            }
-    return finishCandidates(std::move(texels), floorThreshold, mean, maxCandidates);
+    std::vector<RankedTexel> ranked;
+    const auto faceTexels = std::uint32_t(f) * std::uint32_t(f);
+    for (std::uint32_t i = 0; i < 6 * faceTexels; ++i) {
+        const int face = int(i / faceTexels), row = int(i % faceTexels) / f, x = int(i % faceTexels) % f;
+        if (const float lum = luminance(level0.rgb(face, x, row)); lum > floorThreshold && std::isfinite(lum))
+            ranked.push_back({lum, i});
+    }
+    return finishCandidates(std::move(ranked), floorThreshold, mean, maxCandidates, [&](std::uint32_t i) {
+        const int face = int(i / faceTexels), row = int(i % faceTexels) / f, x = int(i % faceTexels) % f;
+        const glm::vec3 rgb = level0.rgb(face, x, row);
+        return BrightTexel{glm::dvec3(level0.texelDirection(face, x, row)), glm::dvec3(rgb), texelSolidAngle(x, row, f), luminance(rgb)};
+    });
 }
 
 int brightCellFaceSize(double roughness)
@@ -266,15 +286,22 @@ float brightThresholdFor(const BrightCandidates& candidates, const std::vector<d
 {
     const std::size_t n = candidates.texels.size();
     auto thresholdAt = [&](std::size_t p) { return p < n ? candidates.texels[p].luminance : candidates.floorThreshold; };
+    std::map<int, std::vector<std::uint32_t>> distinct; // by cell face size
+    for (double r : roughness)
+        for (int face : {brightCellFaceSize(r), farFaceSize(brightCellFaceSize(r))})
+            if (!distinct.contains(face))
+                distinct.emplace(face, distinctCellsByPrefix(candidates, face));
     auto fits = [&](std::size_t p) {
         const std::size_t count = countAbove(candidates, thresholdAt(p));
         for (std::size_t i = 0; i < roughness.size(); ++i) {
             // The cap is on the far cells (every output texel sums each of them), the block
-            // on everything the level uploads.
+            // on everything the level uploads: 2 entries per far cell, 2 per light.
             const int cell = brightCellFaceSize(roughness[i]);
             const auto cap = std::size_t(std::max(0, caps[i]));
-            if (mergedCount(candidates, count, farFaceSize(cell)) > cap || mergedCount(candidates, count, cell) > kLightsPerFarCell * cap ||
-                hierarchyEntries(candidates, count, cell) > std::size_t(2 * kMaxBrightLights))
+            const std::size_t lights = distinct.at(cell)[count];
+            const std::size_t far = distinct.at(farFaceSize(cell))[count];
+            const std::size_t entries = 2 * (lights + (farFaceSize(cell) == cell ? 0 : far));
+            if (far > cap || lights > kLightsPerFarCell * cap || entries > std::size_t(2 * kMaxBrightLights))
                 return false;
         }
         return true;
@@ -289,18 +316,6 @@ float brightThresholdFor(const BrightCandidates& candidates, const std::vector<d
             hi = mid - 1;
     }
     return thresholdAt(lo);
-}
-
-void clampLuminance(CubeImage& level, float threshold)
-{
-    for (glm::vec4& texel : level.texels) {
-        const glm::vec3 rgb(texel);
-        const float y = luminance(rgb);
-        if (!std::isfinite(y))
-            texel = glm::vec4(glm::vec3(threshold), texel.a);
-        else if (y > threshold)
-            texel = glm::vec4(rgb * (threshold / y), texel.a);
-    }
 }
 
 int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness)
@@ -323,6 +338,53 @@ int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int bas
     return 6.0 * size * size <= double(settings.exactSumTexels) ? level : -1;
 }
 
+int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels)
+{
+    if (!settings.mipFiltering)
+        return 0; // every sample reads level 0
+    // The largest texel of a level-0 face is at its centre, about (2 / size)^2 sr: the
+    // smallest lod any sample's pdf picks (readSource), whichever texel solid angle it uses.
+    const float largestTexel = 4.0f / (float(environmentSize) * float(environmentSize));
+    float finest = float(environmentLevels - 1);
+    for (int level = 1; level < settings.levels; ++level) {
+        const float roughness = prefilterMipRoughness(settings, level);
+        if (!(roughness > 0.0f))
+            continue;
+        if (const int exact = exactSumSourceLevel(settings, environmentSize, environmentLevels, roughness); exact >= 0) {
+            finest = std::min(finest, float(exact));
+            continue;
+        }
+        for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level), settings.mipBias, settings.sampleRotation))
+            finest = std::min(finest, sourceLodFromSampleTerm(sample.w, largestTexel));
+    }
+    // The nearest level: a read between it and the next finer one (at most half a level)
+    // reads it instead, a blur of at most half a level on the few samples at a lobe's peak
+    // (the default's mip 1 reads lod 0.95 of a 256 cube there). Building the level below
+    // it was a third of the split's cost.
+    return std::clamp(int(std::floor(finest + 0.5f)), 0, std::max(0, environmentLevels - 1));
+}
+
+namespace {
+
+// A base mip's texels as prefilter_ggx.comp's exact sum reads them: (direction, 0),
+// (radiance x solid angle, solid angle), the solid angle as the shader's cubeTexelSolidAngle.
+std::vector<glm::vec4> exactSumTexels(const CubeImage& level)
+{
+    std::vector<glm::vec4> texels;
+    texels.reserve(2 * level.texels.size());
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < level.size; ++row)
+            for (int x = 0; x < level.size; ++x) {
+                const glm::vec3 direction = level.texelDirection(face, x, row);
+                const float solidAngle = cubeTexelSolidAngle(direction, float(level.size));
+                texels.emplace_back(direction, 0.0f);
+                texels.emplace_back(level.rgb(face, x, row) * solidAngle, solidAngle);
+            }
+    return texels;
+}
+
+} // namespace
+
 int brightBlockCapacity(const PrefilterSettings& settings) { return settings.brightTexels > 0 ? 2 * kMaxBrightLights : 0; }
 
 int brightTexelCap(const PrefilterSettings& settings, int level)
@@ -342,9 +404,8 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         throw Error("prefilter", "the bright-texel split needs a " + std::to_string(capacity * sizeof(glm::vec4)) +
                                      "-byte uniform block; this GL driver allows " + std::to_string(maxBlockBytes) +
                                      " (--prefilter-bright-texels 0 turns the split off)");
-    CubeImage level0 = readCubeLevel(environment, 0);
     constexpr int kMaxCandidates = 1 << 14;
-    const BrightCandidates candidates = equirect.empty() ? brightCandidates(level0, settings.brightThreshold, kMaxCandidates)
+    const BrightCandidates candidates = equirect.empty() ? brightCandidates(readCubeLevel(environment, 0), settings.brightThreshold, kMaxCandidates)
                                                          : brightCandidates(equirect, settings.brightThreshold, kMaxCandidates);
     out.meanLuminance = candidates.meanLuminance;
 
@@ -360,19 +421,15 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
     const float mip1Threshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
     const float roughThreshold = brightThresholdFor(candidates, roughRoughness, roughCaps);
 
-    std::vector<float> baseThresholds;
-    auto baseFor = [&](float threshold) {
-        for (std::size_t i = 0; i < baseThresholds.size(); ++i)
-            if (baseThresholds[i] == threshold)
-                return int(i);
-        CubeImage base = level0;
-        clampLuminance(base, threshold);
-        out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size, environment.levels));
-        uploadCubeLevel(out.bases.back(), 0, base);
-        passes.generateMips(out.bases.back());
-        baseThresholds.push_back(threshold);
-        return int(baseThresholds.size() - 1);
-    };
+    // Two groups' bases, or one where their thresholds agree, built in one pass.
+    const int topLevel = splitBaseTopLevel(settings, environment.size, environment.levels);
+    std::vector<float> baseThresholds = {mip1Threshold};
+    if (roughThreshold != mip1Threshold)
+        baseThresholds.push_back(roughThreshold);
+    for (std::size_t i = 0; i < baseThresholds.size(); ++i)
+        out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size >> topLevel, environment.levels - topLevel));
+    passes.clampedBases(environment, out.bases, baseThresholds);
+    auto baseFor = [&](float threshold) { return threshold == mip1Threshold ? 0 : 1; };
     out.levels.resize(std::size_t(std::max(0, settings.levels)));
     for (int level = 1; level < settings.levels; ++level) {
         const float roughness = prefilterMipRoughness(settings, level);
@@ -387,6 +444,11 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         std::vector<glm::vec4> padded(std::size_t(capacity), glm::vec4(0.0f));
         std::copy(lights.begin(), lights.begin() + std::min(lights.size(), padded.size()), padded.begin());
         l.texels = gl::createBufferWith<glm::vec4>(padded);
+        if (const int exact = exactSumSourceLevel(settings, environment.size, environment.levels, roughness); exact >= 0) {
+            const std::vector<glm::vec4> texels = exactSumTexels(readCubeLevel(out.bases[std::size_t(l.base)], exact - topLevel));
+            l.exactCount = int(texels.size() / 2);
+            l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
+        }
     }
     return out;
 }

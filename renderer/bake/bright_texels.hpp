@@ -10,7 +10,8 @@
 //
 // The bright texels are the float equirect's (the map as loaded), not the environment
 // cube's: a half-float cube stores a sun of 1e6 as at most 65504 and loses its flux. The
-// base is the cube's level 0 with every texel clamped to T.
+// base is the cube's level 0 with every texel clamped to T, from the level its samples
+// first read (splitBaseTopLevel).
 //
 // The cost of the exact sum is (output texels) x (lights), and mip 1 has four times the texels
 // of mip 2, so each mip gets its own list: texels closer together than an eighth of the
@@ -69,10 +70,6 @@ int brightCellFaceSize(double roughness);
 // cap, its lights under 8 times the cap, and its block in kMaxBrightLights lights.
 float brightThresholdFor(const BrightCandidates& candidates, const std::vector<double>& roughness, const std::vector<int>& caps);
 
-// Clamps every texel's luminance to threshold, chroma kept (the split's base). A texel that
-// is not finite (a half float that overflowed) becomes grey at the threshold.
-void clampLuminance(CubeImage& level, float threshold);
-
 // The split on the GPU, for BakePasses::prefilter. Per prefiltered mip (index = level; level
 // 0, the mirror, has none): the base it samples, its lights, their count and the uniform
 // block's size.
@@ -84,14 +81,17 @@ struct PrefilterBrightTexels {
         int count = 0;     // far cells
         int capacity = 0; // entries (prefilter_ggx.comp's BRIGHT_CAPACITY)
         float threshold = 0.0f;
+        // The base's mip this level sums exactly (exactSumSourceLevel), two entries per
+        // texel: (direction, 0), (radiance x solid angle, solid angle); 0 texels: sampled.
+        gl::Buffer exactTexels;
+        int exactCount = 0;
     };
     std::vector<Level> levels;
     float meanLuminance = 0.0f;
 };
 
 // Builds the split: the candidates from the equirect when the job still holds it (else from
-// the cube's level 0), the bases from the cube's level 0 (with its mips, built as the
-// environment's are). Throws iblab::Error where the driver's uniform blocks cannot hold the lights.
+// the cube's level 0), the bases on the GPU from the cube's level 0 (BakePasses::clampedBase). Throws iblab::Error where the driver's uniform blocks cannot hold the lights.
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
                                         const PrefilterSettings& settings);
 
@@ -100,6 +100,12 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
 // most alpha / 2 across at a face centre and whose face is at least 8 (the finest where
 // none is), or -1 where it has more than exactSumTexels texels.
 int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness);
+
+// The environment level that the split's bases start at: the one nearest the finest any
+// split mip reads (the smallest lod its samples' pdfs pick, at the largest texel; the level
+// an exact sum reads), so that a base holds no level nothing samples. readSource's lod,
+// relative to the base's own face, then names the same level as it does in the environment.
+int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels);
 
 // The most entries pairs of a level's block (far cells and lights together): GL guarantees
 // 16 KB uniform blocks, llvmpipe allows 64 KB (4096 entries); a driver with less is told so.

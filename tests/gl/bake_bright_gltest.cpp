@@ -6,12 +6,14 @@
 // sun tests check too, so that they cannot pass by being lax.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "bake/bake_accuracy.hpp"
+#include "bake/bake_passes.hpp"
 #include "bake/bright_texels.hpp"
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
@@ -180,6 +182,78 @@ TEST_F(GlTest, WhiteFurnace)
     settings.prefilter.brightTexels = 512;
     settings.prefilter.brightThreshold = 0.5f;
     expectWhite(runBake(shaders, loadEnvironment("builtin:white?width=32"), settings), 5e-3f, "split forced");
+}
+
+// The split's bases on the GPU (BakePasses::clampedBases) against the same arithmetic on
+// the CPU: each texel's luminance clamped to the base's threshold (chroma kept; a texel that
+// is not finite becomes grey at the threshold), 2 x 2 blocks averaged into a face half the
+// size, and that level's mips. Two thresholds from one pass, so that a swapped or shared
+// threshold fails.
+TEST_F(GlTest, SplitBasesAreTheClampedEnvironmentBoxAveraged)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    bake::BakePasses passes(shaders);
+    constexpr int kFace = 8;
+    bake::CubeImage source;
+    source.size = kFace;
+    source.texels.resize(6 * kFace * kFace);
+    for (std::size_t i = 0; i < source.texels.size(); ++i) {
+        const float v = float((i * 37) % 11) + 0.25f;
+        source.texels[i] = glm::vec4(v, 0.5f * v, i % 7 == 0 ? 40.0f * v : 0.1f, 1.0f);
+    }
+    source.texels[5] = glm::vec4(std::numeric_limits<float>::infinity(), 1.0f, 1.0f, 1.0f);
+    const bake::BakedTexture environment = bake::createCubeTexture(GL_RGBA32F, kFace, 4);
+    bake::uploadCubeLevel(environment, 0, source);
+    std::vector<bake::BakedTexture> bases;
+    bases.push_back(bake::createCubeTexture(GL_RGBA32F, kFace / 2, 3));
+    bases.push_back(bake::createCubeTexture(GL_RGBA32F, kFace / 2, 3));
+    const std::vector<float> thresholds = {30.0f, 4.0f};
+    passes.clampedBases(environment, bases, thresholds);
+
+    auto clamped = [](glm::vec3 rgb, float threshold) {
+        const float y = 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b;
+        if (!std::isfinite(y))
+            return glm::vec3(threshold);
+        return y > threshold ? rgb * (threshold / y) : rgb;
+    };
+    for (std::size_t b = 0; b < bases.size(); ++b) {
+        const bake::CubeImage level0 = bake::readCubeLevel(bases[b], 0), level1 = bake::readCubeLevel(bases[b], 1);
+        for (int face = 0; face < 6; ++face)
+            for (int row = 0; row < kFace / 4; ++row)
+                for (int x = 0; x < kFace / 4; ++x) {
+                    glm::vec3 coarse(0.0f);
+                    for (int r = 2 * row; r < 2 * row + 2; ++r)
+                        for (int c = 2 * x; c < 2 * x + 2; ++c) {
+                            glm::vec3 fine(0.0f);
+                            for (int dy = 0; dy < 2; ++dy)
+                                for (int dx = 0; dx < 2; ++dx)
+                                    fine += clamped(source.rgb(face, 2 * c + dx, 2 * r + dy), thresholds[b]) / 4.0f;
+                            for (int k = 0; k < 3; ++k)
+                                ASSERT_NEAR(level0.rgb(face, c, r)[k], fine[k], 1e-4f * std::max(1.0f, fine[k]))
+                                    << "base " << b << ", face " << face << ", texel " << c << ", " << r;
+                            coarse += fine / 4.0f;
+                        }
+                    for (int k = 0; k < 3; ++k)
+                        ASSERT_NEAR(level1.rgb(face, x, row)[k], coarse[k], 1e-4f * std::max(1.0f, coarse[k])) << "base " << b << ", mip 1";
+                }
+    }
+}
+
+// The bases start at the level nearest the finest any split mip reads: the default's mip 1
+// (8 samples at roughness 0.11) reads about lod 0.95 of a 256 cube at its lobe's peak (1.95
+// of a 512 cube, 2.95 of a 1024 one). A table of 512 samples reads below lod 0 of a 256
+// cube, and without the PDF's source mips every sample reads level 0.
+TEST(BrightTexelSplit, BasesStartAtTheFinestLevelTheSamplesRead)
+{
+    bake::PrefilterSettings settings = bake::defaultPreset().prefilter;
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 256, 9), 1);
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 512, 10), 2);
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 1024, 11), 3);
+    settings.samples = 512;
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 256, 9), 0);
+    settings = bake::defaultPreset().prefilter;
+    settings.mipFiltering = false;
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 256, 9), 0);
 }
 
 } // namespace

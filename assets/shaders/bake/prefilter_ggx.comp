@@ -60,31 +60,41 @@ vec3 sumBrightTexels(vec3 n)
     return sum * uBrightScale;
 }
 
-// uExactFaceSize > 0: the base summed over every texel of its mip with a face of that size
-// (texels at most alpha / 2 across, so that the weight is nearly constant
-// over each; the host chooses it, bright_texels.hpp's exactSumSourceLevel), each texel
-// weighted by D(h) max(0, n.l) times its solid angle, and normalised by the weights' sum:
-// a constant map stays exact. Every lane reads the same source texel at the same time.
+// uExactCount > 0: the base summed over every texel of one of its mips (texels at most
+// alpha / 2 across, so that the weight is nearly constant over each; the host chooses it,
+// bright_texels.hpp's exactSumSourceLevel), each texel weighted by D(h) max(0, n.l) times its
+// solid angle, and normalised by the weights' sum: a constant map stays exact. The host
+// lists the texels (exact_texels_block: (direction, 0), (radiance x solid angle, solid
+// angle)), so that every lane reads the same entry at the same time and no texture.
 // Where the samples see a large bright area through a few reads that move with the texel,
 // this sees every texel of it with its weight.
-uniform int uExactFaceSize;
+layout(std430, binding = 2) readonly buffer ExactTexels {
+    vec4 exactTexels[];
+};
+uniform int uExactCount;
 
 vec3 exactBaseSum(vec3 n)
 {
     vec3 sum = vec3(0.0);
     float weightSum = 0.0;
-    float size = float(uExactFaceSize);
-    float lod = round(log2(uSourceFaceSize / size)); // the base's mip 0 is the environment's size
-    for (int face = 0; face < 6; ++face)
-        for (int row = 0; row < uExactFaceSize; ++row)
-            for (int x = 0; x < uExactFaceSize; ++x) {
-                vec3 l = cubeFaceUvToDirection(face, (vec2(x, row) + 0.5) / size);
-                float c = dot(n, l);
-                float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
-                float w = max(c, 0.0) / (t * t) * cubeTexelSolidAngle(l, size);
-                sum += w * textureLod(uEnvironment, l, lod).rgb;
-                weightSum += w;
-            }
+    int faceTexels = uExactCount / 6; // the host lists them face by face
+    for (int face = 0; face < 6; ++face) {
+        // n.l is linear over a face's square (before l is normalised), so a face whose four
+        // corners are behind n is behind it everywhere: its weights are all 0.
+        float front = max(max(dot(n, cubeFaceUvToDirection(face, vec2(0.0, 0.0))), dot(n, cubeFaceUvToDirection(face, vec2(1.0, 0.0)))),
+                          max(dot(n, cubeFaceUvToDirection(face, vec2(0.0, 1.0))), dot(n, cubeFaceUvToDirection(face, vec2(1.0, 1.0)))));
+        if (front <= 0.0)
+            continue;
+        for (int i = face * faceTexels; i < (face + 1) * faceTexels; ++i) {
+            vec4 texel = exactTexels[2 * i];
+            vec4 radiance = exactTexels[2 * i + 1];
+            float c = dot(n, texel.xyz);
+            float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
+            float w = max(c, 0.0) / (t * t);
+            sum += w * radiance.rgb;
+            weightSum += w * radiance.w;
+        }
+    }
     return sum / weightSum;
 }
 #endif
@@ -106,7 +116,7 @@ void main()
     }
     vec3 radiance;
 #if BRIGHT_CAPACITY > 0
-    if (uExactFaceSize > 0)
+    if (uExactCount > 0)
         radiance = exactBaseSum(n);
     else
 #endif

@@ -1,0 +1,44 @@
+// The bright-texel split's bases (renderer/bake/bright_texels.hpp): level 0 of the
+// environment with every texel's luminance clamped to a threshold, chroma kept, then
+// box-averaged over uStep x uStep texels into level 0 of a base (a face uStep times
+// smaller: the finest level any sample reads; splitBaseTopLevel). Up to two bases, each
+// with its threshold, from one read of each texel. A texel that is not finite
+// (a half float that overflowed) becomes grey at the threshold: its flux is in the lights,
+// summed from the float map. On the GPU, so that the split reads nothing back and uploads
+// no cube (a 512^2 half-float cube is 12 MB each way).
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(FORMAT, binding = 1) readonly uniform imageCube uSource;
+layout(binding = 0) writeonly uniform imageCube uTarget;
+layout(binding = 2) writeonly uniform imageCube uSecondTarget;
+
+uniform int uSize; // the base's face
+uniform int uStep;
+uniform vec2 uThresholds;
+uniform int uTargets; // 1: uTarget only, 2: both
+
+vec3 clamped(vec3 rgb, float y, float threshold)
+{
+    if (isinf(y) || isnan(y))
+        return vec3(threshold);
+    return y > threshold ? rgb * (threshold / y) : rgb;
+}
+
+void main()
+{
+    ivec3 texel = ivec3(gl_GlobalInvocationID.xy, int(gl_GlobalInvocationID.z));
+    if (texel.x >= uSize || texel.y >= uSize)
+        return;
+    vec3 first = vec3(0.0), second = vec3(0.0);
+    for (int dy = 0; dy < uStep; ++dy)
+        for (int dx = 0; dx < uStep; ++dx) {
+            vec3 rgb = imageLoad(uSource, ivec3(texel.xy * uStep + ivec2(dx, dy), texel.z)).rgb;
+            float y = dot(rgb, vec3(0.2126, 0.7152, 0.0722));
+            first += clamped(rgb, y, uThresholds.x);
+            second += clamped(rgb, y, uThresholds.y);
+        }
+    float texels = float(uStep * uStep);
+    imageStore(uTarget, texel, vec4(first / texels, 1.0));
+    if (uTargets > 1)
+        imageStore(uSecondTarget, texel, vec4(second / texels, 1.0));
+}
