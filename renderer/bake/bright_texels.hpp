@@ -10,8 +10,8 @@
 //
 // The bright texels are the float equirect's (the map as loaded), not the environment
 // cube's: a half-float cube stores a sun of 1e6 as at most 65504 and loses its flux. The
-// base is the cube's level 0 with every texel clamped to T, from the level its samples
-// first read (splitBaseTopLevel).
+// base is the cube's level 0 with every texel clamped to T, from the level nearest the
+// finest its samples read (splitBaseTopLevel).
 //
 // The cost of the exact sum is (output texels) x (lights), and mip 1 has four times the texels
 // of mip 2, so each mip gets its own list: texels closer together than an eighth of the
@@ -91,7 +91,8 @@ struct PrefilterBrightTexels {
 };
 
 // Builds the split: the candidates from the equirect when the job still holds it (else from
-// the cube's level 0), the bases on the GPU from the cube's level 0 (BakePasses::clampedBase). Throws iblab::Error where the driver's uniform blocks cannot hold the lights.
+// the cube's level 0), the bases on the GPU from the cube's level 0 (BakePasses::clampedBases).
+// Throws iblab::Error where the driver's uniform blocks cannot hold the lights.
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
                                         const PrefilterSettings& settings);
 

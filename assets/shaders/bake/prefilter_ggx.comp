@@ -64,8 +64,9 @@ vec3 sumBrightTexels(vec3 n)
 // alpha / 2 across, so that the weight is nearly constant over each; the host chooses it,
 // bright_texels.hpp's exactSumSourceLevel), each texel weighted by D(h) max(0, n.l) times its
 // solid angle, and normalised by the weights' sum: a constant map stays exact. The host
-// lists the texels (exact_texels_block: (direction, 0), (radiance x solid angle, solid
-// angle)), so that every lane reads the same entry at the same time and no texture.
+// lists the texels (PrefilterBrightTexels::Level::exactTexels: (direction, 0), (radiance x
+// solid angle, solid angle)), so that every lane reads the same entry at the same time and
+// no texture: on llvmpipe a cube read per texel made mip 4 cost about twice as much.
 // Where the samples see a large bright area through a few reads that move with the texel,
 // this sees every texel of it with its weight.
 layout(std430, binding = 2) readonly buffer ExactTexels {
@@ -77,23 +78,14 @@ vec3 exactBaseSum(vec3 n)
 {
     vec3 sum = vec3(0.0);
     float weightSum = 0.0;
-    int faceTexels = uExactCount / 6; // the host lists them face by face
-    for (int face = 0; face < 6; ++face) {
-        // n.l is linear over a face's square (before l is normalised), so a face whose four
-        // corners are behind n is behind it everywhere: its weights are all 0.
-        float front = max(max(dot(n, cubeFaceUvToDirection(face, vec2(0.0, 0.0))), dot(n, cubeFaceUvToDirection(face, vec2(1.0, 0.0)))),
-                          max(dot(n, cubeFaceUvToDirection(face, vec2(0.0, 1.0))), dot(n, cubeFaceUvToDirection(face, vec2(1.0, 1.0)))));
-        if (front <= 0.0)
-            continue;
-        for (int i = face * faceTexels; i < (face + 1) * faceTexels; ++i) {
-            vec4 texel = exactTexels[2 * i];
-            vec4 radiance = exactTexels[2 * i + 1];
-            float c = dot(n, texel.xyz);
-            float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
-            float w = max(c, 0.0) / (t * t);
-            sum += w * radiance.rgb;
-            weightSum += w * radiance.w;
-        }
+    for (int i = 0; i < uExactCount; ++i) {
+        vec4 texel = exactTexels[2 * i];
+        vec4 radiance = exactTexels[2 * i + 1];
+        float c = dot(n, texel.xyz);
+        float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
+        float w = max(c, 0.0) / (t * t);
+        sum += w * radiance.rgb;
+        weightSum += w * radiance.w;
     }
     return sum / weightSum;
 }
