@@ -4,11 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "ibl/equirect.hpp"
+#include "ibl/parallel_rows.hpp"
 #include "ibl/table_sampling.hpp"
 
 namespace iblab {
@@ -16,19 +16,6 @@ namespace iblab {
 namespace {
 
 #include "ibl/specular_lobe_fit.inc"
-
-template <typename Fn>
-void parallelRows(int rows, const Fn& fn)
-{
-    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(std::max(rows, 1))));
-    if (threads <= 1) {
-        fn(0, rows);
-        return;
-    }
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back([&, t] { fn(rows * t / threads, rows * (t + 1) / threads); });
-    for (auto& th : pool) th.join();
-}
 
 glm::dvec3 reflectView(glm::dvec3 n, glm::dvec3 v)
 {

@@ -1,0 +1,27 @@
+#pragma once
+// Rows [0, rows) split into one contiguous band per hardware thread, fn(firstRow, endRow)
+// run on each band at once; returns when every band is done. A caller that sums keeps one
+// result per row and adds them in row order afterwards, so that its result does not depend
+// on the thread count.
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+namespace iblab {
+
+template <typename Fn>
+void parallelRows(int rows, const Fn& fn)
+{
+    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(std::max(rows, 1))));
+    if (threads <= 1) {
+        fn(0, rows);
+        return;
+    }
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] { fn(rows * t / threads, rows * (t + 1) / threads); });
+    for (std::thread& thread : pool)
+        thread.join();
+}
+
+} // namespace iblab
