@@ -17,7 +17,6 @@
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
-#include "ibl/parallel_rows.hpp"
 #include "io/error.hpp"
 
 namespace iblab::bake {
@@ -145,43 +144,29 @@ int farFaceSize(int cellFaceSize) { return std::min(kFarFace, cellFaceSize); }
 BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates)
 {
     const int w = equirect.width, h = equirect.height;
-    auto texelLuminance = [&](int x, int y) {
-        const float* rgb = &equirect.texels[equirect.offset(x, y)];
-        return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2];
-    };
-    // Each row's flux and brightest texel on every core (a 4096 x 2048 map is 96 MB to
-    // read), the rows added in order so that the mean does not depend on the core count;
-    // then only the rows with a texel above the floor are scanned again.
-    std::vector<double> rowSolidAngle(std::size_t(std::max(0, h))), rowSum(rowSolidAngle.size());
-    std::vector<float> rowMax(rowSolidAngle.size());
-    parallelRows(h, [&](int firstRow, int endRow) {
-        for (int y = firstRow; y < endRow; ++y) {
-            double sum = 0.0;
-            float largest = 0.0f;
-            for (int x = 0; x < w; ++x) {
-                const float lum = texelLuminance(x, y);
-                sum += double(std::max(0.0f, lum));
-                largest = std::max(largest, lum);
-            }
-            rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
-            rowSum[std::size_t(y)] = sum;
-            rowMax[std::size_t(y)] = largest;
-        }
-    });
+    std::vector<double> rowSolidAngle(std::size_t(std::max(0, h)));
+    std::vector<float> lum(std::size_t(std::max(0, w)) * std::size_t(std::max(0, h)));
     double flux = 0.0;
-    for (std::size_t y = 0; y < rowSum.size(); ++y)
-        flux += rowSum[y] * rowSolidAngle[y];
+    for (int y = 0; y < h; ++y) {
+        rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
+        const float* rgb = &equirect.texels[equirect.offset(0, y)];
+        float* rowLum = &lum[std::size_t(y) * std::size_t(w)];
+        double row = 0.0;
+        for (int x = 0; x < w; ++x) {
+            rowLum[x] = 0.2126f * rgb[3 * x] + 0.7152f * rgb[3 * x + 1] + 0.0722f * rgb[3 * x + 2];
+            row += double(std::max(0.0f, rowLum[x]));
+        }
+        flux += row * rowSolidAngle[std::size_t(y)];
+    }
     const float mean = float(flux / (4.0 * kPi));
     const float floorThreshold = thresholdOverMean * mean;
     std::vector<RankedTexel> ranked;
-    for (int y = 0; y < h; ++y)
-        if (rowMax[std::size_t(y)] > floorThreshold)
-            for (int x = 0; x < w; ++x)
-                if (const float lum = texelLuminance(x, y); lum > floorThreshold)
-                    ranked.push_back({lum, std::uint32_t(y) * std::uint32_t(w) + std::uint32_t(x)});
+    for (std::size_t i = 0; i < lum.size(); ++i)
+        if (lum[i] > floorThreshold)
+            ranked.push_back({lum[i], std::uint32_t(i)});
     return finishCandidates(std::move(ranked), floorThreshold, mean, maxCandidates, [&](std::uint32_t i) {
         const int x = int(i % std::uint32_t(w)), y = int(i / std::uint32_t(w));
-        return BrightTexel{equirectTexelDirection(x, y, w, h), glm::dvec3(equirect.at(x, y)), rowSolidAngle[std::size_t(y)], texelLuminance(x, y)};
+        return BrightTexel{equirectTexelDirection(x, y, w, h), glm::dvec3(equirect.at(x, y)), rowSolidAngle[std::size_t(y)], lum[i]};
     });
 }
 
