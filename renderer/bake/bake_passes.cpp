@@ -266,11 +266,14 @@ void BakePasses::clampedBases(const BakedTexture& environment, const std::vector
     uniforms.thresholds.set(glm::vec2(thresholds.front(), thresholds.back()));
     uniforms.targets.set(int(bases.size()));
     glBindImageTexture(1, environment.id(), 0, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
+    // Level 1 only serves a step of 2 or more, which needs the environment to have it.
+    glBindImageTexture(3, environment.id(), environment.levels > 1 ? 1 : 0, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
     glBindImageTexture(0, first.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
     glBindImageTexture(2, bases.back().id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
     glDispatchCompute(groupsFor(first.size), groupsFor(first.size), 6);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, environment.internalFormat);
+    glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_ONLY, environment.internalFormat);
     glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, first.internalFormat);
     clearPassBindings();
     for (const BakedTexture& base : bases)

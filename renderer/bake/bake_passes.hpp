@@ -73,7 +73,9 @@ public:
     // The bright-texel split's bases (bright_texels.hpp), one per threshold (at most 2): level
     // 0 of `environment` with each texel's luminance clamped to the threshold, box-averaged
     // into level 0 of the base (the same format, a face a power of two smaller or equal;
-    // clamp_luminance.comp, which reads each texel once for both), then each base's mips.
+    // clamp_luminance.comp, which reads each texel once for both, and a 2 x 2 block too dim
+    // to hold a texel above either threshold as its average from the environment's level 1,
+    // which must be built), then each base's mips.
     void clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds);
 
     // Radiance L_lm on the GPU: float sums over groups of rows, each row weighted by its

@@ -186,29 +186,31 @@ TEST_F(GlTest, WhiteFurnace)
 
 // The split's bases on the GPU (BakePasses::clampedBases) against the same arithmetic on
 // the CPU: each texel's luminance clamped to the base's threshold (chroma kept; a texel that
-// is not finite becomes grey at the threshold), 2 x 2 blocks averaged into a face half the
-// size, and that level's mips. Two thresholds from one pass, so that a swapped or shared
-// threshold fails.
+// is not finite becomes grey at the threshold), blocks of 2 x 2 and 4 x 4 texels averaged
+// into faces a half and a quarter the size, and the first of those levels' mips. Two
+// thresholds from one pass, so that a swapped or shared threshold fails; one face is dim
+// (its 2 x 2 blocks are taken whole from the environment's level 1, as too dim to hold a
+// texel above either threshold) but for one bright texel, whose block must be clamped.
 TEST_F(GlTest, SplitBasesAreTheClampedEnvironmentBoxAveraged)
 {
     auto shaders = testing::bakeShaderLibrary();
     bake::BakePasses passes(shaders);
     constexpr int kFace = 8;
+    constexpr int kDimFace = 3;
     bake::CubeImage source;
     source.size = kFace;
     source.texels.resize(6 * kFace * kFace);
     for (std::size_t i = 0; i < source.texels.size(); ++i) {
         const float v = float((i * 37) % 11) + 0.25f;
-        source.texels[i] = glm::vec4(v, 0.5f * v, i % 7 == 0 ? 40.0f * v : 0.1f, 1.0f);
+        source.texels[i] = int(i) / (kFace * kFace) == kDimFace ? glm::vec4(0.05f * v, 0.04f * v, 0.03f * v, 1.0f)
+                                                                : glm::vec4(v, 0.5f * v, i % 7 == 0 ? 40.0f * v : 0.1f, 1.0f);
     }
+    source.texels[kDimFace * kFace * kFace + 2 * kFace + 5] = glm::vec4(80.0f, 60.0f, 40.0f, 1.0f);
     source.texels[5] = glm::vec4(std::numeric_limits<float>::infinity(), 1.0f, 1.0f, 1.0f);
     const bake::BakedTexture environment = bake::createCubeTexture(GL_RGBA32F, kFace, 4);
     bake::uploadCubeLevel(environment, 0, source);
-    std::vector<bake::BakedTexture> bases;
-    bases.push_back(bake::createCubeTexture(GL_RGBA32F, kFace / 2, 3));
-    bases.push_back(bake::createCubeTexture(GL_RGBA32F, kFace / 2, 3));
+    passes.generateMips(environment);
     const std::vector<float> thresholds = {30.0f, 4.0f};
-    passes.clampedBases(environment, bases, thresholds);
 
     auto clamped = [](glm::vec3 rgb, float threshold) {
         const float y = 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b;
@@ -216,26 +218,32 @@ TEST_F(GlTest, SplitBasesAreTheClampedEnvironmentBoxAveraged)
             return glm::vec3(threshold);
         return y > threshold ? rgb * (threshold / y) : rgb;
     };
-    for (std::size_t b = 0; b < bases.size(); ++b) {
-        const bake::CubeImage level0 = bake::readCubeLevel(bases[b], 0), level1 = bake::readCubeLevel(bases[b], 1);
-        for (int face = 0; face < 6; ++face)
-            for (int row = 0; row < kFace / 4; ++row)
-                for (int x = 0; x < kFace / 4; ++x) {
-                    glm::vec3 coarse(0.0f);
-                    for (int r = 2 * row; r < 2 * row + 2; ++r)
-                        for (int c = 2 * x; c < 2 * x + 2; ++c) {
-                            glm::vec3 fine(0.0f);
-                            for (int dy = 0; dy < 2; ++dy)
-                                for (int dx = 0; dx < 2; ++dx)
-                                    fine += clamped(source.rgb(face, 2 * c + dx, 2 * r + dy), thresholds[b]) / 4.0f;
+    // The clamped average of the step x step block of source texels at (x, row) of a face step times smaller.
+    auto expected = [&](int face, int x, int row, int step, float threshold) {
+        glm::vec3 sum(0.0f);
+        for (int dy = 0; dy < step; ++dy)
+            for (int dx = 0; dx < step; ++dx)
+                sum += clamped(source.rgb(face, step * x + dx, step * row + dy), threshold);
+        return sum / float(step * step);
+    };
+    for (int step : {2, 4}) {
+        std::vector<bake::BakedTexture> bases;
+        bases.push_back(bake::createCubeTexture(GL_RGBA32F, kFace / step, 2));
+        bases.push_back(bake::createCubeTexture(GL_RGBA32F, kFace / step, 2));
+        passes.clampedBases(environment, bases, thresholds);
+        for (std::size_t b = 0; b < bases.size(); ++b)
+            for (int level = 0; level < 2; ++level) {
+                const bake::CubeImage image = bake::readCubeLevel(bases[b], level);
+                const int texelStep = step << level;
+                for (int face = 0; face < 6; ++face)
+                    for (int row = 0; row < image.size; ++row)
+                        for (int x = 0; x < image.size; ++x) {
+                            const glm::vec3 want = expected(face, x, row, texelStep, thresholds[b]);
                             for (int k = 0; k < 3; ++k)
-                                ASSERT_NEAR(level0.rgb(face, c, r)[k], fine[k], 1e-4f * std::max(1.0f, fine[k]))
-                                    << "base " << b << ", face " << face << ", texel " << c << ", " << r;
-                            coarse += fine / 4.0f;
+                                ASSERT_NEAR(image.rgb(face, x, row)[k], want[k], 1e-4f * std::max(1.0f, want[k]))
+                                    << "step " << step << ", base " << b << ", mip " << level << ", face " << face << ", texel " << x << ", " << row;
                         }
-                    for (int k = 0; k < 3; ++k)
-                        ASSERT_NEAR(level1.rgb(face, x, row)[k], coarse[k], 1e-4f * std::max(1.0f, coarse[k])) << "base " << b << ", mip 1";
-                }
+            }
     }
 }
 

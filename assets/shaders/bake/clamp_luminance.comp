@@ -9,6 +9,11 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(FORMAT, binding = 1) readonly uniform imageCube uSource;
+// The environment's level 1 (uStep >= 2): a 2 x 2 block whose average is at most a quarter
+// of the lower threshold has no texel above either (luminance is not negative, so no texel
+// exceeds the block's sum), and its average is what the clamp would give. Such a block is
+// read once instead of four times; on most maps that is most of the sky.
+layout(FORMAT, binding = 3) readonly uniform imageCube uSourceLevel1;
 layout(binding = 0) writeonly uniform imageCube uTarget;
 layout(binding = 2) writeonly uniform imageCube uSecondTarget;
 
@@ -16,6 +21,8 @@ uniform int uSize; // the base's face
 uniform int uStep;
 uniform vec2 uThresholds;
 uniform int uTargets; // 1: uTarget only, 2: both
+
+const vec3 kLuminance = vec3(0.2126, 0.7152, 0.0722);
 
 vec3 clamped(vec3 rgb, float y, float threshold)
 {
@@ -30,12 +37,27 @@ void main()
     if (texel.x >= uSize || texel.y >= uSize)
         return;
     vec3 first = vec3(0.0), second = vec3(0.0);
-    for (int dy = 0; dy < uStep; ++dy)
-        for (int dx = 0; dx < uStep; ++dx) {
-            vec3 rgb = imageLoad(uSource, ivec3(texel.xy * uStep + ivec2(dx, dy), texel.z)).rgb;
-            float y = dot(rgb, vec3(0.2126, 0.7152, 0.0722));
-            first += clamped(rgb, y, uThresholds.x);
-            second += clamped(rgb, y, uThresholds.y);
+    int blocks = uStep >= 2 ? uStep / 2 : 1; // per edge
+    int blockStep = uStep >= 2 ? 2 : 1;
+    float lower = min(uThresholds.x, uThresholds.y);
+    for (int by = 0; by < blocks; ++by)
+        for (int bx = 0; bx < blocks; ++bx) {
+            ivec2 block = texel.xy * blocks + ivec2(bx, by);
+            if (uStep >= 2) {
+                vec3 average = imageLoad(uSourceLevel1, ivec3(block, texel.z)).rgb;
+                if (4.0 * dot(average, kLuminance) <= lower) {
+                    first += 4.0 * average;
+                    second += 4.0 * average;
+                    continue;
+                }
+            }
+            for (int dy = 0; dy < blockStep; ++dy)
+                for (int dx = 0; dx < blockStep; ++dx) {
+                    vec3 rgb = imageLoad(uSource, ivec3(block * blockStep + ivec2(dx, dy), texel.z)).rgb;
+                    float y = dot(rgb, kLuminance);
+                    first += clamped(rgb, y, uThresholds.x);
+                    second += clamped(rgb, y, uThresholds.y);
+                }
         }
     float texels = float(uStep * uStep);
     imageStore(uTarget, texel, vec4(first / texels, 1.0));
