@@ -1,6 +1,6 @@
 #pragma once
 // The uniforms each bake shader declares, located once per program link (gl/uniform.hpp):
-// internal to bake_passes*.cpp, the programs' C++ side.
+// internal to bake_passes.cpp, the programs' C++ side.
 #include <glm/vec2.hpp>
 
 #include "gl/shader_library.hpp"

@@ -1,9 +1,11 @@
 # The one way the layer checks (check_function_lengths.cmake, check_namespaces.cmake) ask
 # universal-ctags about the code: every .cpp/.hpp of app/, ui/ and renderer/ (and EXTRA_FILE,
-# a check's proof that it can fail), one JSON tag per list element.
+# a check's proof that it can fail), one JSON tag per list element; and the one way they
+# report what they found.
 #
 #   include(ctags_tags.cmake)
 #   ctags_tags(tags WHAT "the namespace check" ARGS --kinds-C++=f --fields=+ne-P)
+#   ctags_check_report(${checked} "definitions" "${wrong}" "names outside ..." "each in its namespace")
 function(ctags_tags out_var)
   cmake_parse_arguments(PARSE_ARGV 1 arg "" "WHAT" "ARGS")
   if(NOT CTAGS)
@@ -29,4 +31,17 @@ function(ctags_tags out_var)
   string(REPLACE ";" "," tags "${tags}")
   string(REPLACE "\n" ";" tags "${tags}")
   set(${out_var} "${tags}" PARENT_SCOPE)
+endfunction()
+
+# Fails where ctags saw nothing (a check that read no code would pass on anything) or where
+# there are findings (each on its own line under `heading`); else reports the count checked.
+function(ctags_check_report checked what findings heading passed)
+  if(checked EQUAL 0)
+    message(FATAL_ERROR "${CTAGS} found no ${what} in ${SOURCE_DIR}: the check would pass on anything")
+  endif()
+  if(findings)
+    list(JOIN findings "\n  " text)
+    message(FATAL_ERROR "${heading}:\n  ${text}")
+  endif()
+  message(STATUS "${checked} ${what}, ${passed}")
 endfunction()
