@@ -83,6 +83,9 @@ nlohmann::ordered_json renderReport(const RenderJob& job, const std::string& ren
         out[settings.view.split ? "a" : "frame"] = errorMetricsJson(error.left);
         if (error.right) out["b"] = errorMetricsJson(*error.right);
     }
+    const Renderer::ShadingLightsInfo lights = renderer.shadingLights();
+    report["shading_lights"] = lights.count;
+    if (lights.count > 0) report["timings_ms"]["shading_lights"] = lights.milliseconds;
     report["timings_ms"]["start_to_context"] = t.contextMs;
     report["timings_ms"]["environment_load"] = t.loadMs;
     report["timings_ms"]["start_to_first_frame"] = t.firstFrameMs;

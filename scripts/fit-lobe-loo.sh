@@ -16,6 +16,9 @@
 #   FIT="--frames 48 --smooth 0.5 --smooth-passes 4" scripts/fit-lobe-loo.sh   (the fits' options
 #                                            beyond the fixed ones below; this is the default)
 #   ONLY_FULL=1 scripts/fit-lobe-loo.sh      (the full fit and the unseen maps only)
+#   LIGHTS=0 scripts/fit-lobe-loo.sh         (fit and measure the table on the plain cube; by default
+#                                            as the renderer shades it: the bake's shading lights summed
+#                                            exactly, the table reading the cube without them, --lights)
 # The full fit's table is OUT_DIR/full.inc; to commit it: cp OUT_DIR/full.inc
 # renderer/ibl/specular_lobe_fit.inc (its header names the command). The integrals are cached
 # in build/accuracy_cache, so the leave-one-out fits reuse the full fit's.
@@ -25,6 +28,9 @@ iblab=${IBLAB:-build/app/iblab}
 study=${STUDY:-build/renderer/lab/accuracy_study}
 out=${1:-build/lobe-loo}
 fit_options=${FIT:---frames 48 --smooth 0.5 --smooth-passes 4}
+lights=(--lights)
+suffix=+lights
+if [ "${LIGHTS:-1}" = 0 ]; then lights=(); suffix=; fi
 mkdir -p "$out"
 bakes="$out/bakes"
 start=$(date +%s)
@@ -48,7 +54,7 @@ fit() { # OUT.inc [--leave-out MAP]
   [ -f "$1" ] && return
   local t
   t=$(date +%s)
-  "$study" fit --taps 4 --width 256 --size 16 --min-roughness 0.15 --mixed-objective --per-map-ratio --bakes "$bakes" \
+  "$study" fit --taps 4 --width 256 --size 16 --min-roughness 0.15 --mixed-objective --per-map-ratio --bakes "$bakes" "${lights[@]}" \
     $fit_options "${@:2}" --out "$1.tmp" 2>"$1.log"
   mv "$1.tmp" "$1"
   log "$(basename "$1"): $(($(date +%s) - t)) s"
@@ -62,7 +68,7 @@ fi
 
 cp renderer/ibl/specular_lobe_fit.inc "$out/committed.inc"
 evaluate() { # CSV eval-args...
-  "$study" eval --bench-scenes --bakes "$bakes" --table "$out/committed.inc" --table "$out/full.inc" --csv "$1" "${@:2}" >/dev/null 2>"$1.log"
+  "$study" eval --bench-scenes --bakes "$bakes" "${lights[@]}" --table "$out/committed.inc" --table "$out/full.inc" --csv "$1" "${@:2}" >/dev/null 2>"$1.log"
 }
 if [ -z "${ONLY_FULL:-}" ]; then
   for m in "${maps[@]}"; do evaluate "$out/loo-$m.csv" --set none --env "assets/environments/$m.exr" --table "$out/loo-$m.inc"; done
@@ -70,15 +76,21 @@ fi
 evaluate "$out/unseen.csv" --set unseen "${synthetic[@]}"
 log "measured"
 
-python3 - "$out" "${maps[@]}" <<'EOF'
+python3 - "$out" "$suffix" "${maps[@]}" <<'EOF'
 import csv, os, sys
-out, maps = sys.argv[1], sys.argv[2:]
+out, suffix, maps = sys.argv[1], sys.argv[2], sys.argv[3:]
 scenes = ["0.3", "0.6", "grid"]
 def read(path):
     rows = {}
     for r in csv.DictReader(open(path)):
         scene = "grid" if r["scene"] == "grid" else "%g" % float(r["roughness"])
-        rows.setdefault((r["environment"], scene), {})[r["method"]] = float(r["relative_rmse"])
+        # The tables as shaded: with --lights their "+lights" rows (the split sum stays plain).
+        method = r["method"]
+        if suffix and method != "split-sum":
+            if not method.endswith(suffix) or method.startswith("split-sum"):
+                continue
+            method = method[: -len(suffix)]
+        rows.setdefault((r["environment"], scene), {})[method] = float(r["relative_rmse"])
     return rows
 def summary(ratios):
     v = sorted(ratios)

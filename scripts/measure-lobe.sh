@@ -90,3 +90,27 @@ echo "|---|---|---|"
 for args in "${methods[@]}"; do
   echo "| $args | ${best[$args]} | $(python3 -c "print('%.2f' % (${best[$args]} / ${best[--method splitsum]}))")x |"
 done
+
+# The fitted lobe's shading lights cost per light (docs/accuracy-study.md, "Compact sources"):
+# the same sphere on maps with none (courtyard), 5 (sunrise) and 12 (interior).
+echo
+echo "The same sphere on maps with 0, 5 and 12 shading lights (same timing rule):"
+echo
+echo "| map | lights | split sum ms | fitted lobe without lights | with them (default) |"
+echo "|---|---|---|---|---|"
+for map in courtyard sunrise interior; do
+  unset best
+  declare -A best
+  variants=("--method splitsum" "--method fitted-lobe --no-shading-lights" "--method fitted-lobe")
+  for round in 1 2 3; do
+    for args in "${variants[@]}"; do
+      # shellcheck disable=SC2086
+      json=$("$iblab" render --scene sphere --env "assets/environments/$map.exr" $args --width 1280 --height 720 --time 10 --json -o "$out/frame.png")
+      ms=$(echo "$json" | python3 -c "import json,sys; print('%.1f' % json.load(sys.stdin)['timings_ms']['frame_median'])")
+      lights=$(echo "$json" | python3 -c "import json,sys; print(json.load(sys.stdin)['shading_lights'])")
+      if [ -z "${best[$args]:-}" ] || python3 -c "import sys; sys.exit(0 if $ms < ${best[$args]} else 1)"; then best[$args]=$ms; fi
+    done
+  done
+  split=${best[--method splitsum]}
+  echo "| $map | $lights | $split | $(python3 -c "print('%.2fx' % (${best[--method fitted-lobe --no-shading-lights]} / $split))") | $(python3 -c "print('%.2fx' % (${best[--method fitted-lobe]} / $split))") |"
+done

@@ -277,6 +277,7 @@ void drawSamplingControls(SamplingSettings& settings, bool exactCountForced, con
     if (settings.method != ShadingMethod::Reference) fieldCombo<&S::diffuse>(settings);
     fieldCheckbox<&S::multiscatter>(settings);
     if (settings.multiscatter) fieldCombo<&S::multiscatterModel>(settings);
+    if (settings.method == ShadingMethod::FittedLobe) fieldCheckbox<&S::shadingLights>(settings);
     if (readsPrefilteredCube(settings.method)) fieldCheckbox<&S::roughFresnelOnLut>(settings);
     if (settings.method == ShadingMethod::SplitSum) fieldCombo<&S::specularDirection>(settings);
 }

@@ -14,6 +14,7 @@
 #include "io/image_codec.hpp"
 #include "io/image_codec_direct.hpp"
 #include "io/image_writer.hpp"
+#include "io/shading_lights_json.hpp"
 
 namespace iblab::bake {
 namespace {
@@ -197,6 +198,8 @@ BakeSnapshot snapshotBake(const BakeResult& result, const std::string& extraJson
     meta["prefiltered"]["roughness_per_mip"] = roughness;
     if (mirrorSource)
         meta["prefiltered"][kMirrorOfEnvironmentLevel] = *mirrorSource;
+    if (result.settings.prefilter.shadingLights > 0)
+        meta["shading_lights"] = shadingLightsJson(result.shadingLights);
     meta["cube_layout"] = "one EXR per level: width = face size, height = 6 x face size, faces +X,-X,+Y,-Y,+Z,-Z top to "
                           "bottom, each face's t = 0 row first";
     meta["files"] = files;
@@ -270,6 +273,16 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
             continue;
         }
         uploadStoredCubeLevel(result.prefiltered, level, readStoredCubeExr(directory / prefilterFile(level), result.prefiltered.levelSize(level), format));
+    }
+
+    if (s.prefilter.shadingLights > 0) {
+        if (!meta.contains("shading_lights"))
+            throw BakeFileError(metaPath, "no shading_lights, though the settings ask for " + std::to_string(s.prefilter.shadingLights));
+        try {
+            result.shadingLights = shadingLightsFromJson(meta["shading_lights"], "shading_lights");
+        } catch (const Error& e) {
+            throw BakeFileError(metaPath, e.what());
+        }
     }
 
     const fs::path shPath = directory / "sh.json";

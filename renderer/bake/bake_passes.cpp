@@ -15,6 +15,7 @@
 #include "io/error.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
+#include "ibl/reference.hpp"
 #include "gl/uniform.hpp"
 #include "bake/bake_pass_uniforms.hpp"
 

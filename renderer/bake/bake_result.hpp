@@ -9,6 +9,7 @@
 #include "bake/bake_settings.hpp"
 #include "bake/baked_texture.hpp"
 #include "ibl/sh.hpp"
+#include "ibl/shading_lights.hpp"
 
 namespace iblab::bake {
 
@@ -66,6 +67,9 @@ struct BakeResult {
     BakedTexture prefiltered;          // mip m = roughness prefilterRoughnessFromMip(m, levels)
     std::array<BakedTexture, 2> brdfLut; // [int(GeometryTerm)], RGBA16F: A, B, A + B, 1
     ShResult sh;
+    // The fitted lobe's lights (settings.prefilter.shadingLights; none for an imported bake):
+    // shading subtracts them from `prefiltered` (ibl/shading_lights.hpp) and sums them exactly.
+    ShadingLights shadingLights;
 
     std::vector<PhaseTiming> timings; // in the order the phases ran
     double totalMilliseconds = 0.0;

@@ -51,7 +51,8 @@ BakeSettings tutorialPreset()
                    .mipBias = 0.0f,
                    .mirrorCopy = false,
                    .brightTexels = 0,
-                   .brightThreshold = 4.0f};
+                   .brightThreshold = 4.0f,
+                   .shadingLights = 0};
     s.lut = {.size = 512, .samples = 1024, .schlickGgx = true, .heightCorrelatedSmith = false};
     return s;
 }
@@ -80,7 +81,8 @@ BakeSettings filamentPreset()
                    .mipBias = 1.0f,
                    .mirrorCopy = true,
                    .brightTexels = 0,
-                   .brightThreshold = 4.0f};
+                   .brightThreshold = 4.0f,
+                   .shadingLights = 0};
     s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     return s;
 }
@@ -109,7 +111,8 @@ BakeSettings gltfViewerPreset()
                    .mipBias = 1.8257f,
                    .mirrorCopy = false,
                    .brightTexels = 0,
-                   .brightThreshold = 4.0f};
+                   .brightThreshold = 4.0f,
+                   .shadingLights = 0};
     s.lut = {.size = 128, .samples = 1024, .schlickGgx = false, .heightCorrelatedSmith = true};
     return s;
 }
@@ -239,6 +242,9 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
         {"prefilter.exact_sum_texels", "Exact-sum source texels",
          "With the bright split: a mip whose base fits an exact sum over a source mip of at most this many texels (texels <= alpha / 2 across, a face of 8 or more) is summed, not sampled (0: never)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.exactSumTexels; }), {0, 1 << 16}, "--prefilter-exact-sum-texels", value},
+        {"prefilter.shading_lights", "Shading lights",
+         "The map's brightest texel groups the fitted lobe shades exactly, as lights, reading the prefiltered cube without them (0: none)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.shadingLights; }), {0, kMaxShadingLights}, "--prefilter-shading-lights", value},
         {"prefilter.sample_rotation", "Prefilter sample rotation", "Degrees the GGX sample set is turned about each texel's normal (for checks)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.sampleRotation; }), {-360, 360}, "--prefilter-sample-rotation", value},
         {"prefilter.layout", "Roughness layout",

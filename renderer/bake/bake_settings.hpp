@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ibl/shading_lights.hpp"
 #include "ibl/brdf.hpp"
 #include "ibl/sh.hpp"
 #include "io/settings_fields.hpp"
@@ -141,6 +142,10 @@ struct PrefilterSettings {
     int exactSumTexels = 1536;
     // Degrees the sample set is turned about each texel's normal (0: as generated).
     float sampleRotation = 0.0f;
+    // The fitted lobe's shading lights (ibl/shading_lights.hpp): at most this many of the
+    // map's brightest groups of texels, found on the float map, which shading sums exactly
+    // while the fitted lobe reads the chain without them. 0: none (the plain chain).
+    int shadingLights = kMaxShadingLights;
     bool operator==(const PrefilterSettings&) const = default;
 };
 

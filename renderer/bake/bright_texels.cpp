@@ -17,12 +17,11 @@
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
+#include "ibl/luminance.hpp"
 #include "io/error.hpp"
 
 namespace iblab::bake {
 namespace {
-
-float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
 // Solid angle of texel (x, row) of a size^2 face: its area (2 / size)^2 on the face plane at
 // distance 1, foreshortened by 1 / r^3 at its centre (r = the centre's distance). Within
@@ -46,23 +45,6 @@ double texelSolidAngle(int x, int row, int size)
 }
 
 } // namespace
-
-double ggxPrefilterNormalization(double roughness)
-{
-    // With v = n, dOmega_l = 4 (n.h) dOmega_h, so Z = 4 E[max(0, n.l)] for h drawn with
-    // density D(h) (n.h), whose inverse CDF is cos^2(theta_h) = (1 - u) / (1 + (alpha^2 - 1) u);
-    // n.l = 2 cos^2(theta_h) - 1. The integrand is smooth in u: the midpoint rule with 2^16
-    // points is exact to well under 1e-6.
-    const double a2 = roughness * roughness * roughness * roughness;
-    constexpr int kSteps = 1 << 16;
-    double sum = 0.0;
-    for (int i = 0; i < kSteps; ++i) {
-        const double u = (i + 0.5) / kSteps;
-        const double cos2 = (1.0 - u) / (1.0 + (a2 - 1.0) * u);
-        sum += std::max(0.0, 2.0 * cos2 - 1.0);
-    }
-    return 4.0 * sum / kSteps;
-}
 
 namespace {
 

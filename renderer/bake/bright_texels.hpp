@@ -114,10 +114,5 @@ inline constexpr int kMaxBrightLights = 2048;
 // The most far cells mip `level` (>= 1) sums for every texel (bright_texels_block.hpp).
 int brightTexelCap(const PrefilterSettings& settings, int level);
 
-// Z(alpha) = integral of D(h) max(0, n.l) dOmega_l over the sphere, with v = n and h the
-// half vector of n and l (GGX, alpha = roughness^2): what the exact sum divides its weights
-// D(h) max(0, n.l) dOmega by, as the reference divides by the same integral summed over its
-// texels. (The sampled part divides by its own sum of n.l, which estimates the same lobe.)
-double ggxPrefilterNormalization(double roughness);
 
 } // namespace iblab::bake

@@ -16,9 +16,13 @@ namespace bake {
 struct BakeResult;
 }
 
+struct ShadingLightsTexture;
+
 struct Lighting {
     GLuint equirect = 0;                    // the loaded map with mips
     const bake::BakeResult* bake = nullptr; // the bake this frame lights with; null until one is set
+    // The bake's shading lights and its cube less them, for the fitted lobe; null without lights.
+    const ShadingLightsTexture* shadingLights = nullptr;
 };
 
 // The shared IBL uniforms of one program; every lit pass's uniforms include them.

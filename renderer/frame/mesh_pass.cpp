@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "frame/camera.hpp"
+#include "frame/shading_lights_texture.hpp"
 #include "frame/texture_units.hpp"
 #include "ibl/sampling.hpp"
 #include "ibl/specular_approximations.hpp"
@@ -25,6 +26,10 @@ struct MeshUniforms {
     gl::Uniform<bool> cosineSampledDiffuse;
     gl::Uniform<int> sampleCount;
     gl::Uniform<int> lobeFitLayout;
+    gl::Uniform<int> shadingLightCount;
+    gl::UniformArray<glm::vec3> shadingLightDirection;
+    gl::UniformArray<glm::vec3> shadingLightFlux;
+    gl::Uniform<float> shadingLightMinAlpha;
     gl::Uniform<glm::mat4> model;
     gl::Uniform<glm::mat3> normalMatrix;
     // The material's factors and texture slots (glTF's).
@@ -48,7 +53,8 @@ struct MeshUniforms {
 MeshUniforms::MeshUniforms(const gl::ShaderProgram& p)
     : ibl(p), viewProjection(p, "uViewProjection"), cameraPosition(p, "uCameraPosition"), sampleRotation(p, "uSampleRotation"),
       normalizeByAccepted(p, "uNormalizeByAccepted"), cosineSampledDiffuse(p, "uCosineSampledDiffuse"), sampleCount(p, "uSampleCount"),
-      lobeFitLayout(p, "uLobeFitLayout"), model(p, "uModel"), normalMatrix(p, "uNormalMatrix"),
+      lobeFitLayout(p, "uLobeFitLayout"), shadingLightCount(p, "uShadingLightCount"), shadingLightDirection(p, "uShadingLightDirection"),
+      shadingLightFlux(p, "uShadingLightFlux"), shadingLightMinAlpha(p, "uShadingLightMinAlpha"), model(p, "uModel"), normalMatrix(p, "uNormalMatrix"),
       baseColorFactor(p, "uBaseColorFactor"), metallicFactor(p, "uMetallicFactor"),
       roughnessFactor(p, "uRoughnessFactor"), emissiveFactor(p, "uEmissiveFactor"), occlusionStrength(p, "uOcclusionStrength"),
       normalScale(p, "uNormalScale"), specular(p, "uSpecular"), ambientOcclusion(p, "uAmbientOcclusion"),
@@ -106,6 +112,21 @@ gl::Texture uploadLobeFit(const LobeFitTable& table)
     glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return texture;
+}
+
+// The fitted lobe's lights, with the cube less them in the prefiltered unit (IblUniforms bound
+// the bake's own there); none where the method does not sum them or the bake has none.
+void bindShadingLights(const MeshUniforms& u, const Lighting& lighting, bool wanted)
+{
+    const ShadingLightsTexture* lights = wanted ? lighting.shadingLights : nullptr;
+    u.shadingLightCount.set(lights ? int(lights->lights.size()) : 0);
+    if (!lights) return;
+    std::vector<glm::vec3> directions, flux;
+    for (const ShadingLight& light : lights->lights) directions.push_back(light.direction), flux.push_back(light.flux);
+    u.shadingLightDirection.set(directions);
+    u.shadingLightFlux.set(flux);
+    u.shadingLightMinAlpha.set(lights->minAlpha);
+    glBindTextureUnit(kUnitPrefiltered, lights->residual.id());
 }
 
 } // namespace
@@ -175,6 +196,7 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
                 u->cosineSampledDiffuse.set(settings.sampling.cosineSampledDiffuse);
                 u->lobeFitLayout.set(lobeFitLayout_);
                 glBindTextureUnit(kUnitLobeFit, lobeFit_.id());
+                bindShadingLights(*u, lighting, !gbuffer && !sampled && settings.sampling.method == ShadingMethod::FittedLobe && settings.sampling.shadingLights);
             }
             u->model.set(draw.model);
             u->normalMatrix.set(glm::transpose(glm::inverse(glm::mat3(draw.model))));

@@ -42,6 +42,7 @@
 #include "frame/gpu_scene.hpp"
 #include "frame/mesh_pass.hpp"
 #include "frame/reference_renderer.hpp"
+#include "frame/shading_lights_texture.hpp"
 #include "frame/sky_pass.hpp"
 #include "frame/texture_readback.hpp"
 #include "frame/texture_units.hpp"
@@ -72,6 +73,7 @@ struct Renderer::Impl {
     gl::Texture equirect;
     std::shared_ptr<const bake::BakeResult> bake;
     std::shared_ptr<const bake::BakeResult> furnaceBake; // builtin:white, for ViewMode::Furnace
+    std::unique_ptr<ShadingLightsTexture> bakeLights;    // of `bake`; null without lights (the furnace's white has none)
     SceneSlot scene;
     // Counts every change of what a frame shows besides its settings (environment, bakes,
     // model), so that no running mean outlives what it was made from.
@@ -219,7 +221,8 @@ struct Renderer::Impl {
     // The furnace view lights with the furnace bake; every other view with the bake.
     Lighting lightingFor(const FrameSettings& settings) const
     {
-        return {equirect.id(), settings.view.mode == ViewMode::Furnace ? furnaceBake.get() : bake.get()};
+        if (settings.view.mode == ViewMode::Furnace) return {equirect.id(), furnaceBake.get(), nullptr};
+        return {equirect.id(), bake.get(), bakeLights.get()};
     }
 };
 
@@ -245,9 +248,15 @@ void Renderer::setBake(std::shared_ptr<const bake::BakeResult> bake)
     const bool otherMap = bake && impl_->bake && bake->contentHash != impl_->bake->contentHash;
     if (otherMap) impl_->reference.environmentChanged();
     impl_->bake = std::move(bake);
+    impl_->bakeLights = impl_->bake ? makeShadingLightsTexture(*impl_->bake) : nullptr;
     ++impl_->contentRevision;
 }
 bool Renderer::hasBake() const { return bool(impl_->bake); }
+Renderer::ShadingLightsInfo Renderer::shadingLights() const
+{
+    if (!impl_->bakeLights) return {};
+    return {int(impl_->bakeLights->lights.size()), impl_->bakeLights->milliseconds};
+}
 
 void Renderer::setFurnaceBake(std::shared_ptr<const bake::BakeResult> bake)
 {

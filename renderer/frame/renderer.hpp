@@ -54,6 +54,13 @@ public:
     // The baked IBL that lit surfaces use; until one is set only the background is drawn.
     void setBake(std::shared_ptr<const bake::BakeResult> bake);
     bool hasBake() const;
+    // The bake's shading lights the fitted lobe sums (0 without), and what setBake spent
+    // making the cube without them (the read-back, the residual, the upload).
+    struct ShadingLightsInfo {
+        int count = 0;
+        double milliseconds = 0.0;
+    };
+    ShadingLightsInfo shadingLights() const;
     // A bake of builtin:white used by ViewMode::Furnace (the app makes it on demand).
     void setFurnaceBake(std::shared_ptr<const bake::BakeResult> bake);
     bool hasFurnaceBake() const;

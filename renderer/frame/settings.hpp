@@ -122,6 +122,10 @@ struct SamplingSettings {
     // own exact E_ss, so errors against it measure the compensated BRDF.
     bool multiscatter = true;
     MultiscatterModel multiscatterModel = MultiscatterModel::Filament;
+    // The fitted lobe: sum the bake's shading lights (its brightest texel groups, a sun, a
+    // lamp) exactly and read the cube without them (ibl/shading_lights.hpp). A bake without
+    // lights (--prefilter-shading-lights 0, an imported one) shades as without.
+    bool shadingLights = true;
     // Split sum as LearnOpenGL writes it: prefiltered * (F_roughness(n.v) A + B), Fresnel applied
     // on top of the LUT that already integrates it. false: prefiltered * (F0 A + B), exact for
     // the split sum (Karis 2013). The convention presets turn it on for LearnOpenGL.

@@ -23,6 +23,12 @@ namespace iblab {
 // Diffuse irradiance E(n) = integral L(w) max(0, n.w) dOmega. n must be unit length.
 glm::dvec3 referenceIrradiance(const ImageRGB32F& env, glm::dvec3 n);
 
+// Z(alpha) = integral of D(h) max(0, n.l) dOmega_l over the sphere, with v = n and h the
+// half vector of n and l (GGX, alpha = roughness^2): what the exact sum divides its weights
+// D(h) max(0, n.l) dOmega by, as the reference divides by the same integral summed over its
+// texels. (The sampled part divides by its own sum of n.l, which estimates the same lobe.)
+double ggxPrefilterNormalization(double roughness);
+
 // What LearnOpenGL's GGX prefilter converges to with N = V = R, as the sample count -> inf:
 //   sum_w L(w) D(h) max(0, n.w) dOmega / sum_w D(h) max(0, n.w) dOmega,  h = normalize(n + w),
 // alpha = roughness^2. At roughness 0 the lobe is a delta: returns the bilinear lookup at n.

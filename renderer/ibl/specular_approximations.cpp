@@ -213,8 +213,15 @@ ReferenceSums::ReferenceSums(const ImageRGB32F& env) : width_(env.width)
     texels_.reserve(env.texelCount());
     for (int y = 0; y < env.height; ++y) {
         const double dOmega = equirectTexelSolidAngle(y, env.width, env.height);
-        for (int x = 0; x < env.width; ++x) texels_.push_back({equirectTexelDirection(x, y, env.width, env.height), glm::dvec3(env.at(x, y)) * dOmega});
+        for (int x = 0; x < env.width; ++x)
+            // A black texel adds nothing; skipping it makes a sparse map (lights alone) cheap.
+            if (env.at(x, y) != glm::vec3(0.0f)) texels_.push_back({equirectTexelDirection(x, y, env.width, env.height), glm::dvec3(env.at(x, y)) * dOmega});
     }
+}
+
+ReferenceSums::ReferenceSums(const std::vector<ShadingLight>& lights)
+{
+    for (const ShadingLight& light : lights) texels_.push_back({glm::dvec3(light.direction), glm::dvec3(light.flux)});
 }
 
 FullIntegral ReferenceSums::evaluate(glm::dvec3 n, glm::dvec3 v, double roughness, GeometryTerm term, bool withIrradiance) const

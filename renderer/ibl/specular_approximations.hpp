@@ -27,6 +27,7 @@
 #include "ibl/brdf.hpp"
 #include "ibl/glsl_shared.hpp"
 #include "ibl/image.hpp"
+#include "ibl/shading_lights.hpp"
 
 namespace iblab::shared {
 #include "common/specular_lobe.glsl"
@@ -157,6 +158,8 @@ struct FullIntegral {
 class ReferenceSums {
 public:
     explicit ReferenceSums(const ImageRGB32F& env);
+    // The same sums over point lights (shading_lights.hpp), each its flux at its direction.
+    explicit ReferenceSums(const std::vector<ShadingLight>& lights);
     FullIntegral evaluate(glm::dvec3 n, glm::dvec3 v, double roughness, GeometryTerm term, bool withIrradiance = true) const;
     int width() const { return width_; }
 

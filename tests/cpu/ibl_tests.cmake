@@ -9,3 +9,5 @@ iblab_add_cpu_test(tonemap_test ${CMAKE_CURRENT_SOURCE_DIR}/tonemap_test.cpp)
 iblab_add_cpu_test(error_metrics_test ${CMAKE_CURRENT_SOURCE_DIR}/error_metrics_test.cpp)
 # The committed fitted-lobe table: no steps between neighbouring cells (the rings of rough spheres).
 iblab_add_cpu_test(lobe_table_smoothness_test ${CMAKE_CURRENT_SOURCE_DIR}/lobe_table_smoothness_test.cpp)
+# The fitted lobe's shading lights: which groups, their flux, the residual chain, bake.json's form.
+iblab_add_cpu_test(shading_lights_test ${CMAKE_CURRENT_SOURCE_DIR}/shading_lights_test.cpp)

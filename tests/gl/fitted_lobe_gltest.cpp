@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -14,6 +15,7 @@
 #include "frame/camera.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/error_metrics.hpp"
+#include "ibl/reference.hpp"
 #include "ibl/specular_approximations.hpp"
 #include "lobe_test_environment.hpp"
 #include "io/environment.hpp"
@@ -69,6 +71,26 @@ protected:
         renderer().renderFrame(s, kSize, kSize);
         return renderer().readHdrFrame();
     }
+    // Every `step`-th sphere pixel each way (the rim included) with the G-buffer's N and V
+    // there: the reference renderer's own, over a tiny map.
+    struct SurfacePixel {
+        int x, y;
+        glm::dvec3 n, v;
+    };
+    std::vector<SurfacePixel> surfacePixels(FrameSettings s, int step)
+    {
+        s.view.referenceWidth = 8;
+        EXPECT_TRUE(renderer().advanceReference(s, kSize, kSize, std::chrono::hours(1)).complete);
+        const FrameReadback normals = renderer().readReferenceLayer(ReferenceLayer::Normal);
+        const FrameReadback views = renderer().readReferenceLayer(ReferenceLayer::View);
+        std::vector<SurfacePixel> pixels;
+        for (int y = 1; y < kSize; y += step)
+            for (int x = 1; x < kSize; x += step)
+                if (pixelOf(normals, x, y).w != 0.0f)
+                    pixels.push_back({x, y, glm::normalize(glm::dvec3(glm::vec3(pixelOf(normals, x, y)))),
+                                      glm::normalize(glm::dvec3(glm::vec3(pixelOf(views, x, y))))});
+        return pixels;
+    }
 };
 
 TEST_F(FittedLobe, CloserToTheCpuFullIntegralThanTheSplitSum)
@@ -85,27 +107,18 @@ TEST_F(FittedLobe, CloserToTheCpuFullIntegralThanTheSplitSum)
         // The lobe's reads against the single-scattering integral `full` below: without the
         // compensation (on by default), which would scale both frames but not `full`.
         s.sampling.multiscatter = false;
-        // The G-buffer's N and V per pixel: the reference renderer's own, over a tiny map.
-        s.view.referenceWidth = 8;
-        ASSERT_TRUE(renderer().advanceReference(s, kSize, kSize, std::chrono::hours(1)).complete);
-        const FrameReadback normals = renderer().readReferenceLayer(ReferenceLayer::Normal);
-        const FrameReadback views = renderer().readReferenceLayer(ReferenceLayer::View);
+        const std::vector<SurfacePixel> surface = surfacePixels(s, 3);
         const FrameReadback split = render(s);
         s.sampling.method = ShadingMethod::FittedLobe;
         const FrameReadback fitted = render(s);
-        // Every third pixel each way over the sphere, the rim included.
-        for (int y = 1; y < kSize; y += 3)
-            for (int x = 1; x < kSize; x += 3) {
-                if (pixelOf(normals, x, y).w == 0.0f) continue;
-                const glm::dvec3 n = glm::normalize(glm::dvec3(glm::vec3(pixelOf(normals, x, y))));
-                const glm::dvec3 v = glm::normalize(glm::dvec3(glm::vec3(pixelOf(views, x, y))));
-                const glm::vec3 full(sums.evaluate(n, v, roughness, s.sampling.geometry, false).specular(F0));
-                const double splitError = relativeError(glm::vec3(pixelOf(split, x, y)), full);
-                const double fittedError = relativeError(glm::vec3(pixelOf(fitted, x, y)), full);
-                splitSquares += splitError * splitError;
-                fittedSquares += fittedError * fittedError;
-                ++pixels;
-            }
+        for (const SurfacePixel& p : surface) {
+            const glm::vec3 full(sums.evaluate(p.n, p.v, roughness, s.sampling.geometry, false).specular(F0));
+            const double splitError = relativeError(glm::vec3(pixelOf(split, p.x, p.y)), full);
+            const double fittedError = relativeError(glm::vec3(pixelOf(fitted, p.x, p.y)), full);
+            splitSquares += splitError * splitError;
+            fittedSquares += fittedError * fittedError;
+            ++pixels;
+        }
     }
     ASSERT_GT(pixels, 300);
     const double splitRmse = std::sqrt(splitSquares / pixels), fittedRmse = std::sqrt(fittedSquares / pixels);
@@ -114,6 +127,45 @@ TEST_F(FittedLobe, CloserToTheCpuFullIntegralThanTheSplitSum)
     // pixels (0.24x; the CPU study's emulation of the same map gives 0.20x). The study's bar
     // is half the split sum's.
     EXPECT_LT(fittedRmse, 0.5 * splitRmse) << "fitted " << fittedRmse << " split sum " << splitRmse;
+}
+
+// A 0.5 degree sun of 1e4 over a dim sky: the light dominates every highlight, and no read of
+// the prefiltered cube has its shape (ibl/shading_lights.hpp). With the bake's shading lights
+// summed exactly the fitted lobe is several times closer to the full integral than without,
+// and well inside half the split sum's error.
+TEST_F(FittedLobe, ShadingLightsMakeASunExact)
+{
+    const ImageRGB32F env = loadEnvironment("builtin:sun?width=512&size=0.5&intensity=1e4&sky=0.2&elevation=35&azimuth=30").image;
+    light(env);
+    const ReferenceSums sums(downsampleEquirectToWidth(env, 256));
+    const glm::dvec3 F0(0.95, 0.64, 0.54);
+    double squares[3] = {0.0, 0.0, 0.0}; // split sum, fitted lobe without lights, with
+    int pixels = 0;
+    for (const float roughness : {0.3f, 0.5f}) {
+        FrameSettings s = sphere(ShadingMethod::SplitSum, glm::vec3(F0), roughness);
+        s.sampling.multiscatter = false;
+        const std::vector<SurfacePixel> surface = surfacePixels(s, 2);
+        FrameReadback frames[3];
+        frames[0] = render(s);
+        s.sampling.method = ShadingMethod::FittedLobe;
+        s.sampling.shadingLights = false;
+        frames[1] = render(s);
+        s.sampling.shadingLights = true;
+        frames[2] = render(s);
+        for (const SurfacePixel& p : surface) {
+            const glm::vec3 full(sums.evaluate(p.n, p.v, roughness, s.sampling.geometry, false).specular(F0));
+            for (int m = 0; m < 3; ++m) {
+                const double e = relativeError(glm::vec3(pixelOf(frames[m], p.x, p.y)), full);
+                squares[m] += e * e;
+            }
+            ++pixels;
+        }
+    }
+    ASSERT_GT(pixels, 500);
+    const double split = std::sqrt(squares[0] / pixels), without = std::sqrt(squares[1] / pixels), with = std::sqrt(squares[2] / pixels);
+    std::printf("GPU, %d sphere pixels: relative RMSE split sum %.3f, fitted lobe %.3f, with shading lights %.3f\n", pixels, split, without, with);
+    EXPECT_LT(with, 0.5 * without) << "split sum " << split << " fitted lobe " << without << " with lights " << with;
+    EXPECT_LT(with, 0.2 * split) << "split sum " << split << " with lights " << with;
 }
 
 // In a uniform environment every read of the prefiltered cube returns its radiance, so the

@@ -40,6 +40,15 @@ uniform int uSpecularDirection;  // SPECULAR_DIRECTION_* of specular_lobe.glsl: 
 // roughness, texel centres (i + 0.5) / size, bilinear, clamp to edge; uLobeFitLayout its taps.
 uniform sampler2D uLobeFit;
 uniform int uLobeFitLayout;
+// The map's brightest texels, shaded exactly (renderer/ibl/shading_lights.hpp): with them the
+// fitted lobe reads uPrefiltered made from the rest of the map (its residual), and each light
+// adds its flux times the BRDF at its direction. Environment space, flux = radiance x solid
+// angle. uShadingLightCount 0: the plain cube, no lights.
+const int SHADING_LIGHTS_MAX = 16;
+uniform int uShadingLightCount;
+uniform vec3 uShadingLightDirection[SHADING_LIGHTS_MAX];
+uniform vec3 uShadingLightFlux[SHADING_LIGHTS_MAX];
+uniform float uShadingLightMinAlpha; // a light is a texel across, not a point: alpha at least its size
 uniform float uForcedMip;    // < 0: automatic
 uniform bool uPdfMipFiltering;
 uniform float uMipBias;
@@ -127,6 +136,26 @@ vec3 fittedLobeRadiance(SurfacePoint s, float NdotV, vec3 R, vec3 scaledA, float
     return (lobeTapWeight(p, uLobeFitLayout, 0) * read0 + lobeTapWeight(p, uLobeFitLayout, 1) * read1) * (scaledA + B);
 }
 
+// The lights' exact specular, F D Vis (n.l) flux each, without the energy compensation (the
+// caller applies it to the whole specular, as to the cube's reads). Dot products are the same
+// in either space, so N and V are turned into the environment's rather than every light out.
+vec3 shadingLightsSpecular(SurfacePoint s, float NdotV)
+{
+    vec3 N = toEnvironment(s.N), V = toEnvironment(s.V);
+    float alpha = max(s.roughness * s.roughness, uShadingLightMinAlpha);
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < uShadingLightCount; ++i) {
+        vec3 L = uShadingLightDirection[i];
+        float NdotL = dot(N, L);
+        if (NdotL <= 0.0) continue;
+        vec3 H = normalize(V + L);
+        float VdotH = max(dot(V, H), 0.0);
+        sum += uShadingLightFlux[i] * fresnelSchlick(VdotH, s.F0)
+               * (ggxD(max(dot(N, H), 0.0), alpha) * geometryVisibility(uGeometry, NdotV, NdotL, alpha) * NdotL);
+    }
+    return sum * uEnvironmentIntensity;
+}
+
 // Split sum (Karis 2013): the specular integral as (prefiltered radiance at R) times
 // (F0 A + B), with A and B from the LUT. LearnOpenGL multiplies the LUT by the
 // roughness-aware Fresnel instead of F0; that counts Fresnel twice (it is already inside A
@@ -141,7 +170,7 @@ vec3 shadeSplitSum(SurfacePoint s)
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
     vec3 scaleFresnel = uRoughFresnelOnLut ? fresnelSchlickRoughness(NdotV, s.F0, s.roughness) : s.F0;
 #if FITTED_LOBE
-    vec3 reflected = fittedLobeRadiance(s, NdotV, R, scaleFresnel * lut.r, lut.g);
+    vec3 reflected = fittedLobeRadiance(s, NdotV, R, scaleFresnel * lut.r, lut.g) + shadingLightsSpecular(s, NdotV);
 #else
     if (uSpecularDirection != SPECULAR_DIRECTION_REFLECTION)
         R = lobeTapDirection(s.N, R, specularDirectionTowardsNormal(uSpecularDirection, s.roughness * s.roughness));

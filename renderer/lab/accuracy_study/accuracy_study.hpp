@@ -49,6 +49,12 @@ struct StudyOptions {
     // instead of the emulated mip chain, to separate the chain's discrete levels from the lobe.
     bool exactPrefilter = false;
     bool bins = false; // the copper spheres' errors by n.v band too
+    // eval and fit, with --bakes: --lights reads each bake's shading lights (bake.json) and
+    // its mips less them, as the renderer shades the fitted lobe (ibl/shading_lights.hpp;
+    // docs/accuracy-study.md, "Compact sources"). eval adds "<method>+lights" for the split
+    // sum and each fitted lobe: the method on the residual's mips plus the lights' exact
+    // specular; fit fits the table that way.
+    bool lights = false;
     // The GPU measure's configuration (scripts/measure-lobe.sh, the bench's specular-lobe
     // family): copper spheres 128 x 128 framed as the bench frames them, one measure per
     // roughness of `roughnesses` (not pooled, no dielectric), and the grid. Diffuse stays the
@@ -127,6 +133,8 @@ public:
     static CubeChain fromBake(const std::filesystem::path& directory, int layout);
     glm::dvec3 lookup(glm::dvec3 direction, double roughness) const;
     int levels() const { return int(mips_.size()); }
+    // The chain less the lights (shadingLightResidual).
+    CubeChain withoutShadingLights(const ShadingLights& lights) const;
 
 private:
     struct Mip {
@@ -147,11 +155,18 @@ struct EnvCase {
     std::shared_ptr<CubeChain> bake;         // the GPU's own mips (--bakes), read instead
     std::shared_ptr<ReferenceSums> sums;
     std::uint64_t hash = 0;
+    // --lights: the bake without its shading lights, and the lights' sums.
+    std::shared_ptr<CubeChain> residualBake;
+    std::shared_ptr<ReferenceSums> lights;
     glm::dvec3 prefiltered(glm::dvec3 direction, double roughness) const
     {
         return bake ? bake->lookup(direction, roughness) : chain->lookup(direction, roughness);
     }
 };
+
+// --lights: reads the shading lights of env's bake (bakes/<name>/bake.json) into
+// env.residualBake and env.lights.
+void splitShadingLightsOf(EnvCase& env, const std::string& bakes);
 
 // (spec, set) of every environment in `sets` (a list naming bundled, unseen, procedural),
 // then the `extra` specs.

@@ -26,21 +26,38 @@ namespace {
 // ---- Methods ---------------------------------------------------------------------------------
 struct Method {
     std::string name;
-    std::function<glm::dvec3(const SpecularShadingInputs&, const PrefilteredLookup&)> specular;
+    std::function<glm::dvec3(const SpecularShadingInputs&, const PrefilteredLookup&, const EnvCase&)> specular;
 };
 
-std::vector<Method> methods(const std::vector<std::pair<std::string, LobeFitTable>>& tables)
+// With --lights, a method's "+lights" twin: the method on the residual's mips plus the lights'
+// exact specular (the full integral's sums over the lights alone), as the renderer shades
+// the fitted lobe by default.
+Method withLights(const Method& m)
+{
+    return {m.name + "+lights", [f = m.specular](const SpecularShadingInputs& in, const PrefilteredLookup&, const EnvCase& env) {
+                const PrefilteredLookup residual = [&](glm::dvec3 d, double r) { return env.residualBake->lookup(d, r); };
+                return f(in, residual, env) + env.lights->evaluate(in.n, in.v, in.roughness, kTerm, false).specular(in.F0);
+            }};
+}
+
+std::vector<Method> methods(const std::vector<std::pair<std::string, LobeFitTable>>& tables, bool lights)
 {
     std::vector<Method> m;
     for (SpecularMethod s : {SpecularMethod::SplitSum, SpecularMethod::FrostbiteDominant, SpecularMethod::FrostbitePerceptual,
                              SpecularMethod::FilamentDominant, SpecularMethod::FittedLobe})
-        m.push_back({std::string(specularMethodName(s)),
-                     [s](const SpecularShadingInputs& in, const PrefilteredLookup& p) { return shadeSpecularApproximation(s, in, p); }});
+        m.push_back({std::string(specularMethodName(s)), [s](const SpecularShadingInputs& in, const PrefilteredLookup& p, const EnvCase&) {
+                         return shadeSpecularApproximation(s, in, p);
+                     }});
     for (const auto& [name, table] : tables) {
         const LobeFitTable* t = &table;
-        m.push_back({name, [t](const SpecularShadingInputs& in, const PrefilteredLookup& p) {
+        m.push_back({name, [t](const SpecularShadingInputs& in, const PrefilteredLookup& p, const EnvCase&) {
                          return shadeSpecularApproximation(SpecularMethod::FittedLobe, in, p, t);
                      }});
+    }
+    if (lights) {
+        const std::size_t plain = m.size();
+        for (std::size_t i = 0; i < plain; ++i)
+            if (i == 0 || i >= 4) m.push_back(withLights(m[i])); // the split sum, the fitted lobe, the tables
     }
     return m;
 }
@@ -90,7 +107,7 @@ void evaluatePixels(const EnvCase& env, const std::vector<Pixel>& pixels, const 
         const Shaded r = combine(p, ref.specular(F0) * compensation, ref.irradiance, F0);
         auto& row = perPixel[std::size_t(i)];
         for (const Method& m : ms) {
-            const Shaded s = combine(p, m.specular(in, lookup) * compensation, ref.irradiance, F0);
+            const Shaded s = combine(p, m.specular(in, lookup, env) * compensation, ref.irradiance, F0);
             row.emplace_back(pixelError(s.total, r.total), pixelError(s.specular, r.specular));
         }
     });
@@ -122,7 +139,7 @@ int evalCommand(const StudyOptions& a)
     const auto t0 = Clock::now();
     std::vector<std::pair<std::string, LobeFitTable>> tables;
     for (const auto& path : a.tables) tables.emplace_back(std::filesystem::path(path).stem().string(), readLobeTable(path));
-    const std::vector<Method> ms = methods(tables);
+    const std::vector<Method> ms = methods(tables, a.lights);
     const double minResolved = referenceMinResolvedRoughness(a.width);
     const std::vector<Pixel> sphere = spherePixels(a.sphere, a.benchScenes ? kBenchSphereDistance : kDefaultCameraDistance, a.benchScenes);
     std::vector<Pixel> grid;
@@ -152,7 +169,8 @@ int evalCommand(const StudyOptions& a)
     BinsByEnvironment bins;
     for (const auto& [spec, set] : environmentList(a.sets, a.envs)) {
         const auto te = Clock::now();
-        const EnvCase env = loadCase(spec, set, a.width, true, a.bakes);
+        EnvCase env = loadCase(spec, set, a.width, true, a.bakes);
+        if (a.lights) splitShadingLightsOf(env, a.bakes);
         EnvironmentRow row{env.name, set, std::vector<std::vector<double>>(ms.size())};
         std::vector<Errors> spheres(ms.size()), gridErr;
         for (double metallic : metals)

@@ -85,6 +85,7 @@ struct FitSample {
     glm::dvec3 n, v;
     glm::dvec3 refCopper, refDielectric; // specular; the dielectric's with its diffuse added
     glm::dvec3 diffuseDielectric;
+    FullIntegral lights; // --lights: the lights' exact sums, added to every estimate
 };
 
 // FNV-1a of a map's name, 32 bits: one of the seeds of its frames.
@@ -158,11 +159,12 @@ public:
             }
             const std::vector<FullIntegral> refs = fullIntegrals(env, queries, true);
             for (std::size_t k = 0; k < queries.size(); ++k) {
+                const FullIntegral lights = env.lights ? env.lights->evaluate(queries[k].n, queries[k].v, roughness, kTerm, false) : FullIntegral{};
                 // The dielectric as combineLobes shades it (metallic 0, copper base colour).
                 const Pixel p{queries[k].n, queries[k].v, roughness, 0.0};
                 const glm::dvec3 diffuse = combine(p, glm::dvec3(0.0), refs[k].irradiance, glm::dvec3(kDielectricF0)).total;
                 samples_.push_back({&env, envIndex, queries[k].n, queries[k].v, refs[k].specular(kCopper) * compensationCopper_,
-                                    refs[k].specular(glm::dvec3(kDielectricF0)) * compensationDielectric_ + diffuse, diffuse});
+                                    refs[k].specular(glm::dvec3(kDielectricF0)) * compensationDielectric_ + diffuse, diffuse, lights});
             }
         }
         splitSumPerMap_ = perMapErrors(splitSum);
@@ -199,15 +201,18 @@ private:
         for (const FitSample& s : samples_) {
             double& e = perMap[s.envIndex];
             const glm::dvec3 R = 2.0 * glm::dot(s.n, s.v) * s.n - s.v;
+            // With --lights the reads are the residual's, and the lights add their exact sums.
+            auto read = [&](glm::dvec3 d, double r) { return s.env->residualBake ? s.env->residualBake->lookup(d, r) : s.env->prefiltered(d, r); };
+            const glm::dvec3 lightsCopper = s.lights.specular(kCopper), lightsDielectric = s.lights.specular(glm::dvec3(kDielectricF0));
             if (taps >= 3) {
                 // Fresnel split: F0 A read_A + B read_B; layout 4 mixes a second read into read_A.
-                glm::dvec3 preA = s.env->prefiltered(glm::mix(R, s.n, double(p.x)), p.y);
+                glm::dvec3 preA = read(glm::mix(R, s.n, double(p.x)), p.y);
                 if (taps == 4)
-                    preA = glm::mix(preA, s.env->prefiltered(glm::mix(R, s.n, double(shared::lobeSecondATowardsNormal(q))), shared::lobeSecondARoughness(q)),
+                    preA = glm::mix(preA, read(glm::mix(R, s.n, double(shared::lobeSecondATowardsNormal(q))), shared::lobeSecondARoughness(q)),
                                     double(shared::lobeSecondAWeight(q)));
-                const glm::dvec3 preB = s.env->prefiltered(glm::mix(R, s.n, double(p.z)), p.w);
-                const double ec = pixelError((kCopper * lut_.x * preA + lut_.y * preB) * compensationCopper_, s.refCopper);
-                const glm::dvec3 specD = (kDielectricF0 * lut_.x * preA + lut_.y * preB) * compensationDielectric_;
+                const glm::dvec3 preB = read(glm::mix(R, s.n, double(p.z)), p.w);
+                const double ec = pixelError((kCopper * lut_.x * preA + lut_.y * preB + lightsCopper) * compensationCopper_, s.refCopper);
+                const glm::dvec3 specD = (kDielectricF0 * lut_.x * preA + lut_.y * preB + lightsDielectric) * compensationDielectric_;
                 const double ed = pixelError(specD + s.diffuseDielectric, s.refDielectric);
                 const double es = options_->mixedObjective ? pixelError(specD, s.refDielectric - s.diffuseDielectric) : 0.0;
                 e += ec * ec + ed * ed + es * es;
@@ -216,11 +221,13 @@ private:
             glm::dvec3 pre(0.0);
             for (int k = 0; k < taps; ++k) {
                 const glm::dvec3 d = glm::mix(R, s.n, double(shared::lobeTapTowardsNormal(p, taps, k)));
-                pre += double(shared::lobeTapWeight(p, taps, k)) * s.env->prefiltered(d, shared::lobeTapRoughness(p, taps, k));
+                pre += double(shared::lobeTapWeight(p, taps, k)) * read(d, shared::lobeTapRoughness(p, taps, k));
             }
-            const double ec = pixelError(pre * albedoCopper, s.refCopper);
-            const double ed = pixelError(pre * albedoDielectric + s.diffuseDielectric, s.refDielectric);
-            const double es = options_->mixedObjective ? pixelError(pre * albedoDielectric, s.refDielectric - s.diffuseDielectric) : 0.0;
+            const glm::dvec3 specC = pre * albedoCopper + lightsCopper * compensationCopper_;
+            const glm::dvec3 specD = pre * albedoDielectric + lightsDielectric * compensationDielectric_;
+            const double ec = pixelError(specC, s.refCopper);
+            const double ed = pixelError(specD + s.diffuseDielectric, s.refDielectric);
+            const double es = options_->mixedObjective ? pixelError(specD, s.refDielectric - s.diffuseDielectric) : 0.0;
             e += ec * ec + ed * ed + es * es;
         }
         return perMap;
@@ -379,21 +386,34 @@ void printCell(std::mutex& print, const CellProblem& cell, double base, double v
                  std::sqrt(value), best[0].x, best[0].y, best[0].z, best[0].w, best[1].x, best[1].y, best[1].z);
 }
 
-} // namespace
-
-int fitCommand(const StudyOptions& a)
+// The maps a fit reads: the bundled ones (but --leave-out's), or --env's, with their bakes
+// and (--lights) their shading lights.
+std::vector<EnvCase> fitMaps(const StudyOptions& a)
 {
-    const auto t0 = Clock::now();
-    std::vector<EnvCase> envs;
-    std::vector<std::pair<std::string, std::string>> maps = environmentList("bundled", {});
+    // --env replaces the bundled maps: a diagnostic (the best a table of this layout can do on
+    // a map it is fitted on), never how the committed table is made.
+    std::vector<std::pair<std::string, std::string>> maps = a.envs.empty() ? environmentList("bundled", {}) : environmentList("none", a.envs);
     if (!a.leaveOut.empty()) {
         // Checked before the maps load, so that a misspelt name costs nothing.
         const auto left = std::remove_if(maps.begin(), maps.end(), [&](const auto& m) { return std::filesystem::path(m.first).stem().string() == a.leaveOut; });
         if (left == maps.end()) throw std::runtime_error("--leave-out " + a.leaveOut + ": no bundled map of that name (assets/environments)");
         maps.erase(left, maps.end());
     }
-    for (const auto& [spec, set] : maps) envs.push_back(loadCase(spec, set, a.width, true, a.bakes));
-    std::fprintf(stderr, "fit on %zu bundled maps at %d wide (%.1f s to load and prefilter)\n", envs.size(), a.width, secondsSince(t0));
+    std::vector<EnvCase> envs;
+    for (const auto& [spec, set] : maps) {
+        envs.push_back(loadCase(spec, set, a.width, true, a.bakes));
+        if (a.lights) splitShadingLightsOf(envs.back(), a.bakes);
+    }
+    return envs;
+}
+
+} // namespace
+
+int fitCommand(const StudyOptions& a)
+{
+    const auto t0 = Clock::now();
+    const std::vector<EnvCase> envs = fitMaps(a);
+    std::fprintf(stderr, "fit on %zu maps at %d wide (%.1f s to load and prefilter)\n", envs.size(), a.width, secondsSince(t0));
 
     LobeFitTable initTable;
     if (!a.init.empty()) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "ibl/conventions.hpp"
+#include "ibl/shading_lights.hpp"
 #include "io/image_codec.hpp"
 
 namespace iblab::accuracy {
@@ -65,6 +66,20 @@ glm::dvec3 CubeChain::Mip::bilinear(glm::dvec3 direction) const
         return glm::dvec3(at(f, std::clamp(int(g.y * float(size)), 0, size - 1), std::clamp(int(g.z * float(size)), 0, size - 1)));
     };
     return (1.0 - fy) * ((1.0 - fx) * texel(x0, y0) + fx * texel(x0 + 1, y0)) + fy * ((1.0 - fx) * texel(x0, y0 + 1) + fx * texel(x0 + 1, y0 + 1));
+}
+
+CubeChain CubeChain::withoutShadingLights(const ShadingLights& lights) const
+{
+    std::vector<CubeLevelRgb> levels;
+    std::vector<double> roughness;
+    for (const Mip& mip : mips_) {
+        roughness.push_back(double(shared::prefilterRoughnessFromMip(float(levels.size()), float(mips_.size()), layout_)));
+        levels.push_back({mip.size, mip.texels});
+    }
+    CubeChain residual;
+    residual.layout_ = layout_;
+    for (CubeLevelRgb& level : shadingLightResidual(std::move(levels), roughness, lights)) residual.mips_.push_back({level.size, std::move(level.texels)});
+    return residual;
 }
 
 glm::dvec3 CubeChain::lookup(glm::dvec3 direction, double roughness) const

@@ -14,6 +14,7 @@
 #include "ibl/error_metrics.hpp"
 #include "ibl/reference.hpp"
 #include "ibl/table_sampling.hpp"
+#include "io/shading_lights_json.hpp"
 #include "io/environment.hpp"
 
 namespace iblab::accuracy {
@@ -142,6 +143,19 @@ std::vector<std::pair<std::string, std::string>> environmentList(const std::stri
         for (const char* spec : {"builtin:sun", "builtin:sky", "builtin:studio"}) out.emplace_back(spec, "procedural");
     for (const auto& e : extra) out.emplace_back(e, "extra");
     return out;
+}
+
+void splitShadingLightsOf(EnvCase& env, const std::string& bakes)
+{
+    if (!env.bake) throw std::runtime_error("--lights reads the lights a bake found: give --bakes DIR");
+    const fs::path meta = fs::path(bakes) / env.name / "bake.json";
+    std::ifstream in(meta);
+    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+    if (json.is_discarded() || !json.contains("shading_lights"))
+        throw std::runtime_error(meta.string() + ": no shading_lights (bake again with --prefilter-shading-lights above 0)");
+    const ShadingLights lights = shadingLightsFromJson(json["shading_lights"], meta.string());
+    env.residualBake = std::make_shared<CubeChain>(env.bake->withoutShadingLights(lights));
+    env.lights = std::make_shared<ReferenceSums>(lights.lights());
 }
 
 EnvCase loadCase(const std::string& spec, const std::string& set, int width, bool withChain, const std::string& bakes)

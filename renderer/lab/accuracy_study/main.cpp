@@ -18,17 +18,21 @@ const char* const kUsage =
     "usage: accuracy_study eval [--width 256] [--sphere 64] [--grid 128] [--set bundled,unseen,procedural]\n"
     "                           [--env PATH|builtin:SPEC ...] [--csv FILE] [--table FILE.inc ...]\n"
     "                           [--bins] [--exact-prefilter] [--roughness 0.2,0.3,...]\n"
-    "                           [--bench-scenes] [--bakes DIR]\n"
+    "                           [--bench-scenes] [--bakes DIR] [--lights]\n"
     "       accuracy_study fit  [--width 256] [--taps 1|2|3|4] [--frames 96] [--size 16] [--out FILE.inc]\n"
     "                           [--min-roughness 0.15] [--mixed-objective] [--init TABLE.inc] [--seed 14] [--bakes DIR]\n"
-    "                           [--per-map-ratio] [--smooth 0] [--smooth-passes 4] [--leave-out MAP]\n"
+    "                           [--per-map-ratio] [--smooth 0] [--smooth-passes 4] [--leave-out MAP] [--lights]\n"
+    "                           [--env PATH|builtin:SPEC ...]\n"
     "eval measures every method against the full integral on the bench's scenes (markdown on stdout);\n"
     "fit refits the lobe table on the 8 bundled maps (renderer/ibl/specular_lobe_fit.inc by default).\n"
     "--bench-scenes: the GPU measure's scenes (scripts/measure-lobe.sh): a copper sphere per --roughness, the grid.\n"
     "--bakes DIR: read each map's prefiltered cube from DIR/<map>/ (scripts/accuracy-bakes.sh writes them).\n"
     "--smooth W: after fitting each cell alone, --smooth-passes passes re-fit every cell with W times its\n"
     "squared distance from the lines through its neighbours added to its objective (no rings between cells).\n"
+    "--lights: with --bakes, each bake's shading lights (bake.json) and its mips less them, as the renderer shades\n"
+    "the fitted lobe; eval adds <method>+lights, fit fits the table that way.\n"
     "--leave-out MAP: fit on the bundled maps but MAP (leave-one-out; scripts/fit-lobe-loo.sh).\n"
+    "fit --env: fit on these maps instead of the bundled ones (a diagnostic: the best the layout does on them).\n"
     "See docs/accuracy-study.md. Caches: <build>/accuracy_cache (delete it to recompute).\n";
 
 std::vector<double> parseList(const std::string& text)
@@ -80,6 +84,7 @@ int main(int argc, char** argv)
             else if (k == "--bins") a.bins = true;
             else if (k == "--bench-scenes") a.benchScenes = true;
             else if (k == "--bakes") a.bakes = next();
+            else if (k == "--lights") a.lights = true;
             else if (k == "--mixed-objective") a.mixedObjective = true;
             else if (k == "--per-map-ratio") a.perMapRatio = true;
             else if (k == "--no-multiscatter") a.multiscatter = false;

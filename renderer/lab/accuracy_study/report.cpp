@@ -97,12 +97,14 @@ std::string lobeTableInclude(const LobeFitTable& table, const StudyOptions& a)
       << (a.init.empty() ? std::string() : " --init " + std::filesystem::path(a.init).filename().string());
     if (a.smooth > 0.0) o << " --smooth " << a.smooth << " --smooth-passes " << a.smoothPasses;
     if (!a.leaveOut.empty()) o << " --leave-out " << a.leaveOut;
+    if (a.lights) o << " --lights";
     o << "` on the " << (a.leaveOut.empty() ? "8 bundled maps" : "bundled maps but " + a.leaveOut) << "\n"
       << "// (assets/environments), " << a.frames << " random (n, v) per map and cell; objective: the mean squared per-pixel\n"
       << "// relative error (common/error_metrics.glsl) of copper's specular plus that of a dielectric's specular + diffuse\n"
       << "// (F0 0.04, copper base colour)" << (a.mixedObjective ? " and of the dielectric's specular alone (--mixed-objective)" : "")
       << (a.perMapRatio ? ", each map's sum over the split sum's (--per-map-ratio)" : "")
       << (a.bakes.empty() ? "" : "; the prefiltered reads from the default bake's own mips (--bakes, scripts/accuracy-bakes.sh)")
+      << (a.lights ? ", less the shading lights, which add their exact sums (--lights, ibl/shading_lights.hpp)" : "")
       << (a.smooth > 0.0 ? "; then each cell re-fitted with a penalty on its distance from the lines through its neighbours (--smooth)" : "")
       << ". Do not edit: refit.\n"
       << "// Layout: specular_approximations.hpp, LobeFitTable; rows = roughness (i + 0.5) / size, columns = n.v"
