@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Fuzzes the environment loader, the glTF loader and the KTX readers (and the import of
-# other tools' bakes) with libFuzzer (clang-14, ASan, UBSan),
+# Fuzzes the environment loader, the glTF loader, the KTX readers (and the import of
+# other tools' bakes) and bake.json's shading lights with libFuzzer (clang-14, ASan, UBSan),
 # SECONDS each (default 60), starting from the committed corpus (tests/fuzz/corpus/) and the
 # bundled models. It stops at the first failing input, saved in build-fuzz/crashes/: fix the
 # bug, then commit the input under tests/fuzz/corpus/<target>/, where every test run
@@ -16,11 +16,12 @@ if ! command -v clang++-14 >/dev/null || ! dpkg-query -W libclang-rt-14-dev >/de
 fi
 build_dir=${IBLAB_BUILD_DIR:-build-fuzz}
 cmake -S . -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBLAB_FUZZ=ON -DIBLAB_BUILD_TESTS=OFF
-cmake --build "$build_dir" -j"$(nproc)" --target environment_fuzz gltf_fuzz ktx_fuzz
-mkdir -p "$build_dir/corpus/environment" "$build_dir/corpus/gltf" "$build_dir/corpus/ktx" "$build_dir/crashes"
+cmake --build "$build_dir" -j"$(nproc)" --target environment_fuzz gltf_fuzz ktx_fuzz lights_fuzz
+mkdir -p "$build_dir/corpus/environment" "$build_dir/corpus/gltf" "$build_dir/corpus/ktx" "$build_dir/corpus/lights" "$build_dir/crashes"
 cp tests/fuzz/corpus/environment/* "$build_dir/corpus/environment/"
 cp tests/fuzz/corpus/gltf/* "$build_dir/corpus/gltf/"
 cp tests/fuzz/corpus/ktx/* "$build_dir/corpus/ktx/"
+cp tests/fuzz/corpus/lights/* "$build_dir/corpus/lights/"
 # Seeds for the models: the bundled ones too. The bundled maps (100-500 KB) are left out:
 # each run would parse half a megabyte, at a few runs a second; the committed seeds cover
 # the same formats and compressions (scanline and tiled EXR, DWAB, PIZ, ZIP, RLE, B44, HDR,
@@ -41,7 +42,7 @@ explain() {
     *) echo "a crash or a trap (exit $1)" ;;
   esac
 }
-for target in environment gltf ktx; do
+for target in environment gltf ktx lights; do
   status=0
   "$build_dir/tests/fuzz/${target}_fuzz" "$build_dir/corpus/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -seed=1 \
     -artifact_prefix="$build_dir/crashes/${target}-" -print_final_stats=1 || status=$?

@@ -283,6 +283,11 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
         } catch (const Error& e) {
             throw BakeFileError(metaPath, e.what());
         }
+        // The residual scales whole texels of the mirror per group (mirrorBlock).
+        const int grid = result.shadingLights.grid;
+        if (grid > s.prefilter.faceSize || s.prefilter.faceSize % grid != 0)
+            throw BakeFileError(metaPath, "shading_lights: a grid of " + std::to_string(grid) + " does not divide the prefiltered face of " +
+                                              std::to_string(s.prefilter.faceSize));
     }
 
     const fs::path shPath = directory / "sh.json";

@@ -1,6 +1,7 @@
 #include "io/shading_lights_json.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -14,9 +15,12 @@ nlohmann::ordered_json vec3Json(glm::vec3 v) { return nlohmann::ordered_json::ar
 struct Reader {
     const std::string& file;
     [[noreturn]] void fail(const std::string& what) const { throw Error(file, what); }
+    // Finite and within float's range: the lights are floats, and a larger double would not
+    // convert to one.
     double number(const nlohmann::json& j, const std::string& what) const
     {
-        if (!j.is_number() || !std::isfinite(j.get<double>())) fail(what + " is not a finite number");
+        if (!j.is_number() || !std::isfinite(j.get<double>()) || std::abs(j.get<double>()) > double(std::numeric_limits<float>::max()))
+            fail(what + " is not a finite number");
         return j.get<double>();
     }
     int integer(const nlohmann::json& j, const char* key, int lo, int hi) const
