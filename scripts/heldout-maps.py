@@ -1,6 +1,6 @@
 # Synthetic maps that no fit or bake setting has seen (issue #29): two small suns, a thin
 # bright strip, a sun on a cube corner, a 1e6 sun on a cube edge, a sun near the pole, 24
-# lamps on a dark sky. 1024 x 512 Radiance .hdr, flat RGBE, the same bytes every run (seeded).
+# lamps on a dark sky; and cornerdim, a diagnostic (below). 1024 x 512 Radiance .hdr, flat RGBE, the same bytes every run (seeded).
 #   python3 scripts/heldout-maps.py OUT_DIR [NAME ...]      (scripts/fit-lobe-loo.sh calls it)
 import math, os, random, sys
 W, H = 1024, 512
@@ -45,6 +45,9 @@ def strip(d):
 maps["strip"] = strip
 corner = norm((1, 1, 1))
 maps["corner"] = lambda d: tuple(a + (1e5 if disc(d, corner, 0.5) else 0) for a in sky(d, 0.2, 1.0))
+# A diagnostic, not one of the held-out six: corner with its sky ten times dimmer, so that the
+# sun dominates every highlight (docs/accuracy-study.md, "Compact sources").
+maps["cornerdim"] = lambda d: tuple(a + (1e5 if disc(d, corner, 0.5) else 0) for a in sky(d, 0.02, 0.1))
 yaw = random.uniform(0, 360)
 edge = ea(0.3, 45 + yaw % 1)  # near the vertical edge between two side faces
 maps["edge1e6"] = lambda d: tuple(a + (1e6 if disc(d, edge, 0.5) else 0) for a in sky(d, 0.5, 2.0))
