@@ -260,8 +260,8 @@ void BakeJob::plan()
     }
 
     // The shading lights first, while no GL work is in flight: on llvmpipe the GPU's work is
-    // the CPU's too, and this step, run beside the prefilter's passes, cost both about twice
-    // its own time (measured: 16-24 ms alone, 50-70 ms more in the prefilter phase).
+    // the CPU's too, and when this step ran after the prefilter's passes, beside the last of
+    // them, the phase grew by about twice the step's own time.
     if (s.prefilter.shadingLights > 0)
         steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, sourceTexels, [this] {
                               // Groups no finer than the mirror's texels, so that each covers whole texels of it.
