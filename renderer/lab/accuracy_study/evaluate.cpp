@@ -55,9 +55,12 @@ std::vector<Method> methods(const std::vector<std::pair<std::string, LobeFitTabl
                      }});
     }
     if (lights) {
+        // The split sum, the fitted lobe and the tables (the dominant directions have none).
         const std::size_t plain = m.size();
         for (std::size_t i = 0; i < plain; ++i)
-            if (i == 0 || i >= 4) m.push_back(withLights(m[i])); // the split sum, the fitted lobe, the tables
+            if (m[i].name == specularMethodName(SpecularMethod::SplitSum) || m[i].name == specularMethodName(SpecularMethod::FittedLobe) ||
+                i >= plain - tables.size())
+                m.push_back(withLights(m[i]));
     }
     return m;
 }
