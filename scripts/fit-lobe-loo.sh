@@ -16,6 +16,8 @@
 #   FIT="--frames 48 --smooth 0.5 --smooth-passes 4" scripts/fit-lobe-loo.sh   (the fits' options
 #                                            beyond the fixed ones below; this is the default)
 #   ONLY_FULL=1 scripts/fit-lobe-loo.sh      (the full fit and the unseen maps only)
+#   BAKE_ARGS="--prefilter-shading-lights 4" scripts/fit-lobe-loo.sh OUT_DIR   (options added to every
+#                                            bake, passed to scripts/accuracy-bakes.sh)
 #   LIGHTS=0 scripts/fit-lobe-loo.sh         (fit and measure the table on the plain cube; by default
 #                                            as the renderer shades it: the bake's shading lights summed
 #                                            exactly, the table reading the cube without them, --lights)
@@ -44,7 +46,8 @@ if [ ${#missing[@]} -gt 0 ]; then python3 scripts/heldout-maps.py "$out/syntheti
 synthetic=()
 for f in "$out"/synthetic/*.hdr; do
   name=$(basename "$f" .hdr)
-  [ -f "$bakes/$name/bake.json" ] || "$iblab" bake --env "$f" --no-errors --out "$bakes/$name" >/dev/null
+  # shellcheck disable=SC2086
+  [ -f "$bakes/$name/bake.json" ] || "$iblab" bake --env "$f" --no-errors ${BAKE_ARGS:-} --out "$bakes/$name" >/dev/null
   synthetic+=(--env "$f")
 done
 log "bakes in $bakes"

@@ -1,0 +1,103 @@
+// The renderer's residual for the fitted lobe (frame/shading_lights_texture.hpp) against the
+// CPU's shadingLightResidual, which the accuracy study measures: the renderer subtracts the
+// lights from a read-back of mips 1 and up with the same code, but scales the lights' blocks
+// of the mirror on the GPU without reading the mirror back, so the two are compared at every
+// texel of every level. They differ only by the half floats the residual is stored in.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bake/bake_result.hpp"
+#include "bake/bake_settings.hpp"
+#include "bake_test_support.hpp"
+#include "frame/shading_lights_texture.hpp"
+#include "gl_test_fixture.hpp"
+#include "ibl/shading_lights.hpp"
+#include "io/environment.hpp"
+
+namespace iblab {
+namespace {
+
+using testing::GlTest;
+using testing::runBake;
+
+CubeLevelRgb rgbOf(const bake::CubeImage& image)
+{
+    CubeLevelRgb rgb{image.size, std::vector<glm::vec3>(image.texels.size())};
+    for (std::size_t i = 0; i < image.texels.size(); ++i) rgb.texels[i] = glm::vec3(image.texels[i]);
+    return rgb;
+}
+
+struct LevelDifference {
+    double relativeRms = 0.0; // over the level, against the CPU residual's RMS
+    double worst = 0.0;       // the largest texel difference against max(texel, the level's RMS)
+};
+
+LevelDifference difference(const bake::CubeImage& gpu, const CubeLevelRgb& cpu)
+{
+    double diff = 0.0, norm = 0.0;
+    for (std::size_t i = 0; i < cpu.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double d = double(gpu.texels[i][c]) - double(cpu.texels[i][c]);
+            diff += d * d;
+            norm += double(cpu.texels[i][c]) * double(cpu.texels[i][c]);
+        }
+    const double rms = std::sqrt(norm / double(cpu.texels.size() * 3));
+    LevelDifference out;
+    out.relativeRms = std::sqrt(diff / norm);
+    for (std::size_t i = 0; i < cpu.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double d = std::abs(double(gpu.texels[i][c]) - double(cpu.texels[i][c]));
+            out.worst = std::max(out.worst, d / std::max(double(cpu.texels[i][c]), rms));
+        }
+    return out;
+}
+
+void expectResidualMatchesTheCpus(const std::string& spec, std::size_t minimumLights)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const Environment environment = loadEnvironment(spec);
+    const bake::BakeResult bake = runBake(shaders, environment, bake::defaultPreset());
+    ASSERT_GE(bake.shadingLights.groups.size(), minimumLights) << spec;
+    const auto texture = makeShadingLightsTexture(bake);
+    ASSERT_TRUE(texture) << spec;
+    EXPECT_EQ(texture->lights.size(), bake.shadingLights.groups.size());
+    EXPECT_EQ(texture->minAlpha, bake.shadingLights.minAlpha());
+
+    std::vector<CubeLevelRgb> chain;
+    std::vector<double> roughness;
+    for (int level = 0; level < bake.prefiltered.levels; ++level) {
+        chain.push_back(rgbOf(bake::readCubeLevel(bake.prefiltered, level)));
+        roughness.push_back(bake::prefilterMipRoughness(bake.settings.prefilter, level));
+    }
+    const std::vector<CubeLevelRgb> cpu = shadingLightResidual(chain, roughness, bake.shadingLights);
+    ASSERT_EQ(int(cpu.size()), texture->residual.levels);
+    for (int level = 0; level < texture->residual.levels; ++level) {
+        const LevelDifference d = difference(bake::readCubeLevel(texture->residual, level), cpu[std::size_t(level)]);
+        // Half floats: 2^-11 relative, and the level's small values against its RMS.
+        EXPECT_LT(d.relativeRms, 2e-3) << spec << " level " << level;
+        EXPECT_LT(d.worst, 2e-3) << spec << " level " << level;
+        // The lights changed this level (the mirror where their blocks are, every other mip
+        // everywhere near them), so the comparison is not between two copies of the bake.
+        const LevelDifference fromBake = difference(bake::readCubeLevel(bake.prefiltered, level), cpu[std::size_t(level)]);
+        EXPECT_GT(fromBake.worst, 0.1) << spec << " level " << level;
+    }
+}
+
+// A 0.5 degree sun of 1e4, off every axis and face edge, whose excess is one light or a few.
+TEST_F(GlTest, ShadingLightsResidualOfASunIsTheCpus)
+{
+    expectResidualMatchesTheCpus("builtin:sun?width=1024&size=0.5&intensity=1e4&elevation=23&azimuth=37", 1);
+}
+
+// Six discs of 15 degrees: more lights than a sun, and groups on several faces.
+TEST_F(GlTest, ShadingLightsResidualOfExtendedLightsIsTheCpus)
+{
+    expectResidualMatchesTheCpus("builtin:lights?width=512", 4);
+}
+
+} // namespace
+} // namespace iblab
