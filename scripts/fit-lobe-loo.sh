@@ -15,6 +15,8 @@
 #                                            bakes and maps already in OUT_DIR: empty it to refit)
 #   FIT="--frames 48 --smooth 0.5 --smooth-passes 4" scripts/fit-lobe-loo.sh   (the fits' options
 #                                            beyond the fixed ones below; this is the default)
+#   TAPS=3 scripts/fit-lobe-loo.sh OUT_DIR   (the table's layout, `accuracy_study fit --taps`: 4 by
+#                                            default, the committed table's)
 #   ONLY_FULL=1 scripts/fit-lobe-loo.sh      (the full fit and the unseen maps only)
 #   BAKE_ARGS="--prefilter-shading-lights 4" scripts/fit-lobe-loo.sh OUT_DIR   (options added to every
 #                                            bake, passed to scripts/accuracy-bakes.sh)
@@ -57,7 +59,7 @@ fit() { # OUT.inc [--leave-out MAP]
   [ -f "$1" ] && return
   local t
   t=$(date +%s)
-  "$study" fit --taps 4 --width 256 --size 16 --min-roughness 0.15 --mixed-objective --per-map-ratio --bakes "$bakes" "${lights[@]}" \
+  "$study" fit --taps "${TAPS:-4}" --width 256 --size 16 --min-roughness 0.15 --mixed-objective --per-map-ratio --bakes "$bakes" "${lights[@]}" \
     $fit_options "${@:2}" --out "$1.tmp" 2>"$1.log"
   mv "$1.tmp" "$1"
   log "$(basename "$1"): $(($(date +%s) - t)) s"

@@ -158,6 +158,10 @@ struct EnvCase {
     // --lights: the bake without its shading lights, and the lights' sums.
     std::shared_ptr<CubeChain> residualBake;
     std::shared_ptr<ReferenceSums> lights;
+    // The lights' alpha floor as the shader applies it (ShadingLights::minAlpha), as a
+    // perceptual roughness: a light is a group of texels, not a point.
+    double lightsMinRoughness = 0.0;
+    double lightsRoughness(double roughness) const { return std::max(roughness, lightsMinRoughness); }
     glm::dvec3 prefiltered(glm::dvec3 direction, double roughness) const
     {
         return bake ? bake->lookup(direction, roughness) : chain->lookup(direction, roughness);

@@ -36,7 +36,7 @@ Method withLights(const Method& m)
 {
     return {m.name + "+lights", [f = m.specular](const SpecularShadingInputs& in, const PrefilteredLookup&, const EnvCase& env) {
                 const PrefilteredLookup residual = [&](glm::dvec3 d, double r) { return env.residualBake->lookup(d, r); };
-                return f(in, residual, env) + env.lights->evaluate(in.n, in.v, in.roughness, kTerm, false).specular(in.F0);
+                return f(in, residual, env) + env.lights->evaluate(in.n, in.v, env.lightsRoughness(in.roughness), kTerm, false).specular(in.F0);
             }};
 }
 

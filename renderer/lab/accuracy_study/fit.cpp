@@ -159,7 +159,7 @@ public:
             }
             const std::vector<FullIntegral> refs = fullIntegrals(env, queries, true);
             for (std::size_t k = 0; k < queries.size(); ++k) {
-                const FullIntegral lights = env.lights ? env.lights->evaluate(queries[k].n, queries[k].v, roughness, kTerm, false) : FullIntegral{};
+                const FullIntegral lights = env.lights ? env.lights->evaluate(queries[k].n, queries[k].v, env.lightsRoughness(roughness), kTerm, false) : FullIntegral{};
                 // The dielectric as combineLobes shades it (metallic 0, copper base colour).
                 const Pixel p{queries[k].n, queries[k].v, roughness, 0.0};
                 const glm::dvec3 diffuse = combine(p, glm::dvec3(0.0), refs[k].irradiance, glm::dvec3(kDielectricF0)).total;

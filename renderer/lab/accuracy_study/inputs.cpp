@@ -156,6 +156,7 @@ void splitShadingLightsOf(EnvCase& env, const std::string& bakes)
     const ShadingLights lights = shadingLightsFromJson(json["shading_lights"], meta.string());
     env.residualBake = std::make_shared<CubeChain>(env.bake->withoutShadingLights(lights));
     env.lights = std::make_shared<ReferenceSums>(lights.lights());
+    env.lightsMinRoughness = std::sqrt(double(lights.minAlpha()));
 }
 
 EnvCase loadCase(const std::string& spec, const std::string& set, int width, bool withChain, const std::string& bakes)
