@@ -25,7 +25,6 @@ struct MeshUniforms {
     gl::Uniform<bool> normalizeByAccepted;
     gl::Uniform<bool> cosineSampledDiffuse;
     gl::Uniform<int> sampleCount;
-    gl::Uniform<int> lobeFitLayout;
     gl::Uniform<int> shadingLightCount;
     gl::UniformArray<glm::vec3> shadingLightDirection;
     gl::UniformArray<glm::vec3> shadingLightFlux;
@@ -53,7 +52,7 @@ struct MeshUniforms {
 MeshUniforms::MeshUniforms(const gl::ShaderProgram& p)
     : ibl(p), viewProjection(p, "uViewProjection"), cameraPosition(p, "uCameraPosition"), sampleRotation(p, "uSampleRotation"),
       normalizeByAccepted(p, "uNormalizeByAccepted"), cosineSampledDiffuse(p, "uCosineSampledDiffuse"), sampleCount(p, "uSampleCount"),
-      lobeFitLayout(p, "uLobeFitLayout"), shadingLightCount(p, "uShadingLightCount"), shadingLightDirection(p, "uShadingLightDirection"),
+      shadingLightCount(p, "uShadingLightCount"), shadingLightDirection(p, "uShadingLightDirection"),
       shadingLightFlux(p, "uShadingLightFlux"), shadingLightMinAlpha(p, "uShadingLightMinAlpha"), model(p, "uModel"), normalMatrix(p, "uNormalMatrix"),
       baseColorFactor(p, "uBaseColorFactor"), metallicFactor(p, "uMetallicFactor"),
       roughnessFactor(p, "uRoughnessFactor"), emissiveFactor(p, "uEmissiveFactor"), occlusionStrength(p, "uOcclusionStrength"),
@@ -183,6 +182,12 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
                 if (!gbuffer) {
                     const bool fittedLobe = !sampled && settings.sampling.method == ShadingMethod::FittedLobe;
                     defines.push_back({"FITTED_LOBE", fittedLobe ? "1" : "0"});
+                    if (fittedLobe) {
+                        defines.push_back({"LOBE_FIT_LAYOUT", std::to_string(lobeFitLayout_)});
+                        // Each light evaluates the visibility term; a uniform's choice would
+                        // evaluate both.
+                        defines.push_back({"SHADING_LIGHTS_GEOMETRY", std::to_string(int(settings.sampling.geometry))});
+                    }
                     defines.push_back(diffuseSourceDefine(lighting, settings));
                 }
                 const gl::ShaderProgram& program = shaders_.program({"mesh.vert", "pbr.frag"}, defines);
@@ -194,7 +199,6 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
                 u->sampleRotation.set(sampleRotation);
                 u->normalizeByAccepted.set(settings.sampling.normalizeByAccepted);
                 u->cosineSampledDiffuse.set(settings.sampling.cosineSampledDiffuse);
-                u->lobeFitLayout.set(lobeFitLayout_);
                 glBindTextureUnit(kUnitLobeFit, lobeFit_.id());
                 bindShadingLights(*u, lighting, !gbuffer && !sampled && settings.sampling.method == ShadingMethod::FittedLobe && settings.sampling.shadingLights);
             }

@@ -29,6 +29,12 @@ uniform int uGeometry;       // GEOMETRY_* of brdf.glsl
 #ifndef FITTED_LOBE
 #define FITTED_LOBE 0 // 1: shadeSplitSum reads where the fitted table says (ShadingMethod::FittedLobe)
 #endif
+#ifndef LOBE_FIT_LAYOUT
+#define LOBE_FIT_LAYOUT 4 // the fitted table's taps (LobeFitTable::taps), compiled in by the mesh pass
+#endif
+#ifndef SHADING_LIGHTS_GEOMETRY
+#define SHADING_LIGHTS_GEOMETRY 1 // the frame's GEOMETRY_* (uGeometry), compiled in for the lights' loop
+#endif
 uniform bool uMultiscatter;
 uniform int uMultiscatterModel; // MULTISCATTER_* below, the values of iblab::MultiscatterModel
 const int MULTISCATTER_FILAMENT = 0;
@@ -37,9 +43,8 @@ uniform bool uRoughFresnelOnLut; // LearnOpenGL's F_roughness * A + B (SamplingS
 uniform int uSpecularDirection;  // SPECULAR_DIRECTION_* of specular_lobe.glsl: where the split sum reads the cube
 // ShadingMethod::FittedLobe: the cube read per the fitted table (specular_approximations.hpp's
 // LobeFitTable, uploaded once from the CPU core's fittedLobeTable()): x = n.v, y = perceptual
-// roughness, texel centres (i + 0.5) / size, bilinear, clamp to edge; uLobeFitLayout its taps.
+// roughness, texel centres (i + 0.5) / size, bilinear, clamp to edge; LOBE_FIT_LAYOUT its taps.
 uniform sampler2D uLobeFit;
-uniform int uLobeFitLayout;
 // The map's brightest texels, shaded exactly (renderer/ibl/shading_lights.hpp): with them the
 // fitted lobe reads uPrefiltered made from the rest of the map (its residual), and each light
 // adds its flux times the BRDF at its direction. Environment space, flux = radiance x solid
@@ -116,7 +121,7 @@ vec3 prefilteredRadiance(vec3 direction, float roughness)
 // reads with weights that sum to 1. scaledA is A times F0 (or LearnOpenGL's F_roughness).
 vec4 lobeFitTexel(float NdotV, float roughness, int plane)
 {
-    int planes = lobeFitPlanes(uLobeFitLayout);
+    int planes = lobeFitPlanes(LOBE_FIT_LAYOUT);
     float rows = float(textureSize(uLobeFit, 0).y / planes);
     return texture(uLobeFit, vec2(NdotV, lobeFitPlaneY(roughness, plane, planes, rows)));
 }
@@ -124,16 +129,16 @@ vec4 lobeFitTexel(float NdotV, float roughness, int plane)
 vec3 fittedLobeRadiance(SurfacePoint s, float NdotV, vec3 R, vec3 scaledA, float B)
 {
     vec4 p = lobeFitTexel(NdotV, s.roughness, 0);
-    vec3 read0 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, uLobeFitLayout, 0)), lobeTapRoughness(p, uLobeFitLayout, 0));
-    if (uLobeFitLayout == 1) return read0 * (scaledA + B);
-    vec3 read1 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, uLobeFitLayout, 1)), lobeTapRoughness(p, uLobeFitLayout, 1));
-    if (uLobeFitLayout == 4) {
+    vec3 read0 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, LOBE_FIT_LAYOUT, 0)), lobeTapRoughness(p, LOBE_FIT_LAYOUT, 0));
+    if (LOBE_FIT_LAYOUT == 1) return read0 * (scaledA + B);
+    vec3 read1 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeTapTowardsNormal(p, LOBE_FIT_LAYOUT, 1)), lobeTapRoughness(p, LOBE_FIT_LAYOUT, 1));
+    if (LOBE_FIT_LAYOUT == 4) {
         vec4 q = lobeFitTexel(NdotV, s.roughness, 1);
         vec3 read2 = prefilteredRadiance(lobeTapDirection(s.N, R, lobeSecondATowardsNormal(q)), lobeSecondARoughness(q));
         read0 = mix(read0, read2, lobeSecondAWeight(q));
     }
-    if (uLobeFitLayout >= 3) return scaledA * read0 + B * read1;
-    return (lobeTapWeight(p, uLobeFitLayout, 0) * read0 + lobeTapWeight(p, uLobeFitLayout, 1) * read1) * (scaledA + B);
+    if (LOBE_FIT_LAYOUT >= 3) return scaledA * read0 + B * read1;
+    return (lobeTapWeight(p, LOBE_FIT_LAYOUT, 0) * read0 + lobeTapWeight(p, LOBE_FIT_LAYOUT, 1) * read1) * (scaledA + B);
 }
 
 // The lights' exact specular, F D Vis (n.l) flux each, without the energy compensation (the
@@ -151,7 +156,7 @@ vec3 shadingLightsSpecular(SurfacePoint s, float NdotV)
         vec3 H = normalize(V + L);
         float VdotH = max(dot(V, H), 0.0);
         sum += uShadingLightFlux[i] * fresnelSchlick(VdotH, s.F0)
-               * (ggxD(max(dot(N, H), 0.0), alpha) * geometryVisibility(uGeometry, NdotV, NdotL, alpha) * NdotL);
+               * (ggxD(max(dot(N, H), 0.0), alpha) * geometryVisibility(SHADING_LIGHTS_GEOMETRY, NdotV, NdotL, alpha) * NdotL);
     }
     return sum * uEnvironmentIntensity;
 }
