@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "ibl/error_metrics.hpp"
+#include "ibl/luminance.hpp"
 #include "ui/widgets.hpp"
 
 namespace iblab::ui {
@@ -128,7 +129,7 @@ void drawSphereReadings(const std::vector<SphereReading>& readings, glm::vec2 vi
     }
     for (const SphereReading& r : readings) {
         char text[32];
-        std::snprintf(text, sizeof text, "%.3f", 0.2126f * r.radiance.r + 0.7152f * r.radiance.g + 0.0722f * r.radiance.b);
+        std::snprintf(text, sizeof text, "%.3f", luminance(r.radiance));
         const ImVec2 size = ImGui::CalcTextSize(text);
         const ImVec2 at(viewOrigin.x + r.pixel.x - size.x * 0.5f, viewOrigin.y + viewHeight - r.pixel.y - size.y * 0.5f);
         draw->AddRectFilled(ImVec2(at.x - 2, at.y - 1), ImVec2(at.x + size.x + 2, at.y + size.y + 1), IM_COL32(0, 0, 0, 160));

@@ -16,6 +16,7 @@
 #include "bake/source_samples.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
+#include "ibl/luminance.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/luminance.hpp"
 #include "io/error.hpp"
@@ -135,7 +136,7 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
         float* rowLum = &lum[std::size_t(y) * std::size_t(w)];
         double row = 0.0;
         for (int x = 0; x < w; ++x) {
-            rowLum[x] = 0.2126f * rgb[3 * x] + 0.7152f * rgb[3 * x + 1] + 0.0722f * rgb[3 * x + 2];
+            rowLum[x] = luminance(&rgb[3 * x]);
             row += double(std::max(0.0f, rowLum[x]));
         }
         flux += row * rowSolidAngle[std::size_t(y)];

@@ -22,14 +22,12 @@
 #include "io/error.hpp"
 #include "io/image_codec.hpp"
 #include "ibl/conventions.hpp"
+#include "ibl/luminance.hpp"
 
 namespace iblab {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Rec. 709 / sRGB-primaries luminance weights.
-constexpr double kLuminance[3] = {0.2126, 0.7152, 0.0722};
 
 std::string lower(std::string s)
 {
@@ -74,9 +72,9 @@ public:
                 } else if (v < 0.0f) {
                     ++report.negativeComponents;
                     report.mostNegative = std::min(report.mostNegative, double(v));
-                    negative += kLuminance[c] * -double(v);
+                    negative += kLuminanceWeights[c] * -double(v);
                 } else {
-                    positive += kLuminance[c] * double(v);
+                    positive += kLuminanceWeights[c] * double(v);
                     if (v == 0.0f)
                         v = 0.0f; // -0.0 -> +0.0
                     max = std::max(max, v);
@@ -120,7 +118,7 @@ private:
                     clean &= (t[c] >= 0.0f) & (t[c] <= std::numeric_limits<float>::max());
                     max[lane] = std::max(max[lane], t[c]);
                 }
-                luminance[lane] += kLuminance[0] * double(t[0]) + kLuminance[1] * double(t[1]) + kLuminance[2] * double(t[2]);
+                luminance[lane] += kLuminanceWeights[0] * double(t[0]) + kLuminanceWeights[1] * double(t[1]) + kLuminanceWeights[2] * double(t[2]);
             }
         }
         if (!clean)

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ibl/luminance.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/reference.hpp"
 #include "lab/format.hpp"
@@ -71,7 +72,7 @@ double environmentDynamicRange(const ImageRGB32F& environment)
         const double rowSolidAngle = std::sin((double(y) + 0.5) / double(environment.height) * kPi);
         for (int x = 0; x < environment.width; ++x) {
             const float* t = &environment.texels[environment.offset(x, y)];
-            const double luminance = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+            const double luminance = iblab::luminance(t);
             peak = std::max(peak, luminance);
             weighted += rowSolidAngle * luminance;
             weights += rowSolidAngle;

@@ -13,13 +13,13 @@
 #include "frame/renderer.hpp"
 #include "ibl/brdf.hpp"
 #include "ibl/image.hpp"
+#include "ibl/luminance.hpp"
 #include "ibl/sh.hpp"
 #include "lab/stress_suite.hpp"
 
 namespace iblab::stress {
 
-inline constexpr glm::dvec3 kLuminance{0.2126, 0.7152, 0.0722};
-inline double luminance(glm::dvec3 c) { return glm::dot(c, kLuminance); }
+using iblab::luminance;
 
 // The background is drawn in this colour, which no lit pixel can have, so the sphere's
 // pixels are known exactly (the tessellated silhouette is not the analytic one). Exactly
