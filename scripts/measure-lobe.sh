@@ -92,9 +92,10 @@ for args in "${methods[@]}"; do
 done
 
 # The fitted lobe's shading lights cost per light (docs/accuracy-study.md, "Compact sources"):
-# the same sphere on maps with none (courtyard), 5 (sunrise) and 12 (interior).
+# the same sphere on a map with none (courtyard) and two with the default bake's most, 4
+# (sunrise: a sun across groups; interior: lamps).
 echo
-echo "The same sphere on maps with 0, 5 and 12 shading lights (same timing rule):"
+echo "The same sphere on maps without and with shading lights (same timing rule):"
 echo
 echo "| map | lights | split sum ms | fitted lobe without lights | with them (default) |"
 echo "|---|---|---|---|---|"

@@ -145,7 +145,7 @@ struct PrefilterSettings {
     // The fitted lobe's shading lights (ibl/shading_lights.hpp): at most this many of the
     // map's brightest groups of texels, found on the float map, which shading sums exactly
     // while the fitted lobe reads the chain without them. 0: none (the plain chain).
-    int shadingLights = kMaxShadingLights;
+    int shadingLights = kDefaultShadingLights;
     bool operator==(const PrefilterSettings&) const = default;
 };
 
