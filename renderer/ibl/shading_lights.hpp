@@ -20,7 +20,7 @@ inline constexpr int kMaxShadingLights = 16;
 // How many a bake finds by default (PrefilterSettings::shadingLights). On the unseen maps of
 // docs/accuracy-study.md the fitted lobe's error with 4 is within 0.01 of its error with 16
 // (the lights after the first few carry little), and on llvmpipe each light costs about
-// 0.033x of the split sum's frame, however little it carries.
+// 0.035x of the split sum's frame, however little it carries.
 inline constexpr int kDefaultShadingLights = 4;
 // Lights are groups of a cube grid with this many groups per face edge (about 1.4 degrees
 // each, the texel of a 256-wide equirect): a 0.5 degree sun falls in one group or two.
