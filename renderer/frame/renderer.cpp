@@ -248,7 +248,7 @@ void Renderer::setBake(std::shared_ptr<const bake::BakeResult> bake)
     const bool otherMap = bake && impl_->bake && bake->contentHash != impl_->bake->contentHash;
     if (otherMap) impl_->reference.environmentChanged();
     impl_->bake = std::move(bake);
-    impl_->bakeLights = impl_->bake ? makeShadingLightsTexture(*impl_->bake) : nullptr;
+    impl_->bakeLights = impl_->bake ? makeShadingLightsTexture(impl_->shaders, *impl_->bake) : nullptr;
     ++impl_->contentRevision;
 }
 bool Renderer::hasBake() const { return bool(impl_->bake); }

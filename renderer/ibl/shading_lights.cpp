@@ -199,18 +199,27 @@ glm::vec3 cubeTexelDirection(int size, int face, int x, int row)
 
 } // namespace
 
+ShadingLightKernel shadingLightKernel(double roughness, int grid)
+{
+    const double alpha = roughness * roughness;
+    ShadingLightKernel k;
+    k.alpha2 = alpha * alpha;
+    k.scale = k.alpha2 / (kPi * ggxPrefilterNormalization(roughness));
+    // Beyond this angle from a light its group's spread changes the kernel by about
+    // (spread / angle)^2 < 1/64 of its value: the centroid stands for the group there.
+    const double groupAngle = 0.5 * kPi / double(grid);
+    k.cosNear = std::cos(std::min(0.5 * kPi, 8.0 * (alpha + groupAngle)));
+    return k;
+}
+
 void subtractShadingLights(CubeLevelRgb& mip, double roughness, const ShadingLights& lights)
 {
-    const double alpha = roughness * roughness, a2 = alpha * alpha;
-    const double scale = a2 / (kPi * ggxPrefilterNormalization(roughness));
+    const ShadingLightKernel kernel = shadingLightKernel(roughness, lights.grid);
+    const double a2 = kernel.alpha2, scale = kernel.scale, cosNear = kernel.cosNear;
     auto term = [a2](double c) {
         const double t = a2 + 0.5 * (1.0 - c) * (1.0 - a2);
         return std::max(c, 0.0) / (t * t);
     };
-    // Beyond this angle from a light its group's spread changes the kernel by about
-    // (spread / angle)^2 < 1/64 of its value: the centroid stands for the group there.
-    const double groupAngle = 0.5 * kPi / double(lights.grid);
-    const double cosNear = std::cos(std::min(0.5 * kPi, 8.0 * (alpha + groupAngle)));
     // Rows of all six faces, face-major: each texel is its own, so the bands need no merging.
     parallelRows(6 * mip.size, [&](int firstRow, int endRow) {
         for (int faceRow = firstRow; faceRow < endRow; ++faceRow)

@@ -72,6 +72,17 @@ struct CubeLevelRgb {
 // every other mip as subtractShadingLights does.
 std::vector<CubeLevelRgb> shadingLightResidual(std::vector<CubeLevelRgb> chain, const std::vector<double>& mipRoughness, const ShadingLights& lights);
 
+// The constants of a light's exact prefilter at `roughness` (> 0), which subtractShadingLights
+// and the renderer's GPU pass (shading_lights_residual.comp) share: the kernel is
+// scale max(0, c) / t^2, t = alpha^2 + (1 - c)(1 - alpha^2) / 2, c = n.l; a texel sums a
+// light's points when c > cosNear, its centroid otherwise.
+struct ShadingLightKernel {
+    double alpha2 = 0.0;
+    double scale = 0.0;
+    double cosNear = 0.0;
+};
+ShadingLightKernel shadingLightKernel(double roughness, int grid);
+
 // A prefiltered mip at `roughness` (> 0) less each light's exact prefilter (the bake's
 // kernel, D(h) max(0, n.l) / Z(alpha)) at every texel centre, summed over the light's points
 // near it and from its centroid far away, clamped at 0.
