@@ -36,9 +36,6 @@ void main()
     if (texel.x >= uSize || texel.y >= uSize)
         return;
     vec3 n = cubeFaceUvToDirection(texel.z, (vec2(texel.xy) + 0.5) / float(uSize));
-    // normalize() may use an approximate reciprocal square root (llvmpipe's is good to about
-    // 1e-4), and |n - l|^2 = 2 (1 - c) only holds for unit vectors: once more with sqrt.
-    n /= sqrt(dot(n, n));
     vec3 sum = vec3(0.0);
     for (int g = 0; g < uGroups; ++g) {
         vec4 groupLight = uLights[2 * g], groupFlux = uLights[2 * g + 1];

@@ -38,7 +38,6 @@ constexpr const char* kDownsample = "bake/downsample.comp";
 constexpr const char* kClampLuminance = "bake/clamp_luminance.comp";
 constexpr const char* kSamplePrefiltered = "bake/sample_prefiltered.comp";
 
-const char* imageFormatName(GLenum internalFormat) { return internalFormat == GL_RGBA16F ? "rgba16f" : "rgba32f"; }
 
 // Seamless filtering across cube faces (GL 4.5 core, global state): without it a texel
 // near a face edge is clamped to its own face, and the blurred mips show their seams.

@@ -29,6 +29,8 @@ struct BakedTexture {
 };
 
 std::size_t bytesPerTexel(GLenum internalFormat);
+// The GLSL image format qualifier of a baked texture's format (a shader's FORMAT define).
+inline const char* imageFormatName(GLenum internalFormat) { return internalFormat == GL_RGBA16F ? "rgba16f" : "rgba32f"; }
 
 // Immutable storage for a cube map / 2D texture, linear filtering (trilinear when levels > 1)
 // and clamped edges.

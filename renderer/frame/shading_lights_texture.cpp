@@ -53,8 +53,7 @@ void subtractOnTheGpu(gl::ShaderLibrary& shaders, const bake::BakeResult& bake, 
     const bake::BakedTexture& full = bake.prefiltered;
     const std::vector<glm::vec4> data = residualShaderData(lights);
     const gl::Buffer buffer = gl::createBufferWith<glm::vec4>(data);
-    const char* format = full.internalFormat == GL_RGBA16F ? "rgba16f" : "rgba32f";
-    const gl::ShaderProgram& program = shaders.program({kResidualShader}, {{"FORMAT", format}});
+    const gl::ShaderProgram& program = shaders.program({kResidualShader}, {{"FORMAT", bake::imageFormatName(full.internalFormat)}});
     const ResidualUniforms& u = program.uniforms<ResidualUniforms>();
     glUseProgram(program.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
