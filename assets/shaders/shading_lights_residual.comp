@@ -2,11 +2,12 @@
 // bake's prefiltered cube less each shading light's exact prefilter, clamped at 0, as
 // subtractShadingLights (renderer/ibl/shading_lights.cpp) computes it on the CPU for the
 // accuracy study; tests/gl/shading_lights_gltest.cpp compares the two at every texel. The
-// kernel is the bake's, D(h) max(0, n.l) / Z(alpha) with h halfway between n and l, written
-// as uScale max(0, c) / t^2 with t = alpha^2 + (1 - c)(1 - alpha^2) / 2, c = n.l. 1 - c is
-// taken as |n - l|^2 / 2, which keeps its digits where c is near 1 (a narrow lobe's peak,
-// where the light's share is most of the texel and the residual is what is left of it).
+// kernel is the bake's, uScale ggxPrefilterWeight (brdf.glsl) = D(h) max(0, n.l) / Z(alpha),
+// with 1 - n.l taken as |n - l|^2 / 2, which keeps its digits where n.l is near 1 (a narrow
+// lobe's peak, where the light's share is most of the texel and the residual is what is left
+// of it).
 #include "common/conventions.glsl"
+#include "common/brdf.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -24,10 +25,8 @@ layout(std430, binding = 0) readonly buffer ShadingLightData { vec4 uLights[]; }
 
 float kernel(vec3 n, vec3 l)
 {
-    float c = dot(n, l);
     vec3 d = n - l;
-    float t = uAlpha2 + 0.25 * dot(d, d) * (1.0 - uAlpha2);
-    return max(c, 0.0) / (t * t);
+    return ggxPrefilterWeight(dot(n, l), 0.5 * dot(d, d), uAlpha2);
 }
 
 void main()

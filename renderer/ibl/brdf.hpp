@@ -52,6 +52,18 @@ T ggxD(T NdotH, T alpha)
     return a2 / (T(kPi) * d * d);
 }
 
+// The prefilter's kernel (N = V = R), D(h) max(0, n.l) without the constant alpha^2 / pi, for
+// c = n.l: D = alpha^2 / (pi t^2) with t = (n.h)^2 (alpha^2 - 1) + 1 and (n.h)^2 = (1 + c) / 2,
+// written t = alpha^2 + (1 - c)(1 - alpha^2) / 2 with 1 - c passed apart, so that a caller
+// that has it more exactly than 1 - c (|n - l|^2 / 2 near the lobe's peak) keeps t's digits.
+// The bake's bright texels, its exact sums and the shading lights' residual all weigh with it.
+template <typename T>
+T ggxPrefilterWeight(T c, T oneMinusC, T alpha2)
+{
+    const T t = alpha2 + T(0.5) * oneMinusC * (T(1) - alpha2);
+    return std::max(c, T(0)) / (t * t);
+}
+
 // Schlick's G1 with the IBL remapping k = alpha / 2 (Karis 2013).
 template <typename T>
 T schlickGgxK(T alpha)

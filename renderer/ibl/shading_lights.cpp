@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
+#include "ibl/brdf.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/luminance.hpp"
@@ -216,10 +217,7 @@ void subtractShadingLights(CubeLevelRgb& mip, double roughness, const ShadingLig
 {
     const ShadingLightKernel kernel = shadingLightKernel(roughness, lights.grid);
     const double a2 = kernel.alpha2, scale = kernel.scale, cosNear = kernel.cosNear;
-    auto term = [a2](double c) {
-        const double t = a2 + 0.5 * (1.0 - c) * (1.0 - a2);
-        return std::max(c, 0.0) / (t * t);
-    };
+    auto term = [a2](double c) { return ggxPrefilterWeight(c, 1.0 - c, a2); };
     // Rows of all six faces, face-major: each texel is its own, so the bands need no merging.
     parallelRows(6 * mip.size, [&](int firstRow, int endRow) {
         for (int faceRow = firstRow; faceRow < endRow; ++faceRow)

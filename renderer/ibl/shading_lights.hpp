@@ -18,9 +18,10 @@ namespace iblab {
 // costs about 2 ms of a 1280 x 720 sphere, so only lights that matter are kept (below).
 inline constexpr int kMaxShadingLights = 16;
 // How many a bake finds by default (PrefilterSettings::shadingLights). On the unseen maps of
-// docs/accuracy-study.md the fitted lobe's error with 4 is within 0.01 of its error with 16
-// (the lights after the first few carry little), and on llvmpipe each light costs about
-// 0.035x of the split sum's frame, however little it carries.
+// docs/accuracy-study.md the fitted lobe's worst and median error with 4 are within 0.01 of
+// those with 16 (one case, pmndrs-studio, moves by 0.05: the lights after the first few
+// carry little), and on llvmpipe each light costs about 0.035x of the split sum's frame,
+// however little it carries.
 inline constexpr int kDefaultShadingLights = 4;
 // Lights are groups of a cube grid with this many groups per face edge (about 1.4 degrees
 // each, the texel of a 256-wide equirect): a 0.5 degree sun falls in one group or two.
@@ -74,8 +75,8 @@ std::vector<CubeLevelRgb> shadingLightResidual(std::vector<CubeLevelRgb> chain, 
 
 // The constants of a light's exact prefilter at `roughness` (> 0), which subtractShadingLights
 // and the renderer's GPU pass (shading_lights_residual.comp) share: the kernel is
-// scale max(0, c) / t^2, t = alpha^2 + (1 - c)(1 - alpha^2) / 2, c = n.l; a texel sums a
-// light's points when c > cosNear, its centroid otherwise.
+// scale ggxPrefilterWeight(c) (ibl/brdf.hpp), c = n.l; a texel sums a light's points when
+// c > cosNear, its centroid otherwise.
 struct ShadingLightKernel {
     double alpha2 = 0.0;
     double scale = 0.0;

@@ -55,6 +55,32 @@ TEST_F(GlTest, BrdfTermsAgreeWithCore)
     }
 }
 
+// The prefilter's kernel, which the bake's bright texels and exact sums and the shading
+// lights' residual weigh with: from the lobe's peak (1 - c given exactly, as |n - l|^2 / 2
+// gives it) out to its tail, at alpha^2 from mip 1's to 1. The peak value is 1 / alpha^4
+// (6.5e7 at mip 1), so the bound is relative.
+TEST_F(GlTest, PrefilterWeightAgreesWithCore)
+{
+    auto library = probeLibrary();
+    std::vector<glm::vec4> inputs;
+    for (float oneMinusC : {0.0f, 1e-6f, 1e-4f, 0.01f, 0.5f, 1.0f, 1.5f})
+        for (float alpha2 : {1.24e-4f, 0.0025f, 0.13f, 1.0f})
+            inputs.emplace_back(1.0f - oneMinusC, oneMinusC, alpha2, 0.0f);
+    const auto gpu = probe(library, 7, inputs);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const glm::dvec4 v(inputs[i]);
+        const double cpu = ggxPrefilterWeight(v.x, v.y, v.z);
+        EXPECT_LE(std::abs(gpu[i].x - cpu), 1e-5 * std::max(1e-30, cpu)) << "inputs " << i << ": gpu " << gpu[i].x << " cpu " << cpu;
+        if (v.x > 0.0) {
+            EXPECT_GT(cpu, 0.0) << "inputs " << i;
+        } else {
+            EXPECT_EQ(gpu[i].x, 0.0f) << "the far side weighs nothing, inputs " << i;
+        }
+    }
+    // 1 / alpha^4 at the peak (t = alpha^2).
+    EXPECT_NEAR(ggxPrefilterWeight(1.0, 0.0, 0.01), 1e4, 1e-6);
+}
+
 TEST_F(GlTest, FresnelAgreesWithCore)
 {
     auto library = probeLibrary();

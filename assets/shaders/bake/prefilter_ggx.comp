@@ -32,13 +32,10 @@ uniform float uNearCos;     // a cell nearer than this cosine is summed light by
 uniform float uAlpha2;      // alpha^2 = roughness^4
 uniform float uBrightScale; // alpha^2 / (pi Z(alpha)), Z the integral of D(h) max(0, n.l)
 
-// flux D(h) max(0, n.l) without the constant alpha^2 / pi, with D = alpha^2 / (pi t^2) and
-// t = (n.h)^2 (alpha^2 - 1) + 1, (n.h)^2 = (1 + c) / 2 for c = n.l (v = n); written as
-// alpha^2 + (1 - c)(1 - alpha^2) / 2 so that t keeps its precision near the lobe's peak.
+// flux D(h) max(0, n.l) without the constant alpha^2 / pi (brdf.glsl's ggxPrefilterWeight).
 vec3 brightTerm(float c, vec3 flux)
 {
-    float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
-    return flux * (max(c, 0.0) / (t * t));
+    return flux * ggxPrefilterWeight(c, 1.0 - c, uAlpha2);
 }
 
 vec3 sumBrightTexels(vec3 n)
@@ -82,8 +79,7 @@ vec3 exactBaseSum(vec3 n)
         vec4 texel = exactTexels[2 * i];
         vec4 radiance = exactTexels[2 * i + 1];
         float c = dot(n, texel.xyz);
-        float t = uAlpha2 + 0.5 * (1.0 - c) * (1.0 - uAlpha2);
-        float w = max(c, 0.0) / (t * t);
+        float w = ggxPrefilterWeight(c, 1.0 - c, uAlpha2);
         sum += w * radiance.rgb;
         weightSum += w * radiance.w;
     }

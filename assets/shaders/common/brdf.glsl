@@ -18,6 +18,14 @@ float ggxD(float NdotH, float alpha)
     return a2 / (IBL_PI * d * d);
 }
 
+// The prefilter's kernel D(h) max(0, n.l) without alpha^2 / pi, c = n.l, 1 - c passed apart
+// (brdf.hpp says why).
+float ggxPrefilterWeight(float c, float oneMinusC, float alpha2)
+{
+    float t = alpha2 + 0.5 * oneMinusC * (1.0 - alpha2);
+    return max(c, 0.0) / (t * t);
+}
+
 // Schlick's G1 with the IBL remapping k = alpha / 2 (Karis 2013), applied separably.
 float schlickGgxG(float NdotV, float NdotL, float alpha)
 {

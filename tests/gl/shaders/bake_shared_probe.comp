@@ -10,6 +10,7 @@
 // MODE 6: (direction, faceSize) -> (cubeTexelSolidAngle, sourceLodFromPdfAt(0.37, 64, faceSize, 0.5),
 //         sourceLodFromPdf(0.37, 64, faceSize, 0.5), prefilterRoughnessFromMip(2, 5, quadratic) + prefilterMipFromRoughness(0.3, 5, linear)
 //         + prefilterMipFromRoughness(0.3, 6, quadratic))
+// MODE 7: (c, 1 - c, alpha^2, -) -> (ggxPrefilterWeight(c, 1 - c, alpha^2), -, -, -)
 #include "probe_layout.glsl"
 #include "common/brdf.glsl"
 #include "common/sampling.glsl"
@@ -39,6 +40,8 @@ void main()
     outputs[i] = vec4(tangentFrame(v.xyz) * vec3(0.3, -0.5, 0.81), 0.0);
 #elif MODE == 5
     outputs[i] = vec4(sh9Evaluate(uCoefficients, v.xyz), 0.0);
+#elif MODE == 7
+    outputs[i] = vec4(ggxPrefilterWeight(v.x, v.y, v.z), 0.0, 0.0, 0.0);
 #else
     vec3 d = normalize(v.xyz);
     outputs[i] = vec4(cubeTexelSolidAngle(d, v.w), sourceLodFromPdfAt(d, 0.37, 64.0, v.w, 0.5), sourceLodFromPdf(0.37, 64.0, v.w, 0.5),
