@@ -234,7 +234,7 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
          "Mip 0 as a copy of the matching source mip (on), or sampled like the other mips as LearnOpenGL does (off)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.mirrorCopy; }), {}, "--prefilter-mirror-copy", value},
         {"prefilter.bright_texels", "Bright texels summed exactly",
-         "Far cells of bright texels each mip-1 texel sums exactly (4x at the rougher mips; near cells light by light); the rest is sampled (0: samples all)",
+         "Far cells of bright texels each mip-1 texel sums exactly (8x at the rougher mips; near cells light by light); the rest is sampled (0: samples all)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.brightTexels; }), {0, 1024}, "--prefilter-bright-texels", value},
         {"prefilter.bright_threshold", "Bright texel threshold",
          "Texels above this multiple of the mean luminance are summed exactly (at most --prefilter-bright-texels of them)",

@@ -126,7 +126,7 @@ struct PrefilterSettings {
     // The bright-texel split (bright_texels.hpp; docs/bake.md, "The prefilter's estimator"):
     // the environment's brightest texels (from the float map) summed exactly by every output
     // texel, near ones light by light and far ones merged, the rest sampled. Each texel of
-    // mip 1 sums at most this many far cells, of the rougher mips 4 times as many; 16 is what
+    // mip 1 sums at most this many far cells, of the rougher mips 8 times as many; 16 is what
     // the 1.25x time budget allowed on llvmpipe (docs/bake.md). 0: every texel is sampled
     // (the anchors).
     int brightTexels = 16;

@@ -179,10 +179,16 @@ BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMe
 
 int brightCellFaceSize(double roughness)
 {
-    // A cell of a size-S face spans about 2 / S radians; alpha / 8 of it needs S >= 16 / alpha.
+    // A cell of a size-S face spans about 2 / S radians; alpha / 2 of it needs S >= 4 / alpha.
+    // The lobe in l is about 2 alpha wide (theta_l = 2 theta_h), so a full cell at the lobe's
+    // peak is summed about 2% low, and cells side by side sum an area as a midpoint rule at a
+    // quarter of the lobe's width. Finer cells only raise the count, and with it the
+    // threshold, leaving more of a large bright area to the samples. Never coarser than a 16
+    // face: mips 4 and 5 sum their base over a 16 face's texels (exactSumTexels), and the
+    // lights are kept no coarser than those.
     const double alpha = std::max(roughness * roughness, 1e-6);
-    int size = 1;
-    while (size < 1024 && size < 16.0 / alpha)
+    int size = 16;
+    while (size < 1024 && size < 4.0 / alpha)
         size *= 2;
     return size;
 }
@@ -372,8 +378,10 @@ int brightBlockCapacity(const PrefilterSettings& settings) { return settings.bri
 
 int brightTexelCap(const PrefilterSettings& settings, int level)
 {
-    // Mip 2 has a quarter of mip 1's texels: four times the lights cost it as much.
-    return level <= 1 ? settings.brightTexels : std::min(4 * settings.brightTexels, kMaxBrightLights);
+    // Mip 2 has a quarter of mip 1's texels, so eight times the far cells cost it twice what
+    // mip 1's cost it. Four times left maps with a dozen lamps of a few degrees (more far
+    // cells than 4N) to mip 2's samples, at 0.12-0.15 of its exact value; eight times sums them.
+    return level <= 1 ? settings.brightTexels : std::min(8 * settings.brightTexels, kMaxBrightLights);
 }
 
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,

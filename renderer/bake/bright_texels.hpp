@@ -14,14 +14,14 @@
 // finest its samples read (splitBaseTopLevel).
 //
 // The cost of the exact sum is (output texels) x (lights), and mip 1 has four times the texels
-// of mip 2, so each mip gets its own list: texels closer together than an eighth of the
-// mip's lobe width (alpha radians) are merged into one light at their flux-weighted centre
-// (which keeps the sum's first moment; the error is second order, about 1% at the lobe's
-// peak), and those lights are grouped again in the cells of a 32^2-per-face cube: an output
+// of mip 2, so each mip gets its own list: texels closer together than half of alpha radians
+// (a quarter of the lobe's width in l) are merged into one light at their flux-weighted
+// centre (which keeps the sum's first moment; the error is second order, about 2% at the
+// lobe's peak), and those lights are grouped again in the cells of a 32^2-per-face cube: an output
 // texel sums a cell further than 6 cells from it as one light (the far field of the lobe's
 // heavy tail), and a nearer cell light by light (bright_texels_block.hpp). brightTexelCap
 // bounds the far cells of each mip (mip 1: PrefilterSettings::brightTexels, the rougher
-// mips 4 times as many) and its lights to 8 times that. T is set per group of mips (mip 1;
+// mips 8 times as many) and its lights to 8 times that. T is set per group of mips (mip 1;
 // mips 2 and up) to the lowest value, at least brightThreshold x the mean luminance, at
 // which the caps hold; a group with its own T has its own base.
 #include <vector>
@@ -63,7 +63,7 @@ BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMe
 std::vector<glm::vec4> mergedBrightLights(const BrightCandidates& candidates, float threshold, int cellFaceSize);
 
 // The face size of the cube whose texels merge lights for a lobe of this roughness
-// (an eighth of alpha radians across, a power of two, at most 1024).
+// (half of alpha radians across, a power of two from 16 to 1024).
 int brightCellFaceSize(double roughness);
 
 // The lowest threshold (at least the floor) at which each roughness's far cells fit under its
