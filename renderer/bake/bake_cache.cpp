@@ -96,6 +96,15 @@ double BakeCache::writeMilliseconds()
     return writeMilliseconds_;
 }
 
+namespace {
+// What this build's bake makes of given settings. The key holds every setting, but a change
+// to an estimator's code (its shaders, or the host code that feeds them) changes the output
+// of the same settings, and a cache written by an older build would then be read as this
+// build's bake. Raise it with every such change. 2: bright lights merged at alpha / 2 and the
+// rough mips' far cells capped at 8N.
+constexpr int kBakeOutputRevision = 2;
+} // namespace
+
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)
 {
     nlohmann::json j = nlohmann::json::parse(toJsonText(settings));
@@ -104,7 +113,7 @@ std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& se
     // The factors as the text they were before they became a list, so that a cache written
     // then is still found.
     j["prefilter"]["mip_sample_scale"] = numberListText(settings.prefilter.mipSampleScale);
-    return hex16(fnv1a("iblab-bake-" + std::to_string(kBakeFormatVersion) + "|" + hex16(contentHash) + "|" + j.dump()));
+    return hex16(fnv1a("iblab-bake-" + std::to_string(kBakeFormatVersion) + "-r" + std::to_string(kBakeOutputRevision) + "|" + hex16(contentHash) + "|" + j.dump()));
 }
 
 std::string BakeCache::lutKey(int size, int samples, GeometryTerm term)

@@ -379,8 +379,9 @@ int brightBlockCapacity(const PrefilterSettings& settings) { return settings.bri
 int brightTexelCap(const PrefilterSettings& settings, int level)
 {
     // Mip 2 has a quarter of mip 1's texels, so eight times the far cells cost it twice what
-    // mip 1's cost it. Four times left maps with a dozen lamps of a few degrees (more far
-    // cells than 4N) to mip 2's samples, at 0.12-0.15 of its exact value; eight times sums them.
+    // mip 1's cost it. Four times left a dozen lamps of a few degrees (more far cells than 4N)
+    // to mip 2's samples, 0.12-0.15 relative RMSE from the exact prefilter; eight times sums
+    // them (bake_bright_gltest's ADozenLampsMeetThePerMipBoundFromMipTwo).
     return level <= 1 ? settings.brightTexels : std::min(8 * settings.brightTexels, kMaxBrightLights);
 }
 
