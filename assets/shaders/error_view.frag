@@ -5,6 +5,7 @@
 // as a dim grey version of the frame, so the heatmap keeps its context.
 #include "common/tonemap.glsl"
 #include "common/error_metrics.glsl"
+#include "common/luminance.glsl"
 
 out vec4 fragColor;
 
@@ -22,7 +23,7 @@ void main()
     vec3 value = frame.rgb;
     if (!isMeasuredPixel(frame.a, texelFetch(uGNormal, pixel, 0).a)) {
         vec3 shown = displayEncode(value, uExposureEv, TONEMAP_OPERATOR);
-        fragColor = vec4(vec3(0.3 * dot(shown, vec3(0.2126, 0.7152, 0.0722))), 1.0);
+        fragColor = vec4(vec3(0.3 * rec709Luminance(shown)), 1.0);
         return;
     }
     vec3 reference = texelFetch(uReferenceFrame, pixel, 0).rgb;

@@ -1,6 +1,8 @@
 #pragma once
 // Rec. 709 / sRGB luminance of linear RGB: what the bake's bright-texel split and the shading
 // lights rank texels by, the loader's negative-light check weighs and the GUI's probes show.
+// The shaders' copy is assets/shaders/common/luminance.glsl (held equal by
+// bake_shared_glsl_gltest's LuminanceAgreesWithCore).
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 

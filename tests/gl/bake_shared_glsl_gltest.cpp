@@ -11,6 +11,7 @@
 #include "compute_probe.hpp"
 #include "gl_test_fixture.hpp"
 #include "ibl/brdf.hpp"
+#include "ibl/luminance.hpp"
 #include "ibl/sampling.hpp"
 #include "ibl/sh.hpp"
 
@@ -79,6 +80,21 @@ TEST_F(GlTest, PrefilterWeightAgreesWithCore)
     }
     // 1 / alpha^4 at the peak (t = alpha^2).
     EXPECT_NEAR(ggxPrefilterWeight(1.0, 0.0, 0.01), 1e4, 1e-6);
+}
+
+// The GLSL's luminance (the bake's bright-texel clamp, the irradiance moments, the error
+// view) weighs colour as ibl/luminance.hpp does: a changed weight on either side fails here.
+TEST_F(GlTest, LuminanceAgreesWithCore)
+{
+    auto library = probeLibrary();
+    const std::vector<glm::vec4> inputs = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0.3f, 2.5f, 1e4f, 0}, {1, 1, 1, 0}};
+    const auto gpu = probe(library, 8, inputs);
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const double cpu = luminance(glm::dvec3(inputs[i]));
+        EXPECT_LE(std::abs(gpu[i].x - cpu), 1e-6 * std::max(1.0, cpu)) << "inputs " << i << ": gpu " << gpu[i].x << " cpu " << cpu;
+    }
+    for (int c = 0; c < 3; ++c)
+        EXPECT_FLOAT_EQ(gpu[0][1 + c], float(kLuminanceWeights[c])) << "weight " << c;
 }
 
 TEST_F(GlTest, FresnelAgreesWithCore)

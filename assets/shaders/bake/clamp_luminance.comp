@@ -6,6 +6,8 @@
 // (a half float that overflowed) becomes grey at the threshold: its flux is in the lights,
 // summed from the float map. On the GPU, so that the split reads nothing back and uploads
 // no cube (a 512^2 half-float cube is 12 MB each way).
+#include "common/luminance.glsl"
+
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(FORMAT, binding = 1) readonly uniform imageCube uSource;
@@ -21,8 +23,6 @@ uniform int uSize; // the base's face
 uniform int uStep;
 uniform vec2 uThresholds;
 uniform int uTargets; // 1: uTarget only, 2: both
-
-const vec3 kLuminance = vec3(0.2126, 0.7152, 0.0722);
 
 vec3 clamped(vec3 rgb, float y, float threshold)
 {
@@ -45,7 +45,7 @@ void main()
             ivec2 block = texel.xy * blocks + ivec2(bx, by);
             if (uStep >= 2) {
                 vec3 average = imageLoad(uSourceLevel1, ivec3(block, texel.z)).rgb;
-                if (4.0 * dot(average, kLuminance) <= lower) {
+                if (4.0 * rec709Luminance(average) <= lower) {
                     first += 4.0 * average;
                     second += 4.0 * average;
                     continue;
@@ -54,7 +54,7 @@ void main()
             for (int dy = 0; dy < blockStep; ++dy)
                 for (int dx = 0; dx < blockStep; ++dx) {
                     vec3 rgb = imageLoad(uSource, ivec3(block * blockStep + ivec2(dx, dy), texel.z)).rgb;
-                    float y = dot(rgb, kLuminance);
+                    float y = rec709Luminance(rgb);
                     first += clamped(rgb, y, uThresholds.x);
                     second += clamped(rgb, y, uThresholds.y);
                 }

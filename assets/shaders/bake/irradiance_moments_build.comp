@@ -8,6 +8,7 @@
 // host binds (no shared-memory reduction: on llvmpipe its barriers cost more than the loop).
 // FORMAT: the environment's image format qualifier (rgba16f, rgba32f).
 #include "common/conventions.glsl"
+#include "common/luminance.glsl"
 #include "bake/moment_texel.glsl"
 #include "common/prefilter_lod.glsl"
 
@@ -47,7 +48,7 @@ void main()
             momentB += radiance.b * w;
             // Rec. 709 luminance; a group of any colour still gets a spread from its texels'
             // solid angle where it is black (the 1e-6 floor).
-            float y709 = dot(radiance, vec3(0.2126, 0.7152, 0.0722)) + 1e-6 * omega;
+            float y709 = rec709Luminance(radiance) + 1e-6 * omega;
             fluxY += y709;
             momentY += y709 * w;
             secondDiagonal += y709 * w * w;

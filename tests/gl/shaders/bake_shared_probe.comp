@@ -11,11 +11,13 @@
 //         sourceLodFromPdf(0.37, 64, faceSize, 0.5), prefilterRoughnessFromMip(2, 5, quadratic) + prefilterMipFromRoughness(0.3, 5, linear)
 //         + prefilterMipFromRoughness(0.3, 6, quadratic))
 // MODE 7: (c, 1 - c, alpha^2, -) -> (ggxPrefilterWeight(c, 1 - c, alpha^2), -, -, -)
+// MODE 8: (rgb, -) -> (rec709Luminance(rgb), kLuminanceWeights)
 #include "probe_layout.glsl"
 #include "common/brdf.glsl"
 #include "common/sampling.glsl"
 #include "common/sh9.glsl"
 #include "common/prefilter_lod.glsl"
+#include "common/luminance.glsl"
 
 uniform vec3 uCoefficients[9];
 
@@ -42,6 +44,8 @@ void main()
     outputs[i] = vec4(sh9Evaluate(uCoefficients, v.xyz), 0.0);
 #elif MODE == 7
     outputs[i] = vec4(ggxPrefilterWeight(v.x, v.y, v.z), 0.0, 0.0, 0.0);
+#elif MODE == 8
+    outputs[i] = vec4(rec709Luminance(v.xyz), kLuminanceWeights);
 #else
     vec3 d = normalize(v.xyz);
     outputs[i] = vec4(cubeTexelSolidAngle(d, v.w), sourceLodFromPdfAt(d, 0.37, 64.0, v.w, 0.5), sourceLodFromPdf(0.37, 64.0, v.w, 0.5),
