@@ -1,5 +1,6 @@
 // `iblab bake`, `iblab sh` and `iblab lut` as a user runs them: the files and JSON they
 // write, read back independently (OpenImageIO, nlohmann_json), and their failures.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -166,6 +167,26 @@ TEST(BakeCli, BakeWritesItsOutputsAndReportsTimingsAndErrors)
     const Exr mip2 = readExr(out / "prefiltered_mip2.exr");
     EXPECT_EQ(mip2.width, 4);
     EXPECT_EQ(mip2.height, 24);
+}
+
+// --error-texel-grid N measures each mip at N x N texel centres per face, or at every texel of
+// a smaller face (the default 4 x 4 is 96 directions a mip, few enough that a small bright
+// source's edge decides the figure).
+TEST(BakeCli, ErrorTexelGridSetsTheDirectionsOfEachMip)
+{
+    TempDirectory dir("cli-grid");
+    const std::string bake = "bake --env 'builtin:sky?width=64' --json --no-cache --prefilter-size 16 --prefilter-levels 3 --lut-size 16 --lut-samples 64";
+    for (const auto& [option, grid] : {std::pair{"", 4}, std::pair{" --error-texel-grid 2", 2}, std::pair{" --error-texel-grid 8", 8}}) {
+        const CommandRun run = iblab(bake + option, dir.path());
+        ASSERT_EQ(run.status, 0) << run.err;
+        const nlohmann::json j = nlohmann::json::parse(run.out);
+        ASSERT_EQ(j["errors"]["prefilter"].size(), 3u);
+        for (int m = 0; m < 3; ++m) {
+            const int perEdge = std::min(grid, 16 >> m); // faces of 16, 8, 4
+            EXPECT_EQ(j["errors"]["prefilter"][m]["directions"].get<int>(), 6 * perEdge * perEdge) << option << " mip " << m;
+        }
+    }
+    EXPECT_NE(iblab(bake + " --error-texel-grid 0", dir.path()).status, 0);
 }
 
 TEST(BakeCli, FailuresAreOneLineNamingTheProblem)
