@@ -153,7 +153,7 @@ TEST_F(GlTest, LargeBrightAreasMeetThePerMipBoundAtEveryMip)
 // 4 times mip 1's cap, and more lights than a merge at an eighth of alpha let under 8 times
 // it, so mip 2 was left to its samples (0.12). Merged at alpha / 2 and capped at 8 times, they
 // are summed. Mip 1 is not asserted: its cap keeps large bright areas in its sampled base
-// (0.40 here; docs/bake.md, "What is left").
+// (0.40 here; docs/bake.md, "What is not met").
 TEST_F(GlTest, ADozenLampsMeetThePerMipBoundFromMipTwo)
 {
     auto shaders = testing::bakeShaderLibrary();
