@@ -24,7 +24,11 @@
 namespace iblab::bake {
 
 struct AccuracyOptions {
-    int texelsPerFaceEdge = 4; // a 4 x 4 grid of texels per face: 96 directions per cube level
+    // A 4 x 4 grid of texels per face: 96 directions per cube level (`iblab bake
+    // --error-texel-grid N`). At mip 1 that is too few for a stable figure where a bright
+    // area's edge falls between them (studio.exr 0.362 here, 0.091 at a 32 x 32 grid;
+    // docs/bake.md, "How many directions the per-mip figure needs").
+    int texelsPerFaceEdge = 4;
     // The references cost O(texels) per direction; an environment wider than this is halved
     // (energy-preserving, reference.hpp's downsampleEquirect2x) until it is not, for the
     // rough mips (roughness >= 0.5) and the irradiance only. Their lobes span tens of
