@@ -101,8 +101,9 @@ namespace {
 // to an estimator's code (its shaders, or the host code that feeds them) changes the output
 // of the same settings, and a cache written by an older build would then be read as this
 // build's bake. Raise it with every such change. 2: bright lights merged at alpha / 2 and the
-// rough mips' far cells capped at 8N.
-constexpr int kBakeOutputRevision = 2;
+// rough mips' far cells capped at 8N. 3: mip 1 refined where its samples disagree, its
+// bases from the finest level its refined samples read.
+constexpr int kBakeOutputRevision = 3;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

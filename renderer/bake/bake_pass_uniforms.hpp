@@ -75,7 +75,8 @@ struct MomentsUniforms {
 struct PrefilterUniforms {
     explicit PrefilterUniforms(const gl::ShaderProgram& p)
         : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
-          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos"), exactCount(p, "uExactCount")
+          brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos"), exactCount(p, "uExactCount"),
+          refineCount(p, "uRefineCount"), refineSpread(p, "uRefineSpread"), refineWeightSum(p, "uRefineWeightSum")
     {
     }
     gl::Uniform<float> roughness;
@@ -87,6 +88,9 @@ struct PrefilterUniforms {
     gl::Uniform<float> brightScale;
     gl::Uniform<float> nearCos;
     gl::Uniform<int> exactCount; // texels of the base's mip summed exactly; 0: the base is sampled
+    gl::Uniform<int> refineCount; // the table's second set (after uSampleCount entries); 0: none
+    gl::Uniform<float> refineSpread;
+    gl::Uniform<float> refineWeightSum;
 };
 
 struct SamplePrefilteredUniforms {

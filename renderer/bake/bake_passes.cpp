@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <span>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -118,7 +119,7 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
         break;
     }
     for (int level = 1; level < settings.prefilter.levels; ++level)
-        prefilterProgram(sampleTableCapacity(prefilterSamples(settings.prefilter, level)),
+        prefilterProgram(sampleTableCapacity(prefilterSamples(settings.prefilter, level) * std::max(1, settings.prefilter.refineFactor + 1)),
                          prefilterMipRoughness(settings.prefilter, level) > 0.0f ? brightBlockCapacity(settings.prefilter) : 0);
     if (lut)
         shaders_.program({kBrdfLut});
@@ -427,17 +428,33 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         return;
     SeamlessCubeScope seamless;
     const int sampleCount = prefilterSamples(settings, slice.level);
-    const int capacity = sampleTableCapacity(sampleCount);
     const float roughness = prefilterMipRoughness(settings, slice.level);
     // The mirror level has no lobe to weight lights by: it reads the environment itself.
     const bool split = bright && roughness > 0.0f && std::size_t(slice.level) < bright->levels.size() && bright->levels[std::size_t(slice.level)].base >= 0;
     const PrefilterBrightTexels::Level* lights = split ? &bright->levels[std::size_t(slice.level)] : nullptr;
+    // A sampled split level takes a second, larger set where its first samples disagree.
+    const int refineCount = lights && lights->refineSpread >= 0.0f ? sampleCount * settings.refineFactor : 0;
+    const int capacity = sampleTableCapacity(sampleCount + refineCount);
     const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0);
-    const std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias, settings.sampleRotation);
-    float weightSum = 0.0f;
-    for (const glm::vec4& sample : samples) weightSum += sample.z;
+    std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias, settings.sampleRotation);
+    auto weightSumOf = [](std::span<const glm::vec4> set) {
+        float sum = 0.0f;
+        for (const glm::vec4& sample : set) sum += sample.z;
+        return sum;
+    };
+    const float weightSum = weightSumOf(samples);
+    float refineWeightSum = 0.0f;
+    if (refineCount > 0) {
+        const std::vector<glm::vec4> refined = ggxReflectedSampleTable(roughness, refineCount, settings.mipBias, settings.sampleRotation);
+        refineWeightSum = weightSumOf(refined);
+        samples.insert(samples.end(), refined.begin(), refined.end());
+    }
     const gl::Buffer table = bindSampleTable(program, capacity, samples);
     const PrefilterUniforms& uniforms = program.uniforms<PrefilterUniforms>();
+    program.uniforms<SampleTableUniforms>().sampleCount.set(sampleCount);
+    uniforms.refineCount.set(refineCount);
+    uniforms.refineWeightSum.set(refineWeightSum);
+    uniforms.refineSpread.set(lights ? lights->refineSpread : 0.0f);
     uniforms.roughness.set(roughness);
     uniforms.weightSum.set(weightSum);
     uniforms.mirrorCopy.set(settings.mirrorCopy ? 1 : 0);

@@ -60,11 +60,11 @@ struct RankedTexel {
 // floor to the first one left out; only those kept become BrightTexels (makeTexel(index)),
 // so that a map with a million texels above the floor sorts and converts 16384 of them.
 template <class MakeTexel>
-BrightCandidates finishCandidates(std::vector<RankedTexel> ranked, float floorThreshold, float meanLuminance, int maxCandidates,
-                                  MakeTexel makeTexel)
+BrightCandidates finishCandidates(std::vector<RankedTexel> ranked, float floorThreshold, double luminanceIntegral,
+                                  double squaredLuminanceIntegral, int maxCandidates, MakeTexel makeTexel)
 {
     BrightCandidates c;
-    c.meanLuminance = meanLuminance;
+    c.meanLuminance = float(luminanceIntegral / (4.0 * kPi));
     c.floorThreshold = floorThreshold;
     const auto keep = std::size_t(std::max(0, maxCandidates));
     if (ranked.size() > keep) {
@@ -76,8 +76,12 @@ BrightCandidates finishCandidates(std::vector<RankedTexel> ranked, float floorTh
     }
     std::sort(ranked.begin(), ranked.end());
     c.texels.reserve(ranked.size());
-    for (const RankedTexel& t : ranked)
+    double squaredInList = 0.0;
+    for (const RankedTexel& t : ranked) {
         c.texels.push_back(makeTexel(t.index));
+        squaredInList += double(c.texels.back().luminance) * double(c.texels.back().luminance) * c.texels.back().solidAngle;
+    }
+    c.squaredLuminanceOutsideList = std::max(0.0, squaredLuminanceIntegral - squaredInList);
     return c;
 }
 
@@ -129,25 +133,27 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
     const int w = equirect.width, h = equirect.height;
     std::vector<double> rowSolidAngle(std::size_t(std::max(0, h)));
     std::vector<float> lum(std::size_t(std::max(0, w)) * std::size_t(std::max(0, h)));
-    double flux = 0.0;
+    double flux = 0.0, squared = 0.0;
     for (int y = 0; y < h; ++y) {
         rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
         const float* rgb = &equirect.texels[equirect.offset(0, y)];
         float* rowLum = &lum[std::size_t(y) * std::size_t(w)];
-        double row = 0.0;
+        double row = 0.0, rowSquared = 0.0;
         for (int x = 0; x < w; ++x) {
             rowLum[x] = luminance(&rgb[3 * x]);
-            row += double(std::max(0.0f, rowLum[x]));
+            const double positive = std::max(0.0f, rowLum[x]);
+            row += positive;
+            rowSquared += positive * positive;
         }
         flux += row * rowSolidAngle[std::size_t(y)];
+        squared += rowSquared * rowSolidAngle[std::size_t(y)];
     }
-    const float mean = float(flux / (4.0 * kPi));
-    const float floorThreshold = thresholdOverMean * mean;
+    const float floorThreshold = thresholdOverMean * float(flux / (4.0 * kPi));
     std::vector<RankedTexel> ranked;
     for (std::size_t i = 0; i < lum.size(); ++i)
         if (lum[i] > floorThreshold)
             ranked.push_back({lum[i], std::uint32_t(i)});
-    return finishCandidates(std::move(ranked), floorThreshold, mean, maxCandidates, [&](std::uint32_t i) {
+    return finishCandidates(std::move(ranked), floorThreshold, flux, squared, maxCandidates, [&](std::uint32_t i) {
         const int x = int(i % std::uint32_t(w)), y = int(i / std::uint32_t(w));
         return BrightTexel{equirectTexelDirection(x, y, w, h), glm::dvec3(equirect.at(x, y)), rowSolidAngle[std::size_t(y)], lum[i]};
     });
@@ -156,13 +162,16 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
 BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMean, int maxCandidates)
 {
     const int f = level0.size;
-    double flux = 0.0;
+    double flux = 0.0, squared = 0.0;
     for (int face = 0; face < 6; ++face)
         for (int row = 0; row < f; ++row)
-            for (int x = 0; x < f; ++x)
-                flux += double(std::max(0.0f, luminance(level0.rgb(face, x, row)))) * approximateTexelSolidAngle(x, row, f);
-    const float mean = float(flux / (4.0 * kPi));
-    const float floorThreshold = thresholdOverMean * mean;
+            for (int x = 0; x < f; ++x) {
+                const double positive = std::max(0.0f, luminance(level0.rgb(face, x, row)));
+                const double solidAngle = approximateTexelSolidAngle(x, row, f);
+                flux += positive * solidAngle;
+                squared += positive * positive * solidAngle;
+            }
+    const float floorThreshold = thresholdOverMean * float(flux / (4.0 * kPi));
     std::vector<RankedTexel> ranked;
     const auto faceTexels = std::uint32_t(f) * std::uint32_t(f);
     for (std::uint32_t i = 0; i < 6 * faceTexels; ++i) {
@@ -170,7 +179,7 @@ BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMe
         if (const float lum = luminance(level0.rgb(face, x, row)); lum > floorThreshold && std::isfinite(lum))
             ranked.push_back({lum, i});
     }
-    return finishCandidates(std::move(ranked), floorThreshold, mean, maxCandidates, [&](std::uint32_t i) {
+    return finishCandidates(std::move(ranked), floorThreshold, flux, squared, maxCandidates, [&](std::uint32_t i) {
         const int face = int(i / faceTexels), row = int(i % faceTexels) / f, x = int(i % faceTexels) % f;
         const glm::vec3 rgb = level0.rgb(face, x, row);
         return BrightTexel{glm::dvec3(level0.texelDirection(face, x, row)), glm::dvec3(rgb), texelSolidAngle(x, row, f), luminance(rgb)};
@@ -191,6 +200,17 @@ int brightCellFaceSize(double roughness)
     while (size < 1024 && size < 4.0 / alpha)
         size *= 2;
     return size;
+}
+
+double clampedLuminanceRms(const BrightCandidates& candidates, float threshold)
+{
+    // Texels outside the list are at most the floor, and the threshold is at least the floor.
+    double squared = candidates.squaredLuminanceOutsideList;
+    for (const BrightTexel& t : candidates.texels) {
+        const double clamped = std::min(double(t.luminance), double(threshold));
+        squared += clamped * clamped * t.solidAngle;
+    }
+    return std::sqrt(squared / (4.0 * kPi));
 }
 
 std::vector<glm::vec4> mergedBrightLights(const BrightCandidates& candidates, float threshold, int cellFaceSize)
@@ -345,6 +365,16 @@ int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, in
         }
         for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level), settings.mipBias, settings.sampleRotation))
             finest = std::min(finest, sourceLodFromSampleTerm(sample.w, largestTexel));
+        // Mip 1's refined set (PrefilterSettings::refineFactor) reads finer than its first, but
+        // no base level finer than half of mip 1's texels (a face of settings.faceSize) is
+        // built for it: on a 512 cube its peak reads lod 0.45, and a base from level 0 would
+        // clamp four times the texels of one from level 1 for texels a quarter of mip 1's.
+        if (level == 1 && settings.refineFactor > 1) {
+            const float halfMip1Texel = std::max(0.0f, std::log2(float(environmentSize) / float(std::max(settings.faceSize, 1))));
+            for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level) * settings.refineFactor,
+                                                                   settings.mipBias, settings.sampleRotation))
+                finest = std::min(finest, std::max(halfMip1Texel, sourceLodFromSampleTerm(sample.w, largestTexel)));
+        }
     }
     // The nearest level: a read between it and the next finer one (at most half a level)
     // reads it instead, a blur of at most half a level on the few samples at a lobe's peak
@@ -441,6 +471,10 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
             l.exactCount = int(texels.size() / 2);
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
         }
+        // Mip 1 alone: mips 2 and up meet the bound with their own samples, and their wider
+        // lobes make their samples disagree almost everywhere (refining them doubled the bake).
+        if (level == 1 && l.exactCount == 0 && settings.refineFactor > 1)
+            l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold));
     }
     return out;
 }

@@ -24,6 +24,13 @@
 // mips 8 times as many) and its lights to 8 times that. T is set per group of mips (mip 1;
 // mips 2 and up) to the lowest value, at least brightThreshold x the mean luminance, at
 // which the caps hold; a group with its own T has its own base.
+//
+// Mip 1's cap leaves most of a large bright area (a softbox, a row of lamps) in its base,
+// where its 8 samples, each reading a mip that the area's edge cuts, alias the edge. A mip-1
+// texel whose samples' luminances spread by more than refineSpread x the base's RMS
+// luminance is sampled again with refineFactor times as many (prefilter_ggx.comp); the
+// RMS, not T, sets the scale, because the error that matters is against the level's own
+// magnitude (the per-mip relative RMSE), and T sits at the floor on maps without large areas.
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -50,7 +57,13 @@ struct BrightCandidates {
     std::vector<BrightTexel> texels; // brightest first (ties in texel order: deterministic)
     float floorThreshold = 0.0f;     // brightThreshold x meanLuminance
     float meanLuminance = 0.0f;      // over the sphere, by solid angle
+    // The integral of luminance^2 over the texels not in `texels` (all at most the floor).
+    double squaredLuminanceOutsideList = 0.0;
 };
+
+// The root mean square over the sphere of the luminance clamped at threshold (>= the floor):
+// the scale of the base a level with that threshold samples.
+double clampedLuminanceRms(const BrightCandidates& candidates, float threshold);
 
 // Every texel of the equirect (exact row solid angles) or of a cube level above
 // thresholdOverMean x the mean luminance, at most maxCandidates of them (the brightest;
@@ -81,6 +94,9 @@ struct PrefilterBrightTexels {
         int count = 0;     // far cells
         int capacity = 0; // entries (prefilter_ggx.comp's BRIGHT_CAPACITY)
         float threshold = 0.0f;
+        // Mip 1 only: the luminance spread among a sampled texel's samples above which it takes
+        // PrefilterSettings::refineFactor times as many (refineSpread x the base's RMS); < 0: never.
+        float refineSpread = -1.0f;
         // The base's mip this level sums exactly (exactSumSourceLevel), two entries per
         // texel: (direction, 0), (radiance x solid angle, solid angle); 0 texels: sampled.
         gl::Buffer exactTexels;

@@ -18,6 +18,8 @@
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
 #include "ibl/conventions.hpp"
+#include "ibl/equirect.hpp"
+#include "ibl/image.hpp"
 
 namespace iblab {
 namespace {
@@ -36,12 +38,13 @@ std::string sunSpec(double elevation, double azimuth)
 }
 
 // Per-mip relative RMSE of the prefilter at the texel centres (mips with roughness > 0).
-std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const std::string& spec, const bake::BakeSettings& settings)
+std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const std::string& spec, const bake::BakeSettings& settings,
+                                 const bake::AccuracyOptions& options = {})
 {
     const Environment environment = loadEnvironment(spec);
     const bake::BakeResult result = runBake(shaders, environment, settings);
     std::vector<double> errors;
-    for (const bake::PrefilterLevelError& e : bake::measureBakeErrors(result, environment.image, shaders).prefilter)
+    for (const bake::PrefilterLevelError& e : bake::measureBakeErrors(result, environment.image, shaders, options).prefilter)
         if (e.roughness > 0.0f)
             errors.push_back(e.relativeRmse);
     return errors;
@@ -156,13 +159,21 @@ TEST_F(GlTest, LargeBrightAreasMeetThePerMipBoundAtEveryMip)
 // A dozen lamps of 5 degrees at 1000 on black: more far cells than the rough mips summed at
 // 4 times mip 1's cap, and more lights than a merge at an eighth of alpha let under 8 times
 // it, so mip 2 was left to its samples (0.12). Merged at alpha / 2 and capped at 8 times, they
-// are summed. Mip 1 is not asserted: its cap keeps large bright areas in its sampled base
-// (0.40 here; docs/bake.md, "What is not met").
-TEST_F(GlTest, ADozenLampsMeetThePerMipBoundFromMipTwo)
+// are summed. Mip 1's cap keeps most of the lamps in its sampled base, whose 8 samples alias
+// their edges; refined where the samples disagree (PrefilterSettings::refineFactor), it meets
+// the bound too. Mip 1 is measured at 16 x 16 texels a face (1536 directions): at the
+// default's 4 x 4 the figure rests on the two or three directions that fall near a lamp
+// (0.34 refined, 0.40 not; docs/bake.md, "How many directions the per-mip figure needs").
+TEST_F(GlTest, ADozenLampsMeetThePerMipBoundAtEveryMip)
 {
     auto shaders = testing::bakeShaderLibrary();
     const std::string spec = "builtin:lights?width=1024&count=12&size=5&intensity=1000";
-    expectWithinPerMipBound(perMipErrors(shaders, spec, brightTexelsSplit()), spec, 2);
+    bake::AccuracyOptions dense;
+    dense.texelsPerFaceEdge = 16;
+    expectWithinPerMipBound(perMipErrors(shaders, spec, brightTexelsSplit(), dense), spec);
+    bake::BakeSettings unrefined = brightTexelsSplit();
+    unrefined.prefilter.refineFactor = 1;
+    EXPECT_GT(perMipErrors(shaders, spec, unrefined, dense).front(), kPerMipBound) << spec << ", mip 1 unrefined";
 }
 
 // Every prefiltered texel of the default bake of a white environment, within 0.1% of 1 (the
@@ -264,12 +275,18 @@ TEST_F(GlTest, SplitBasesAreTheClampedEnvironmentBoxAveraged)
 }
 
 // The bases start at the level nearest the finest any split mip reads: the default's mip 1
-// (8 samples at roughness 0.11) reads about lod 0.95 of a 256 cube at its lobe's peak (1.95
-// of a 512 cube, 2.95 of a 1024 one). A table of 512 samples reads below lod 0 of a 256
-// cube, and without the PDF's source mips every sample reads level 0.
+// refines with 64 samples (8 x refineFactor 8 at roughness 0.11), which read about lod -0.55
+// of a 256 cube at its lobe's peak (0.45 of a 512 cube, 1.45 of a 1024 one), but no finer than
+// the level with a 256 face (texels half of mip 1's); its first 8 alone read lod 0.95 (1.95,
+// 2.95). A table of 512 samples reads below lod 0 of a 256 cube, and without the PDF's source
+// mips every sample reads level 0.
 TEST(BrightTexelSplit, BasesStartAtTheFinestLevelTheSamplesRead)
 {
     bake::PrefilterSettings settings = bake::defaultPreset().prefilter;
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 256, 9), 0);
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 512, 10), 1);
+    EXPECT_EQ(bake::splitBaseTopLevel(settings, 1024, 11), 2);
+    settings.refineFactor = 1;
     EXPECT_EQ(bake::splitBaseTopLevel(settings, 256, 9), 1);
     EXPECT_EQ(bake::splitBaseTopLevel(settings, 512, 10), 2);
     EXPECT_EQ(bake::splitBaseTopLevel(settings, 1024, 11), 3);
@@ -278,6 +295,33 @@ TEST(BrightTexelSplit, BasesStartAtTheFinestLevelTheSamplesRead)
     settings = bake::defaultPreset().prefilter;
     settings.mipFiltering = false;
     EXPECT_EQ(bake::splitBaseTopLevel(settings, 256, 9), 0);
+}
+
+// The scale of mip 1's refinement: the RMS of the luminance clamped at a threshold, over the
+// sphere by solid angle, with the texels the candidate list left out (below its raised floor)
+// counted once and the listed ones clamped. Checked against a direct sum over the map, for
+// thresholds at the floor, between the listed texels' values and above all of them.
+TEST(BrightTexelSplit, ClampedRmsCountsEveryTexelOnce)
+{
+    ImageRGB32F map(64, 32);
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) {
+            const float v = 0.5f + 0.01f * float((x * 7 + y * 3) % 13) + (x % 16 == 3 && y % 8 == 4 ? 40.0f + float(x) + 2.0f * float(y) : 0.0f);
+            for (int c = 0; c < 3; ++c)
+                map.texels[map.offset(x, y) + std::size_t(c)] = v;
+        }
+    // Four listed texels of the 16 above 4 x the mean: the floor rises to the fifth brightest.
+    const bake::BrightCandidates candidates = bake::brightCandidates(map, 4.0f, 4);
+    ASSERT_EQ(candidates.texels.size(), 4u);
+    for (float threshold : {candidates.floorThreshold, 0.5f * (candidates.floorThreshold + candidates.texels.front().luminance), 1e4f}) {
+        double squared = 0.0;
+        for (int y = 0; y < map.height; ++y)
+            for (int x = 0; x < map.width; ++x) {
+                const double clamped = std::min(double(map.at(x, y).x), double(threshold)); // grey: luminance = value
+                squared += clamped * clamped * equirectTexelSolidAngle(y, map.width, map.height);
+            }
+        EXPECT_NEAR(bake::clampedLuminanceRms(candidates, threshold), std::sqrt(squared / (4.0 * kPi)), 1e-4) << threshold;
+    }
 }
 
 } // namespace

@@ -15,6 +15,7 @@
 // (at mip 0: the roughness-0 pdf is a delta, there is no footprint to filter).
 #include "common/conventions.glsl"
 #include "common/sampling.glsl"
+#include "common/luminance.glsl"
 #include "bake/cube_texel.glsl"
 #include "bake/source_samples.glsl"
 
@@ -91,6 +92,28 @@ uniform float uRoughness;      // perceptual; 0 selects the mirror level
 uniform float uWeightSum;      // sum of n.l over the table
 uniform float uCopyLod;
 uniform int uMirrorCopy;
+// uRefineCount > 0: the table holds a second set after the first uSampleCount entries, of
+// uRefineCount samples (their n.l summing to uRefineWeightSum), which a texel whose first
+// samples' luminances spread by more than uRefineSpread takes instead. Near the edge of a
+// large bright area of the base a few samples, each reading a mip the edge cuts, alias it;
+// where they agree the texel sees a smooth neighbourhood and keeps them.
+uniform int uRefineCount;
+uniform float uRefineSpread;
+uniform float uRefineWeightSum;
+
+vec3 sampledSum(mat3 frame, int first, int count, out vec2 luminanceRange)
+{
+    vec3 sum = vec3(0.0);
+    luminanceRange = vec2(1e30, 0.0);
+    for (int i = first; i < first + count; ++i) {
+        vec4 s = sourceSamples[i];
+        vec3 radiance = readSource(s.w, frame * s.xyz);
+        float luminance = rec709Luminance(radiance);
+        luminanceRange = vec2(min(luminanceRange.x, luminance), max(luminanceRange.y, luminance));
+        sum += radiance * s.z;
+    }
+    return sum;
+}
 
 void main()
 {
@@ -110,13 +133,10 @@ void main()
 #endif
     {
         mat3 frame = tangentFrame(n);
-        vec3 sum = vec3(0.0);
-        int count = uSampleCount;
-        for (int i = 0; i < count; ++i) {
-            vec4 s = sourceSamples[i];
-            sum += readSource(s.w, frame * s.xyz) * s.z;
-        }
-        radiance = sum / uWeightSum;
+        vec2 range;
+        radiance = sampledSum(frame, 0, uSampleCount, range) / uWeightSum;
+        if (uRefineCount > 0 && range.y - range.x > uRefineSpread)
+            radiance = sampledSum(frame, uSampleCount, uRefineCount, range) / uRefineWeightSum;
     }
 #if BRIGHT_CAPACITY > 0
     radiance += sumBrightTexels(n);
