@@ -254,29 +254,40 @@ void BakePasses::generateMips(const BakedTexture& texture)
     downsampleChain(texture.id(), texture.target, texture.internalFormat, texture.size, texture.size, texture.levels);
 }
 
-void BakePasses::clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds)
+void BakePasses::clampPass(const BakedTexture& environment, const BakedTexture& first, const BakedTexture& second, glm::vec2 thresholds,
+                           int targets)
 {
-    if (bases.empty() || bases.size() > 2 || thresholds.size() != bases.size())
-        throw Error("prefilter", "the bright-texel split builds one or two bases, each with its threshold");
-    const BakedTexture& first = bases.front();
     const gl::ShaderProgram& program = shaders_.program({kClampLuminance}, {{"FORMAT", imageFormatName(environment.internalFormat)}});
     const ClampLuminanceUniforms& uniforms = program.uniforms<ClampLuminanceUniforms>();
     glUseProgram(program.id());
     uniforms.size.set(first.size);
     uniforms.step.set(environment.size / first.size);
-    uniforms.thresholds.set(glm::vec2(thresholds.front(), thresholds.back()));
-    uniforms.targets.set(int(bases.size()));
+    uniforms.thresholds.set(thresholds);
+    uniforms.targets.set(targets);
     glBindImageTexture(1, environment.id(), 0, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
     // Level 1 only serves a step of 2 or more, which needs the environment to have it.
     glBindImageTexture(3, environment.id(), environment.levels > 1 ? 1 : 0, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
     glBindImageTexture(0, first.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
-    glBindImageTexture(2, bases.back().id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
+    glBindImageTexture(2, second.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
     glDispatchCompute(groupsFor(first.size), groupsFor(first.size), 6);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, environment.internalFormat);
     glBindImageTexture(3, 0, 0, GL_FALSE, 0, GL_READ_ONLY, environment.internalFormat);
     glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, first.internalFormat);
     clearPassBindings();
+}
+
+void BakePasses::clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds)
+{
+    if (bases.empty() || bases.size() > 2 || thresholds.size() != bases.size())
+        throw Error("prefilter", "the bright-texel split builds one or two bases, each with its threshold");
+    // Bases of one size from one read of each texel; of two sizes (mip 1's finer), one pass each.
+    if (bases.front().size == bases.back().size) {
+        clampPass(environment, bases.front(), bases.back(), glm::vec2(thresholds.front(), thresholds.back()), int(bases.size()));
+    } else {
+        for (std::size_t i = 0; i < bases.size(); ++i)
+            clampPass(environment, bases[i], bases[i], glm::vec2(thresholds[i]), 1);
+    }
     for (const BakedTexture& base : bases)
         generateMips(base);
 }

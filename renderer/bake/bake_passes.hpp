@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -75,7 +76,8 @@ public:
     // into level 0 of the base (the same format, a face a power of two smaller or equal;
     // clamp_luminance.comp, which reads each texel once for both, and a 2 x 2 block too dim
     // to hold a texel above either threshold as its average from the environment's level 1,
-    // which must be built), then each base's mips.
+    // which must be built), then each base's mips. Bases of two sizes (mip 1's from a finer
+    // level than the rougher mips') take one pass each.
     void clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds);
 
     // Radiance L_lm on the GPU: float sums over groups of rows, each row weighted by its
@@ -123,6 +125,10 @@ private:
     int sampleTableCapacity(int sampleCount) const;
     const gl::ShaderProgram& sampleTableProgram(const char* file, int capacity);
     const gl::ShaderProgram& prefilterProgram(int capacity, int brightCapacity);
+    // One clamp_luminance.comp pass into `first` (and `second`, of the same size, where
+    // targets is 2).
+    void clampPass(const BakedTexture& environment, const BakedTexture& first, const BakedTexture& second, glm::vec2 thresholds,
+                   int targets);
     // The prefilter's mirror level as a texel copy (mirrorSourceLevel); false: nothing done.
     bool copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                          const PrefilterSettings& settings);

@@ -347,7 +347,7 @@ int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int bas
     return 6.0 * size * size <= double(settings.exactSumTexels) ? level : -1;
 }
 
-int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels)
+int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels, int firstMip, int lastMip)
 {
     if (!settings.mipFiltering)
         return 0; // every sample reads level 0
@@ -355,7 +355,7 @@ int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, in
     // smallest lod any sample's pdf picks (readSource), whichever texel solid angle it uses.
     const float largestTexel = 4.0f / (float(environmentSize) * float(environmentSize));
     float finest = float(environmentLevels - 1);
-    for (int level = 1; level < settings.levels; ++level) {
+    for (int level = std::max(firstMip, 1); level < settings.levels && (lastMip < 0 || level <= lastMip); ++level) {
         const float roughness = prefilterMipRoughness(settings, level);
         if (!(roughness > 0.0f))
             continue;
@@ -443,13 +443,19 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
     const float mip1Threshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
     const float roughThreshold = brightThresholdFor(candidates, roughRoughness, roughCaps);
 
-    // Two groups' bases, or one where their thresholds agree, built in one pass.
-    const int topLevel = splitBaseTopLevel(settings, environment.size, environment.levels);
+    // Two groups' bases, or one where their thresholds agree, each from the finest level its
+    // mips read: mip 1's refined samples read a level finer than the rougher mips ever do.
     std::vector<float> baseThresholds = {mip1Threshold};
-    if (roughThreshold != mip1Threshold)
+    std::vector<int> topLevels;
+    if (roughThreshold != mip1Threshold) {
         baseThresholds.push_back(roughThreshold);
-    for (std::size_t i = 0; i < baseThresholds.size(); ++i)
-        out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size >> topLevel, environment.levels - topLevel));
+        topLevels = {splitBaseTopLevel(settings, environment.size, environment.levels, 1, 1),
+                     splitBaseTopLevel(settings, environment.size, environment.levels, 2)};
+    } else {
+        topLevels = {splitBaseTopLevel(settings, environment.size, environment.levels)};
+    }
+    for (int top : topLevels)
+        out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size >> top, environment.levels - top));
     passes.clampedBases(environment, out.bases, baseThresholds);
     auto baseFor = [&](float threshold) { return threshold == mip1Threshold ? 0 : 1; };
     out.levels.resize(std::size_t(std::max(0, settings.levels)));
@@ -467,7 +473,7 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         std::copy(lights.begin(), lights.begin() + std::min(lights.size(), padded.size()), padded.begin());
         l.texels = gl::createBufferWith<glm::vec4>(padded);
         if (const int exact = exactSumSourceLevel(settings, environment.size, environment.levels, roughness); exact >= 0) {
-            const std::vector<glm::vec4> texels = exactSumTexels(readCubeLevel(out.bases[std::size_t(l.base)], exact - topLevel));
+            const std::vector<glm::vec4> texels = exactSumTexels(readCubeLevel(out.bases[std::size_t(l.base)], exact - topLevels[std::size_t(l.base)]));
             l.exactCount = int(texels.size() / 2);
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
         }

@@ -122,7 +122,9 @@ int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int bas
 // split mip reads (the smallest lod its samples' pdfs pick, at the largest texel; the level
 // an exact sum reads), so that a base holds no level nothing samples. readSource's lod,
 // relative to the base's own face, then names the same level as it does in the environment.
-int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels);
+// Over mips firstMip..lastMip (-1: the last), for a base that only those mips read.
+int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels, int firstMip = 1,
+                      int lastMip = -1);
 
 // The most entries pairs of a level's block (far cells and lights together): GL guarantees
 // 16 KB uniform blocks, llvmpipe allows 64 KB (4096 entries); a driver with less is told so.
