@@ -118,10 +118,10 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
         momentsProgram(settings.moments.sourceFaceSize);
         break;
     }
-    // Mip 1's table holds its refined set too where the split refines it (prefilter()).
+    // The refined mips' tables hold their refined sets too where the split refines them (prefilter()).
     const int refinedSets = settings.prefilter.brightTexels > 0 ? std::max(1, settings.prefilter.refineFactor + 1) : 1;
     for (int level = 1; level < settings.prefilter.levels; ++level)
-        prefilterProgram(sampleTableCapacity(prefilterSamples(settings.prefilter, level) * (level == 1 ? refinedSets : 1)),
+        prefilterProgram(sampleTableCapacity(prefilterSamples(settings.prefilter, level) * (level <= kLastRefinedMip ? refinedSets : 1)),
                          prefilterMipRoughness(settings.prefilter, level) > 0.0f ? brightBlockCapacity(settings.prefilter) : 0);
     if (lut)
         shaders_.program({kBrdfLut});
@@ -445,7 +445,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     // The mirror level has no lobe to weight lights by: it reads the environment itself.
     const bool split = bright && roughness > 0.0f && std::size_t(slice.level) < bright->levels.size() && bright->levels[std::size_t(slice.level)].base >= 0;
     const PrefilterBrightTexels::Level* lights = split ? &bright->levels[std::size_t(slice.level)] : nullptr;
-    // A level the split refines (mip 1, bright_texels.hpp) takes a second, larger set where
+    // A level the split refines (mips 1 and 2, bright_texels.hpp) takes a second, larger set where
     // its first samples disagree.
     const int refineCount = lights && lights->refineSpread >= 0.0f ? sampleCount * settings.refineFactor : 0;
     const int capacity = sampleTableCapacity(sampleCount + refineCount);

@@ -140,11 +140,11 @@ struct PrefilterSettings {
     // and 1), whose sampled bases aliased large bright areas (docs/bake.md). 0: every mip's
     // base is sampled.
     int exactSumTexels = 1536;
-    // With the split, a mip-1 texel whose samples' luminances spread by more than
-    // refineSpread x the RMS luminance of its base (the map clamped at mip 1's threshold, over
-    // the sphere) is sampled again with refineFactor times as many: near the edge of a large
-    // bright area that mip 1's caps leave in its base, a few samples that each read a mip the
-    // edge cuts alias it (docs/bake.md, "The prefilter's estimator"). 1: never.
+    // With the split, a texel of mips 1 and 2 whose samples' luminances spread by more than
+    // refineSpread x the RMS luminance of its base (the map clamped at its mip's threshold,
+    // over the sphere) is sampled again with refineFactor times as many: near the edge of a
+    // large bright area that the caps leave in the base, a few samples that each read a mip
+    // the edge cuts alias it (docs/bake.md, "The prefilter's estimator"). 1: never.
     int refineFactor = 8;
     float refineSpread = 1.0f;
     // Degrees the sample set is turned about each texel's normal (0: as generated).

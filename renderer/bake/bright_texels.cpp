@@ -365,15 +365,15 @@ int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, in
         }
         for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level), settings.mipBias, settings.sampleRotation))
             finest = std::min(finest, sourceLodFromSampleTerm(sample.w, largestTexel));
-        // Mip 1's refined set (PrefilterSettings::refineFactor) reads finer than its first, but
-        // no base level finer than half of mip 1's texels (a face of settings.faceSize) is
-        // built for it: on a 512 cube its peak reads lod 0.45, and a base from level 0 would
-        // clamp four times the texels of one from level 1 for texels a quarter of mip 1's.
-        if (level == 1 && settings.refineFactor > 1) {
-            const float halfMip1Texel = std::max(0.0f, std::log2(float(environmentSize) / float(std::max(settings.faceSize, 1))));
+        // A refined set (PrefilterSettings::refineFactor) reads finer than its first, but no
+        // base level finer than half of its mip's texels is built for it: on a 512 cube mip
+        // 1's peak reads lod 0.45, and a base from level 0 would clamp four times the texels
+        // of one from level 1 for texels a quarter of mip 1's.
+        if (level <= kLastRefinedMip && settings.refineFactor > 1) {
+            const float halfTexel = std::max(0.0f, std::log2(float(environmentSize) / float(std::max(settings.faceSize >> (level - 1), 1))));
             for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level) * settings.refineFactor,
                                                                    settings.mipBias, settings.sampleRotation))
-                finest = std::min(finest, std::max(halfMip1Texel, sourceLodFromSampleTerm(sample.w, largestTexel)));
+                finest = std::min(finest, std::max(halfTexel, sourceLodFromSampleTerm(sample.w, largestTexel)));
         }
     }
     // The nearest level: a read between it and the next finer one (at most half a level)
@@ -477,9 +477,9 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
             l.exactCount = int(texels.size() / 2);
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
         }
-        // Mip 1 alone: mips 2 and up meet the bound with their own samples, and their wider
-        // lobes make their samples disagree almost everywhere (refining them doubled the bake).
-        if (level == 1 && l.exactCount == 0 && settings.refineFactor > 1)
+        // Mips 1 and 2: mip 3's wider lobe makes its samples disagree almost everywhere, and
+        // its 144 samples meet the bound without it.
+        if (level <= kLastRefinedMip && l.exactCount == 0 && settings.refineFactor > 1)
             l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold));
     }
     return out;

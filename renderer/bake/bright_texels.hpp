@@ -26,9 +26,10 @@
 // which the caps hold; a group with its own T has its own base.
 //
 // Mip 1's cap leaves most of a large bright area (a softbox, a row of lamps) in its base,
-// where its 8 samples, each reading a mip that the area's edge cuts, alias the edge. A mip-1
-// texel whose samples' luminances spread by more than refineSpread x the base's RMS
-// luminance is sampled again with refineFactor times as many (prefilter_ggx.comp); the
+// where its 8 samples, each reading a mip that the area's edge cuts, alias the edge (mip 2's
+// 24 likewise, less). A texel of mips 1 and 2 (kLastRefinedMip) whose samples' luminances
+// spread by more than refineSpread x the base's RMS luminance is sampled again with
+// refineFactor times as many (prefilter_ggx.comp); the
 // RMS, not T, sets the scale, because the error that matters is against the level's own
 // magnitude (the per-mip relative RMSE), and T sits at the floor on maps without large areas.
 #include <vector>
@@ -94,8 +95,9 @@ struct PrefilterBrightTexels {
         int count = 0;     // far cells
         int capacity = 0; // entries (prefilter_ggx.comp's BRIGHT_CAPACITY)
         float threshold = 0.0f;
-        // Mip 1 only: the luminance spread among a sampled texel's samples above which it takes
-        // PrefilterSettings::refineFactor times as many (refineSpread x the base's RMS); < 0: never.
+        // Mips 1 and 2 (kLastRefinedMip): the luminance spread among a sampled texel's samples
+        // above which it takes PrefilterSettings::refineFactor times as many (refineSpread x
+        // the base's RMS); < 0: never.
         float refineSpread = -1.0f;
         // The base's mip this level sums exactly (exactSumSourceLevel), two entries per
         // texel: (direction, 0), (radiance x solid angle, solid angle); 0 texels: sampled.
@@ -129,6 +131,10 @@ int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, in
 // The most entries pairs of a level's block (far cells and lights together): GL guarantees
 // 16 KB uniform blocks, llvmpipe allows 64 KB (4096 entries); a driver with less is told so.
 inline constexpr int kMaxBrightLights = 2048;
+// The last mip whose sampled texels are refined where their samples disagree
+// (PrefilterSettings::refineFactor): mips 1 and 2, whose caps leave large bright areas and
+// thin bright lines to their 8 and 24 samples.
+inline constexpr int kLastRefinedMip = 2;
 // The most far cells mip `level` (>= 1) sums for every texel (bright_texels_block.hpp).
 int brightTexelCap(const PrefilterSettings& settings, int level);
 
