@@ -477,8 +477,9 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
             l.exactCount = int(texels.size() / 2);
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
         }
-        // Mips 1 and 2: mip 3's wider lobe makes its samples disagree almost everywhere, and
-        // its 144 samples meet the bound without it.
+        // Mips 1 and 2 (kLastRefinedMip). Mip 3's 144 samples meet the bound without it; under
+        // an earlier rule (a spread against T) refining it took every texel, and it has not
+        // been tried under this one.
         if (level <= kLastRefinedMip && l.exactCount == 0 && settings.refineFactor > 1)
             l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold));
     }
