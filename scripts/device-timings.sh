@@ -2,7 +2,8 @@
 # Times the bake and one frame per shading method on a hardware GPU with GL timer queries
 # (GL_TIME_ELAPSED: `iblab bake --json --repeat N`'s gpu_total_ms, `iblab render --json --time N`'s
 # frame_gpu_*), beside the steady-clock times that llvmpipe reports. Prints one JSON line per
-# measurement into $1 (default timings.jsonl). IBLAB points at the binary.
+# measurement into $1 (default timings.jsonl). IBLAB points at the binary; ROUNDS (default 3)
+# is how many processes bake each map with each variant.
 #   IBLAB=build/app/iblab scripts/device-timings.sh out.jsonl
 set -euo pipefail
 iblab=${IBLAB:-build/app/iblab}
@@ -10,18 +11,27 @@ out=${1:-timings.jsonl}
 : >"$out"
 tmp=$(mktemp -d)
 maps=(assets/environments/*.exr)
-# Three repeats of each bake: the first compiles the shaders (no disk cache on a bare machine).
-for map in "${maps[@]}"; do
-  for preset in default tutorial; do
-    "$iblab" bake --env "$map" --preset "$preset" --no-cache --no-errors --repeat 3 --json \
-      | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"bake","map":sys.argv[1],"preset":sys.argv[2],"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"gpu_total_ms":j.get("gpu_total_ms"),"repeat_totals_ms":j.get("repeat_totals_ms")}))' "$map" "$preset" >>"$out"
+rounds=${ROUNDS:-3}
+# One JSON line for one bake: kind, map, round, and the report's times (gpu_total_ms: the warm
+# repeat's GL_TIME_ELAPSED; timings_ms and part_timings_ms: its steady-clock steps).
+bake_line() {
+  local kind=$1 map=$2 round=$3
+  shift 3
+  "$iblab" bake --env "$map" --no-cache --no-errors --repeat 3 --json "$@" \
+    | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":sys.argv[1],"map":sys.argv[2],"round":int(sys.argv[3]),"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"part_timings_ms":j.get("part_timings_ms"),"gpu_total_ms":j.get("gpu_total_ms")}))' "$kind" "$map" "$round" >>"$out"
+}
+# Three repeats of each bake in one process (the first compiles the shaders: a bare machine has
+# no disk cache), ROUNDS processes of each, interleaved so that every variant sees the same
+# machine: the default and tutorial presets, the default's sampled-only estimator
+# (--prefilter-bright-texels 0: what the exact bright-texel sums cost on this GPU) and the
+# default without its refinement of mips 1 and 2 (--prefilter-refine-factor 1).
+for round in $(seq "$rounds"); do
+  for map in "${maps[@]}"; do
+    bake_line bake-default "$map" "$round"
+    bake_line bake-tutorial "$map" "$round" --preset tutorial
+    bake_line bake-sampled-only "$map" "$round" --prefilter-bright-texels 0
+    bake_line bake-unrefined "$map" "$round" --prefilter-refine-factor 1
   done
-done
-# The default's prefilter against the sampled-only estimator (--prefilter-bright-texels 0),
-# same maps, same process shape: what the exact bright-texel sum costs on this GPU.
-for map in "${maps[@]}"; do
-  "$iblab" bake --env "$map" --no-cache --no-errors --repeat 3 --json --prefilter-bright-texels 0 \
-    | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"bake-sampled-only","map":sys.argv[1],"timings_ms":j.get("timings_ms"),"gpu_total_ms":j.get("gpu_total_ms")}))' "$map" >>"$out"
 done
 for method in splitsum fitted-lobe sampled reference; do
   for size in "1280 720" "1920 1080"; do
@@ -30,4 +40,35 @@ for method in splitsum fitted-lobe sampled reference; do
       | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"frame","method":sys.argv[1],"size":sys.argv[2],"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"gpu_timing_method":j.get("gpu_timing_method")}))' "$method" "$1x$2" >>"$out"
   done
 done
-cat "$out"
+# The tables of docs/gpu-timings.md: per map, the minimum over the rounds of each variant.
+python3 - "$out" <<'PY'
+import collections, json, statistics, sys
+rows = [json.loads(line) for line in open(sys.argv[1])]
+bakes = collections.defaultdict(lambda: collections.defaultdict(list))
+for r in rows:
+    if r["kind"].startswith("bake"):
+        bakes[r["map"].rsplit("/", 1)[-1].removesuffix(".exr")][r["kind"]].append(r)
+def least(runs, key):
+    return min(key(r) for r in runs)
+gpu = lambda r: r["gpu_total_ms"]
+part = lambda name: (lambda r: (r.get("part_timings_ms") or {}).get(name, 0.0))
+print("| map | default | sampled-only | default / sampled-only | without refinement | tutorial | default: shading lights | split | mip 1 | mip 2 | sampled-only: shading lights |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
+ratios = []
+for m, k in sorted(bakes.items()):
+    d, s = least(k["bake-default"], gpu), least(k["bake-sampled-only"], gpu)
+    ratios.append(d / s)
+    print(f"| {m} | {d:.1f} | {s:.1f} | {d / s:.2f}x | {least(k['bake-unrefined'], gpu):.1f} | {least(k['bake-tutorial'], gpu):.1f} | "
+          f"{least(k['bake-default'], part('prefilter.shading_lights')):.1f} | {least(k['bake-default'], part('prefilter.split')):.1f} | "
+          f"{least(k['bake-default'], part('prefilter.mip1')):.2f} | {least(k['bake-default'], part('prefilter.mip2')):.2f} | "
+          f"{least(k['bake-sampled-only'], part('prefilter.shading_lights')):.1f} |")
+if ratios:
+    print(f"default / sampled-only: {min(ratios):.2f}x .. {max(ratios):.2f}x, median {statistics.median(ratios):.2f}x")
+print("| method | size | GPU median | steady median | reference |")
+print("|---|---|---|---|---|")
+for r in rows:
+    if r["kind"] == "frame":
+        t = r["timings_ms"]
+        print(f"| {r['method']} | {r['size']} | {t.get('frame_gpu_median', 0):.2f} | {t['frame_median']:.2f} | {t['reference']:.0f} |" if "reference" in t else
+              f"| {r['method']} | {r['size']} | {t.get('frame_gpu_median', 0):.2f} | {t['frame_median']:.2f} | |")
+PY

@@ -12,7 +12,7 @@
 #   scripts/measure-bake.sh hugepages       # the bake with and without malloc's huge pages (app/main.cpp)
 #   scripts/measure-bake.sh unseen          # the default prefilter's per-mip errors on maps that chose none of its
 #                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6)
-#   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms), minimum and median of ROUNDS
+#   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms) and part of one (part_timings_ms), minimum and median of ROUNDS
 #                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved;
 #                                           # BASELINE_ARGS="..." bakes the baseline (or this build) with those options
 # Every time is the minimum of 3 interleaved runs (cmgen: of ROUNDS, default 7, since the
@@ -314,7 +314,7 @@ measure_phases() {
       local dir="$cache/$(echo "${names[$i]}" | md5sum | cut -c1-8)"
       rm -rf "$dir/bake"
       # shellcheck disable=SC2086
-      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors --json ${options[$i]} | python3 -c 'import json,sys; print(json.dumps(json.load(sys.stdin)["timings_ms"]))' >> "${reports[$i]}"
+      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors --json ${options[$i]} | python3 -c 'import json,sys; j=json.load(sys.stdin); t=j["timings_ms"]; t.update(j.get("part_timings_ms", {})); print(json.dumps(t))' >> "${reports[$i]}"
     done
   done
   python3 - "$map" "$rounds" "${names[@]}" -- "${reports[@]}" <<'PY'
@@ -325,19 +325,24 @@ split = args.index("--")
 builds, reports = args[2:split], args[split + 1:]
 runs = [[json.loads(line) for line in open(r)] for r in reports]
 print(f"{map_name}, {rounds} processes per build, ms per phase, minimum (median):")
-phases = [k for k in runs[0][0] if k != "total"] + ["total"]
+# Phases, then their parts (prefilter.split, prefilter.mip1, ...), in the order they ran, from
+# every build: a baseline may have parts the other lacks.
+phases = []
+for r in runs:
+    phases += [k for k in r[0] if k != "total" and k not in phases]
+phases = [k for k in phases if "." not in k] + [k for k in phases if "." in k] + ["total"]
 print("| phase | " + " | ".join(builds) + (" | ratio of minima |" if len(builds) > 1 else " |"))
 print("|---" * (len(builds) + 1 + (len(builds) > 1)) + "|")
 for phase in phases:
     cells = []
     for r in runs:
-        values = [run.get(phase, 0.0) for run in r]
-        cells.append(f"{min(values):.1f} ({statistics.median(values):.1f})")
+        values = [run[phase] for run in r if phase in run]
+        cells.append(f"{min(values):.1f} ({statistics.median(values):.1f})" if values else "-")
     row = f"| {phase} | " + " | ".join(cells)
     if len(builds) > 1:
-        a = min(run.get(phase, 0.0) for run in runs[0])
-        b = min(run.get(phase, 0.0) for run in runs[1])
-        row += f" | {a / b:.2f}x" if b >= 1.0 else " | -"
+        a = min((run[phase] for run in runs[0] if phase in run), default=0.0)
+        b = min((run[phase] for run in runs[1] if phase in run), default=0.0)
+        row += f" | {a / b:.2f}x" if b >= 1.0 and a > 0.0 else " | -"
     print(row + " |")
 PY
 }

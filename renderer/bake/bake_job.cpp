@@ -123,7 +123,7 @@ BakeJob::StepGroup BakeJob::lutGroup(GeometryTerm term)
 }
 
 void BakeJob::planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
-                             const std::function<void(const CubeSlice&)>& run)
+                             const std::function<void(const CubeSlice&)>& run, const std::string& part)
 {
     const int size = std::max(faceSize >> level, 1);
     const double rowCost = double(size) * samplesPerTexel;
@@ -138,7 +138,7 @@ void BakeJob::planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int
                                   .faceCount = std::min(facesPerStep, 6 - face),
                                   .firstRow = row,
                                   .rowCount = std::min(rows, size - row)};
-            steps_.push_back({phase, group, rowCost * slice.rowCount * slice.faceCount, [run, slice] { run(slice); }});
+            steps_.push_back({phase, group, rowCost * slice.rowCount * slice.faceCount, [run, slice] { run(slice); }, part});
         }
 }
 
@@ -267,7 +267,7 @@ void BakeJob::plan()
                               // Groups no finer than the mirror's texels, so that each covers whole texels of it.
                               const PrefilterSettings& p = result_.settings.prefilter;
                               result_.shadingLights = findShadingLights(image_, p.shadingLights, std::min(kShadingLightGrid, p.faceSize));
-                          }});
+                          }, "shading_lights"});
     steps_.push_back({BakePhase::Upload, StepGroup::Environment, sourceTexels, [this, format, envFace, envLevels, equirectLevels] {
                           equirect_ = passes_.uploadEquirect(image_, equirectLevels);
                           const BakeSettings& st = result_.settings;
@@ -303,13 +303,13 @@ void BakeJob::plan()
     if (s.prefilter.brightTexels > 0 && s.prefilter.levels > 1)
         steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
                               bright_ = splitBrightTexels(passes_, result_.environmentCube, image_, result_.settings.prefilter);
-                          }});
+                          }, "split"});
     for (int level = 0; level < s.prefilter.levels; ++level)
         planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level,
                        double(prefilterSamples(s.prefilter, level)) + (level > 0 ? brightTexelCap(s.prefilter, level) / 8.0 : 0.0), [this](const CubeSlice& slice) {
                            passes_.prefilter(result_.environmentCube, result_.prefiltered, slice, result_.settings.prefilter,
                                              result_.settings.exactTexelSolidAngle, bright_ ? &*bright_ : nullptr);
-                       });
+                       }, "mip" + std::to_string(level));
 
     planLuts();
 
@@ -376,11 +376,23 @@ void BakeJob::addTiming(BakePhase phase, double ms)
     result_.totalMilliseconds += ms;
 }
 
+void BakeJob::addPartTiming(BakePhase phase, const std::string& part, double ms)
+{
+    const std::string name = std::string(enumName(phase)) + "." + part;
+    auto it = std::find_if(result_.partTimings.begin(), result_.partTimings.end(), [&](const PartTiming& t) { return t.name == name; });
+    if (it == result_.partTimings.end())
+        result_.partTimings.push_back({name, ms});
+    else
+        it->milliseconds += ms;
+}
+
 void BakeJob::retireStepInFlight()
 {
     if (!inFlight_) return;
     inFlight_->fence.wait();
-    addTiming(inFlight_->phase, std::chrono::duration<double, std::milli>(Clock::now() - inFlight_->issued).count());
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - inFlight_->issued).count();
+    addTiming(inFlight_->phase, ms);
+    if (!inFlight_->part.empty()) addPartTiming(inFlight_->phase, inFlight_->part, ms);
     inFlight_.reset();
 }
 
@@ -396,7 +408,7 @@ bool BakeJob::step()
         retireStepInFlight();
         const auto issued = Clock::now();
         current.run();
-        inFlight_ = StepInFlight{current.phase, issued, gl::Fence::afterIssuedCommands()};
+        inFlight_ = StepInFlight{current.phase, issued, gl::Fence::afterIssuedCommands(), current.part};
         if (steps_.empty())
             retireStepInFlight();
     } catch (...) {

@@ -88,12 +88,14 @@ private:
         StepGroup group;
         double cost = 1.0;
         std::function<void()> run;
+        std::string part = {}; // BakeResult::partTimings's name after the phase's; empty: none
     };
     // A step whose commands are issued and whose fence has not been seen signalled yet.
     struct StepInFlight {
         BakePhase phase;
         std::chrono::steady_clock::time_point issued;
         gl::Fence fence;
+        std::string part;
     };
     void plan();
     // An imported bake (Environment::imported): its cubes are uploaded, not baked.
@@ -101,11 +103,12 @@ private:
     void planIrradiance(int envFace);
     void planLuts();
     void planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
-                        const std::function<void(const CubeSlice&)>& run);
+                        const std::function<void(const CubeSlice&)>& run, const std::string& part = {});
     void skipGroup(StepGroup group);
     // Waits for the step in flight, if any, and books its time.
     void retireStepInFlight();
     void addTiming(BakePhase phase, double ms);
+    void addPartTiming(BakePhase phase, const std::string& part, double ms);
 
     BakePasses passes_;
     BakeCache* cache_;

@@ -55,6 +55,13 @@ struct PhaseTiming {
     double milliseconds = 0.0;
 };
 
+// The same clock for the steps of one part of a phase, named "phase.part": the prefilter's
+// shading lights, its bright-texel split and each of its mips.
+struct PartTiming {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
 struct BakeResult {
     BakeSettings settings;
     std::string source;             // the environment's spec
@@ -73,6 +80,7 @@ struct BakeResult {
 
     std::vector<PhaseTiming> timings; // in the order the phases ran
     double totalMilliseconds = 0.0;
+    std::vector<PartTiming> partTimings; // in the order the parts ran
     bool fromCache = false;                 // environment-dependent results loaded from disk
     std::array<bool, 2> lutFromCache{};     // per geometry term
     std::vector<std::string> notes;         // one line each: cache problems found and fixed

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <map>
 #include <string>
-#include <unordered_set>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -18,7 +17,7 @@
 #include "ibl/conventions.hpp"
 #include "ibl/luminance.hpp"
 #include "ibl/equirect.hpp"
-#include "ibl/luminance.hpp"
+#include "ibl/parallel_rows.hpp"
 #include "io/error.hpp"
 
 namespace iblab::bake {
@@ -106,10 +105,14 @@ std::size_t countAbove(const BrightCandidates& c, float threshold)
 std::vector<std::uint32_t> distinctCellsByPrefix(const BrightCandidates& c, int cellFaceSize)
 {
     std::vector<std::uint32_t> counts(c.texels.size() + 1, 0);
-    std::unordered_set<std::uint64_t> seen;
-    seen.reserve(c.texels.size());
-    for (std::size_t i = 0; i < c.texels.size(); ++i)
-        counts[i + 1] = counts[i] + (seen.insert(cellOf(c.texels[i].direction, cellFaceSize)).second ? 1 : 0);
+    // One bit per cell (under a megabyte at a 1024 face): a hash set of the cells cost several
+    // times as much, and this runs for every cell size of every threshold search.
+    std::vector<bool> seen(6 * std::size_t(cellFaceSize) * std::size_t(cellFaceSize), false);
+    for (std::size_t i = 0; i < c.texels.size(); ++i) {
+        const std::uint64_t cell = cellOf(c.texels[i].direction, cellFaceSize);
+        counts[i + 1] = counts[i] + (seen[cell] ? 0 : 1);
+        seen[cell] = true;
+    }
     return counts;
 }
 
@@ -131,22 +134,31 @@ int farFaceSize(int cellFaceSize) { return std::min(kFarFace, cellFaceSize); }
 BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates)
 {
     const int w = equirect.width, h = equirect.height;
-    std::vector<double> rowSolidAngle(std::size_t(std::max(0, h)));
-    std::vector<float> lum(std::size_t(std::max(0, w)) * std::size_t(std::max(0, h)));
-    double flux = 0.0, squared = 0.0;
-    for (int y = 0; y < h; ++y) {
-        rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
-        const float* rgb = &equirect.texels[equirect.offset(0, y)];
-        float* rowLum = &lum[std::size_t(y) * std::size_t(w)];
-        double row = 0.0, rowSquared = 0.0;
-        for (int x = 0; x < w; ++x) {
-            rowLum[x] = luminance(&rgb[3 * x]);
-            const double positive = std::max(0.0f, rowLum[x]);
-            row += positive;
-            rowSquared += positive * positive;
+    const auto rows = std::size_t(std::max(0, h));
+    std::vector<double> rowSolidAngle(rows), rowSum(rows), rowSquaredSum(rows);
+    std::vector<float> lum(std::size_t(std::max(0, w)) * rows);
+    // Rows in parallel, their sums added in row order after: on a GPU this scan was the
+    // largest part of the split's host work (docs/gpu-timings.md).
+    parallelRows(h, [&](int firstRow, int endRow) {
+        for (int y = firstRow; y < endRow; ++y) {
+            rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
+            const float* rgb = &equirect.texels[equirect.offset(0, y)];
+            float* rowLum = &lum[std::size_t(y) * std::size_t(w)];
+            double row = 0.0, rowSquared = 0.0;
+            for (int x = 0; x < w; ++x) {
+                rowLum[x] = luminance(&rgb[3 * x]);
+                const double positive = std::max(0.0f, rowLum[x]);
+                row += positive;
+                rowSquared += positive * positive;
+            }
+            rowSum[std::size_t(y)] = row;
+            rowSquaredSum[std::size_t(y)] = rowSquared;
         }
-        flux += row * rowSolidAngle[std::size_t(y)];
-        squared += rowSquared * rowSolidAngle[std::size_t(y)];
+    });
+    double flux = 0.0, squared = 0.0;
+    for (std::size_t y = 0; y < rows; ++y) {
+        flux += rowSum[y] * rowSolidAngle[y];
+        squared += rowSquaredSum[y] * rowSolidAngle[y];
     }
     const float floorThreshold = thresholdOverMean * float(flux / (4.0 * kPi));
     std::vector<RankedTexel> ranked;
@@ -298,8 +310,15 @@ float brightThresholdFor(const BrightCandidates& candidates, const std::vector<d
     std::map<int, std::vector<std::uint32_t>> distinct; // by cell face size
     for (double r : roughness)
         for (int face : {brightCellFaceSize(r), farFaceSize(brightCellFaceSize(r))})
-            if (!distinct.contains(face))
-                distinct.emplace(face, distinctCellsByPrefix(candidates, face));
+            distinct.try_emplace(face);
+    // One face size per thread: each finds the cell of every candidate.
+    std::vector<std::pair<const int, std::vector<std::uint32_t>>*> faces;
+    for (auto& entry : distinct)
+        faces.push_back(&entry);
+    parallelRows(int(faces.size()), [&](int first, int end) {
+        for (int i = first; i < end; ++i)
+            faces[std::size_t(i)]->second = distinctCellsByPrefix(candidates, faces[std::size_t(i)]->first);
+    });
     auto fits = [&](std::size_t p) {
         const std::size_t count = countAbove(candidates, thresholdAt(p));
         for (std::size_t i = 0; i < roughness.size(); ++i) {

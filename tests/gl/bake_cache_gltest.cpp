@@ -1,6 +1,7 @@
 // The bake as a job of steps, and its on-disk cache: results loaded from the cache are the
 // results baked, corrupt entries are reported by name and rebuilt, the LUT cache ignores
 // the environment, and cutting the work into smaller steps changes nothing.
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -319,6 +321,18 @@ TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
     for (const BakePhase phase : {BakePhase::Shaders, BakePhase::Upload, BakePhase::EnvironmentCube, BakePhase::Sh9,
                                   bake::irradiancePhase(irradiance), BakePhase::Prefilter, BakePhase::BrdfLut})
         EXPECT_GT(sliced.phaseMilliseconds(phase), 0.0) << enumName(phase);
+    // Each prefiltered mip is a part of the prefilter phase, timed by the same clock: the
+    // parts are a share of the phase's time, never more.
+    double parts = 0.0;
+    for (int level = 0; level < sliced.settings.prefilter.levels; ++level) {
+        const std::string name = "prefilter.mip" + std::to_string(level);
+        const auto part = std::find_if(sliced.partTimings.begin(), sliced.partTimings.end(),
+                                       [&](const bake::PartTiming& t) { return t.name == name; });
+        ASSERT_NE(part, sliced.partTimings.end()) << name;
+        EXPECT_GT(part->milliseconds, 0.0) << name;
+    }
+    for (const bake::PartTiming& t : sliced.partTimings) parts += t.milliseconds;
+    EXPECT_LE(parts, sliced.phaseMilliseconds(BakePhase::Prefilter) * (1.0 + 1e-9));
     EXPECT_GT(sliced.gpuBytes(), 0u);
     }
 }
