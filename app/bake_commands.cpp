@@ -55,6 +55,7 @@ struct BakeCommandOptions {
     bool errorFloor = false;
     int errorTexelGrid = bake::AccuracyOptions{}.texelsPerFaceEdge;
     int repeat = 1;
+    std::string hostWork = "auto";
 };
 
 bake::BakeSettings resolveSettings(const BakeCommandOptions& o)
@@ -414,6 +415,9 @@ int runBake(const BakeCommandOptions& o, Clock::time_point processStart)
 {
     // First, so that nothing below runs twice (the settings, the directory listing).
     restartWithHugePages();
+    bake::setHostWorkPlacement(o.hostWork == "threads" ? bake::HostWorkPlacement::WorkerThreads
+                               : o.hostWork == "steps" ? bake::HostWorkPlacement::OwnSteps
+                                                       : bake::HostWorkPlacement::Auto);
     // Each map's textures and read-backs are the same few sizes (MBs each). From the heap
     // rather than their own mappings, and kept there once freed, the next map of a batch
     // reuses the last one's memory instead of faulting in fresh pages: `measure-bake.sh
@@ -469,6 +473,11 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
         ->check(CLI::Range(1, 64));
     c->add_option("--repeat", o->repeat, "Bake N times in this process (the later ones without the cache) and report each total")
         ->check(CLI::Range(1, 100));
+    c->add_option("--host-work", o->hostWork,
+                  "Where the host work that reads only the map (shading lights, the bright-texel split's plan) runs: auto (worker "
+                  "threads beside the GPU's passes on a hardware GPU, steps of its own on llvmpipe), threads or steps")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"auto", "threads", "steps"}));
     c->add_flag("--json", o->json, "Print a JSON report");
     return {c, [o, processStart] { return runBake(*o, processStart); }};
 }

@@ -24,13 +24,15 @@ bake_line() {
 # no disk cache), ROUNDS processes of each, interleaved so that every variant sees the same
 # machine: the default and tutorial presets, the default's sampled-only estimator
 # (--prefilter-bright-texels 0: what the exact bright-texel sums cost on this GPU) and the
-# default without its refinement of mips 1 and 2 (--prefilter-refine-factor 1).
+# default without its refinement of mips 1 and 2 (--prefilter-refine-factor 1), and the default
+# with its host work in steps of their own, as on llvmpipe (--host-work steps).
 for round in $(seq "$rounds"); do
   for map in "${maps[@]}"; do
     bake_line bake-default "$map" "$round"
     bake_line bake-tutorial "$map" "$round" --preset tutorial
     bake_line bake-sampled-only "$map" "$round" --prefilter-bright-texels 0
     bake_line bake-unrefined "$map" "$round" --prefilter-refine-factor 1
+    bake_line bake-own-steps "$map" "$round" --host-work steps
   done
 done
 for method in splitsum fitted-lobe sampled reference; do
@@ -52,16 +54,16 @@ def least(runs, key):
     return min(key(r) for r in runs)
 gpu = lambda r: r["gpu_total_ms"]
 part = lambda name: (lambda r: (r.get("part_timings_ms") or {}).get(name, 0.0))
-print("| map | default | sampled-only | default / sampled-only | without refinement | tutorial | default: shading lights | split | mip 1 | mip 2 | sampled-only: shading lights |")
-print("|---|---|---|---|---|---|---|---|---|---|---|")
+print("| map | default | sampled-only | default / sampled-only | without refinement | host work in own steps | tutorial | default: split | mip 1 | mip 2 | own steps: shading lights | own steps: split |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|")
 ratios = []
 for m, k in sorted(bakes.items()):
     d, s = least(k["bake-default"], gpu), least(k["bake-sampled-only"], gpu)
     ratios.append(d / s)
-    print(f"| {m} | {d:.1f} | {s:.1f} | {d / s:.2f}x | {least(k['bake-unrefined'], gpu):.1f} | {least(k['bake-tutorial'], gpu):.1f} | "
-          f"{least(k['bake-default'], part('prefilter.shading_lights')):.1f} | {least(k['bake-default'], part('prefilter.split')):.1f} | "
+    print(f"| {m} | {d:.1f} | {s:.1f} | {d / s:.2f}x | {least(k['bake-unrefined'], gpu):.1f} | {least(k['bake-own-steps'], gpu):.1f} | "
+          f"{least(k['bake-tutorial'], gpu):.1f} | {least(k['bake-default'], part('prefilter.split')):.1f} | "
           f"{least(k['bake-default'], part('prefilter.mip1')):.2f} | {least(k['bake-default'], part('prefilter.mip2')):.2f} | "
-          f"{least(k['bake-sampled-only'], part('prefilter.shading_lights')):.1f} |")
+          f"{least(k['bake-own-steps'], part('prefilter.shading_lights')):.1f} | {least(k['bake-own-steps'], part('prefilter.split')):.1f} |")
 if ratios:
     print(f"default / sampled-only: {min(ratios):.2f}x .. {max(ratios):.2f}x, median {statistics.median(ratios):.2f}x")
 print("| method | size | GPU median | steady median | reference |")

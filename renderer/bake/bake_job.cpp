@@ -1,13 +1,27 @@
 #include "bake/bake_job.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <stdexcept>
 #include <utility>
 
+#include "gl/pass_timer.hpp"
 #include "io/error.hpp"
 
 namespace iblab::bake {
+namespace {
+std::atomic<HostWorkPlacement> hostWorkPlacement{HostWorkPlacement::Auto};
+} // namespace
+
+void setHostWorkPlacement(HostWorkPlacement placement)
+{
+    hostWorkPlacement = placement;
+}
+
+namespace {
+bool splitsBrightTexels(const PrefilterSettings& p) { return p.brightTexels > 0 && p.levels > 1; }
+} // namespace
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -259,15 +273,7 @@ void BakeJob::plan()
         return;
     }
 
-    // The shading lights first, while no GL work is in flight: on llvmpipe the GPU's work is
-    // the CPU's too, and when this step ran after the prefilter's passes, beside the last of
-    // them, the phase grew by about twice the step's own time.
-    if (s.prefilter.shadingLights > 0)
-        steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, sourceTexels, [this] {
-                              // Groups no finer than the mirror's texels, so that each covers whole texels of it.
-                              const PrefilterSettings& p = result_.settings.prefilter;
-                              result_.shadingLights = findShadingLights(image_, p.shadingLights, std::min(kShadingLightGrid, p.faceSize));
-                          }, "shading_lights"});
+    const bool hostWorkBeside = planHostWork(sourceTexels);
     steps_.push_back({BakePhase::Upload, StepGroup::Environment, sourceTexels, [this, format, envFace, envLevels, equirectLevels] {
                           equirect_ = passes_.uploadEquirect(image_, equirectLevels);
                           const BakeSettings& st = result_.settings;
@@ -300,16 +306,7 @@ void BakeJob::plan()
 
     planIrradiance(envFace);
 
-    if (s.prefilter.brightTexels > 0 && s.prefilter.levels > 1)
-        steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
-                              bright_ = splitBrightTexels(passes_, result_.environmentCube, image_, result_.settings.prefilter);
-                          }, "split"});
-    for (int level = 0; level < s.prefilter.levels; ++level)
-        planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level,
-                       double(prefilterSamples(s.prefilter, level)) + (level > 0 ? brightTexelCap(s.prefilter, level) / 8.0 : 0.0), [this](const CubeSlice& slice) {
-                           passes_.prefilter(result_.environmentCube, result_.prefiltered, slice, result_.settings.prefilter,
-                                             result_.settings.exactTexelSolidAngle, bright_ ? &*bright_ : nullptr);
-                       }, "mip" + std::to_string(level));
+    planPrefilter(envFace, hostWorkBeside);
 
     planLuts();
 
@@ -318,6 +315,58 @@ void BakeJob::plan()
 
     for (const Step& step : steps_)
         totalCost_ += step.cost;
+}
+
+bool BakeJob::planHostWork(double sourceTexels)
+{
+    // The host work that reads only the float map: the fitted lobe's shading lights and the
+    // split's plan. On a hardware GPU it runs on worker threads from here on, beside the
+    // environment's passes, while this thread waits on their fences: done in its own steps it
+    // left the GPU idle for most of the bake (docs/gpu-timings.md). On llvmpipe the GPU's work
+    // is the CPU's too (when the shading lights ran beside the prefilter's last passes, the
+    // phase grew by about twice their own time), so there the shading lights take this step,
+    // while no GL work is in flight, and the split's plan the split's step.
+    const BakeSettings& s = result_.settings;
+    const bool split = splitsBrightTexels(s.prefilter);
+    const HostWorkPlacement placement = hostWorkPlacement.load();
+    const bool threads = placement == HostWorkPlacement::Auto ? !gl::isSoftwareRenderer() : placement == HostWorkPlacement::WorkerThreads;
+    const bool hostWorkBeside = threads && !image_.empty() && (split || s.prefilter.shadingLights > 0);
+    if (s.prefilter.shadingLights > 0 || hostWorkBeside)
+        steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, sourceTexels, [this, split, hostWorkBeside] {
+                              // Groups no finer than the mirror's texels, so that each covers whole texels of it.
+                              const PrefilterSettings p = result_.settings.prefilter;
+                              const int grid = std::min(kShadingLightGrid, p.faceSize);
+                              if (!hostWorkBeside) {
+                                  result_.shadingLights = findShadingLights(image_, p.shadingLights, grid);
+                                  return;
+                              }
+                              if (p.shadingLights > 0)
+                                  shadingLights_ = std::async(std::launch::async, [this, p, grid] { return findShadingLights(image_, p.shadingLights, grid); });
+                              if (split)
+                                  splitPlan_ = std::async(std::launch::async, [this, p] { return planBrightSplit(splitCandidates(image_, p), p); });
+                          }, hostWorkBeside ? "host_work_start" : "shading_lights"});
+    return hostWorkBeside;
+}
+
+void BakeJob::planPrefilter(int envFace, bool hostWorkBeside)
+{
+    const BakeSettings& s = result_.settings;
+    const bool split = splitsBrightTexels(s.prefilter);
+    if (split || hostWorkBeside)
+        steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, double(envFace) * envFace * 6.0, [this, split] {
+                              // The worker threads' results: the wait, if any, is this step's.
+                              if (shadingLights_.valid()) result_.shadingLights = shadingLights_.get();
+                              if (!split) return;
+                              const PrefilterSettings& p = result_.settings.prefilter;
+                              bright_ = splitPlan_.valid() ? splitBrightTexels(passes_, result_.environmentCube, splitPlan_.get(), p)
+                                                           : splitBrightTexels(passes_, result_.environmentCube, image_, p);
+                          }, split ? "split" : "host_work_wait"});
+    for (int level = 0; level < s.prefilter.levels; ++level)
+        planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level,
+                       double(prefilterSamples(s.prefilter, level)) + (level > 0 ? brightTexelCap(s.prefilter, level) / 8.0 : 0.0), [this](const CubeSlice& slice) {
+                           passes_.prefilter(result_.environmentCube, result_.prefiltered, slice, result_.settings.prefilter,
+                                             result_.settings.exactTexelSolidAngle, bright_ ? &*bright_ : nullptr);
+                       }, "mip" + std::to_string(level));
 }
 
 void BakeJob::planLuts()

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -32,6 +33,13 @@
 #include "gl/shader_library.hpp"
 
 namespace iblab::bake {
+
+// Where a bake runs the host work that reads only the float map (the fitted lobe's shading
+// lights, the bright-texel split's plan): Auto picks worker threads beside the GPU's passes on
+// a hardware GPU and steps of their own on a software renderer (BakeJob::plan()). Process-wide,
+// read when a job is made; the other two force one way (`iblab bake --host-work`, tests).
+enum class HostWorkPlacement { Auto, WorkerThreads, OwnSteps };
+void setHostWorkPlacement(HostWorkPlacement placement);
 
 class BakeJob {
 public:
@@ -101,6 +109,11 @@ private:
     // An imported bake (Environment::imported): its cubes are uploaded, not baked.
     void planImported();
     void planIrradiance(int envFace);
+    // The prefilter's first step, which runs or starts the host work that reads only the map;
+    // true where it starts it on worker threads.
+    bool planHostWork(double sourceTexels);
+    // The split (or the wait for the worker threads) and every mip's slices.
+    void planPrefilter(int envFace, bool hostWorkBeside);
     void planLuts();
     void planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int level, double samplesPerTexel,
                         const std::function<void(const CubeSlice&)>& run, const std::string& part = {});
@@ -124,6 +137,10 @@ private:
     double doneCost_ = 0.0;
     bool failed_ = false;
     bool missedCache_ = false;
+    // Host work on worker threads (plan()), from image_: declared after it, so that a job
+    // destroyed mid-bake waits for them before image_ goes.
+    std::future<ShadingLights> shadingLights_;
+    std::future<BrightSplitPlan> splitPlan_;
 };
 
 } // namespace iblab::bake

@@ -434,7 +434,45 @@ int brightTexelCap(const PrefilterSettings& settings, int level)
     return level <= 1 ? settings.brightTexels : std::min(8 * settings.brightTexels, kMaxBrightLights);
 }
 
-PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
+BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings)
+{
+    BrightSplitPlan plan;
+    // Two groups, mip 1 and the rougher mips, each with the threshold its caps allow.
+    std::vector<double> roughRoughness;
+    std::vector<int> roughCaps;
+    for (int level = 2; level < settings.levels; ++level)
+        if (const float r = prefilterMipRoughness(settings, level); r > 0.0f) {
+            roughRoughness.push_back(r);
+            roughCaps.push_back(brightTexelCap(settings, level));
+        }
+    const float mip1Roughness = settings.levels > 1 ? prefilterMipRoughness(settings, 1) : 0.0f;
+    plan.mip1Threshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
+    plan.roughThreshold = brightThresholdFor(candidates, roughRoughness, roughCaps);
+    plan.levels.resize(std::size_t(std::max(0, settings.levels)));
+    for (int level = 1; level < settings.levels; ++level) {
+        const float roughness = prefilterMipRoughness(settings, level);
+        if (!(roughness > 0.0f))
+            continue;
+        BrightSplitPlan::Level& l = plan.levels[std::size_t(level)];
+        l.split = true;
+        l.threshold = level == 1 ? plan.mip1Threshold : plan.roughThreshold;
+        l.block = hierarchicalLights(candidates, l.threshold, brightCellFaceSize(roughness), l.farCells);
+        // Mips 1 and 2 (kLastRefinedMip). Mip 3's 144 samples meet the bound without it; under
+        // an earlier rule (a spread against T) refining it took every texel, and it has not
+        // been tried under this one.
+        if (level <= kLastRefinedMip && settings.refineFactor > 1)
+            l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold));
+    }
+    plan.meanLuminance = candidates.meanLuminance;
+    return plan;
+}
+
+BrightCandidates splitCandidates(const ImageRGB32F& equirect, const PrefilterSettings& settings)
+{
+    return brightCandidates(equirect, settings.brightThreshold, kMaxBrightCandidates);
+}
+
+PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const BrightSplitPlan& plan,
                                         const PrefilterSettings& settings)
 {
     PrefilterBrightTexels out;
@@ -445,22 +483,8 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         throw Error("prefilter", "the bright-texel split needs a " + std::to_string(capacity * sizeof(glm::vec4)) +
                                      "-byte uniform block; this GL driver allows " + std::to_string(maxBlockBytes) +
                                      " (--prefilter-bright-texels 0 turns the split off)");
-    constexpr int kMaxCandidates = 1 << 14;
-    const BrightCandidates candidates = equirect.empty() ? brightCandidates(readCubeLevel(environment, 0), settings.brightThreshold, kMaxCandidates)
-                                                         : brightCandidates(equirect, settings.brightThreshold, kMaxCandidates);
-    out.meanLuminance = candidates.meanLuminance;
-
-    // Two groups, mip 1 and the rougher mips, each with the threshold its caps allow.
-    std::vector<double> roughRoughness;
-    std::vector<int> roughCaps;
-    for (int level = 2; level < settings.levels; ++level)
-        if (const float r = prefilterMipRoughness(settings, level); r > 0.0f) {
-            roughRoughness.push_back(r);
-            roughCaps.push_back(brightTexelCap(settings, level));
-        }
-    const float mip1Roughness = settings.levels > 1 ? prefilterMipRoughness(settings, 1) : 0.0f;
-    const float mip1Threshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
-    const float roughThreshold = brightThresholdFor(candidates, roughRoughness, roughCaps);
+    out.meanLuminance = plan.meanLuminance;
+    const float mip1Threshold = plan.mip1Threshold, roughThreshold = plan.roughThreshold;
 
     // Two groups' bases, or one where their thresholds agree, each from the finest level its
     // mips read: mip 1's refined samples read a level finer than the rougher mips ever do.
@@ -477,32 +501,40 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size >> top, environment.levels - top));
     passes.clampedBases(environment, out.bases, baseThresholds);
     auto baseFor = [&](float threshold) { return threshold == mip1Threshold ? 0 : 1; };
-    out.levels.resize(std::size_t(std::max(0, settings.levels)));
-    for (int level = 1; level < settings.levels; ++level) {
-        const float roughness = prefilterMipRoughness(settings, level);
-        if (!(roughness > 0.0f))
+    out.levels.resize(plan.levels.size());
+    for (std::size_t level = 1; level < plan.levels.size(); ++level) {
+        const BrightSplitPlan::Level& planned = plan.levels[level];
+        if (!planned.split)
             continue;
-        PrefilterBrightTexels::Level& l = out.levels[std::size_t(level)];
-        l.threshold = level == 1 ? mip1Threshold : roughThreshold;
+        const float roughness = prefilterMipRoughness(settings, int(level));
+        PrefilterBrightTexels::Level& l = out.levels[level];
+        l.threshold = planned.threshold;
         l.base = baseFor(l.threshold);
-        const std::vector<glm::vec4> lights = hierarchicalLights(candidates, l.threshold, brightCellFaceSize(roughness), l.count);
+        l.count = planned.farCells;
         l.capacity = capacity;
         // GL leaves reads undefined where the bound range is shorter than the block: padded.
         std::vector<glm::vec4> padded(std::size_t(capacity), glm::vec4(0.0f));
-        std::copy(lights.begin(), lights.begin() + std::min(lights.size(), padded.size()), padded.begin());
+        std::copy(planned.block.begin(), planned.block.begin() + std::ptrdiff_t(std::min(planned.block.size(), padded.size())), padded.begin());
         l.texels = gl::createBufferWith<glm::vec4>(padded);
         if (const int exact = exactSumSourceLevel(settings, environment.size, environment.levels, roughness); exact >= 0) {
             const std::vector<glm::vec4> texels = exactSumTexels(readCubeLevel(out.bases[std::size_t(l.base)], exact - topLevels[std::size_t(l.base)]));
             l.exactCount = int(texels.size() / 2);
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
         }
-        // Mips 1 and 2 (kLastRefinedMip). Mip 3's 144 samples meet the bound without it; under
-        // an earlier rule (a spread against T) refining it took every texel, and it has not
-        // been tried under this one.
-        if (level <= kLastRefinedMip && l.exactCount == 0 && settings.refineFactor > 1)
-            l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold));
+        // A level that sums its base exactly has no samples to refine.
+        if (l.exactCount == 0)
+            l.refineSpread = planned.refineSpread;
     }
     return out;
+}
+
+PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
+                                        const PrefilterSettings& settings)
+{
+    BrightCandidates candidates = equirect.empty()
+                                      ? brightCandidates(readCubeLevel(environment, 0), settings.brightThreshold, kMaxBrightCandidates)
+                                      : splitCandidates(equirect, settings);
+    return splitBrightTexels(passes, environment, planBrightSplit(std::move(candidates), settings), settings);
 }
 
 

@@ -108,9 +108,36 @@ struct PrefilterBrightTexels {
     float meanLuminance = 0.0f;
 };
 
-// Builds the split: the candidates from the equirect when the job still holds it (else from
-// the cube's level 0), the bases on the GPU from the cube's level 0 (BakePasses::clampedBases).
+// The most candidates the split keeps (the brightest; brightCandidates' maxCandidates).
+inline constexpr int kMaxBrightCandidates = 1 << 14;
+
+// The split's host work, which needs no GL: the thresholds and, per prefiltered mip (index =
+// level), its block of lights and its refinement spread. A bake runs it on a worker thread
+// beside the environment's GPU passes where the GPU is hardware (bake_job.cpp).
+struct BrightSplitPlan {
+    struct Level {
+        bool split = false; // false: the mirror level, which has no lobe to weight lights by
+        float threshold = 0.0f;
+        std::vector<glm::vec4> block; // bright_texels_block.hpp's layout, unpadded
+        int farCells = 0;
+        float refineSpread = -1.0f; // Level::refineSpread where the level samples its base
+    };
+    float mip1Threshold = 0.0f;
+    float roughThreshold = 0.0f;
+    float meanLuminance = 0.0f;
+    std::vector<Level> levels;
+};
+// The candidates of the split from the float map (the equirect as loaded).
+BrightCandidates splitCandidates(const ImageRGB32F& equirect, const PrefilterSettings& settings);
+BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings);
+
+// Builds the split from its plan: the bases on the GPU from the cube's level 0
+// (BakePasses::clampedBases), the lights' blocks and the exact sums' tables.
 // Throws iblab::Error where the driver's uniform blocks cannot hold the lights.
+PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const BrightSplitPlan& plan,
+                                        const PrefilterSettings& settings);
+// Plans and builds it in one: the candidates from the equirect when the job still holds it
+// (else from the cube's level 0).
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
                                         const PrefilterSettings& settings);
 

@@ -15,6 +15,7 @@
 
 #include "bake/bake_cache.hpp"
 #include "bake/bake_files.hpp"
+#include "bake/bake_job.hpp"
 #include "bake_test_support.hpp"
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
@@ -335,6 +336,41 @@ TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
     EXPECT_LE(parts, sliced.phaseMilliseconds(BakePhase::Prefilter) * (1.0 + 1e-9));
     EXPECT_GT(sliced.gpuBytes(), 0u);
     }
+}
+
+TEST_F(GlTest, HostWorkOnWorkerThreadsBakesTheSameAsInItsOwnSteps)
+{
+    // A hardware GPU runs the shading lights and the split's plan on worker threads beside its
+    // passes; llvmpipe, where every test runs, in steps of their own. Both ways, forced.
+    auto shaders = library();
+    const Environment env = loadEnvironment("builtin:sun?width=128&size=3&intensity=1e3");
+    bake::BakeSettings s = smallBakeSettings();
+    s.prefilter.brightTexels = 16;
+    s.prefilter.shadingLights = 4;
+    auto bakeWith = [&](bake::HostWorkPlacement placement) {
+        struct Restore {
+            ~Restore() { bake::setHostWorkPlacement(bake::HostWorkPlacement::Auto); }
+        } restore;
+        bake::setHostWorkPlacement(placement);
+        return bake::BakeJob(shaders, env, s).runToCompletion();
+    };
+    const bake::BakeResult own = bakeWith(bake::HostWorkPlacement::OwnSteps);
+    const bake::BakeResult threads = bakeWith(bake::HostWorkPlacement::WorkerThreads);
+    expectSameResults(own, threads);
+    ASSERT_FALSE(own.shadingLights.groups.empty());
+    ASSERT_EQ(own.shadingLights.groups.size(), threads.shadingLights.groups.size());
+    for (std::size_t i = 0; i < own.shadingLights.groups.size(); ++i) {
+        EXPECT_EQ(own.shadingLights.groups[i].light.direction, threads.shadingLights.groups[i].light.direction) << i;
+        EXPECT_EQ(own.shadingLights.groups[i].light.flux, threads.shadingLights.groups[i].light.flux) << i;
+    }
+    // The parts say where the work ran: in its own step, or started on the threads.
+    auto hasPart = [](const bake::BakeResult& r, const std::string& name) {
+        return std::any_of(r.partTimings.begin(), r.partTimings.end(), [&](const bake::PartTiming& t) { return t.name == name; });
+    };
+    EXPECT_TRUE(hasPart(own, "prefilter.shading_lights"));
+    EXPECT_FALSE(hasPart(own, "prefilter.host_work_start"));
+    EXPECT_TRUE(hasPart(threads, "prefilter.host_work_start"));
+    EXPECT_TRUE(hasPart(threads, "prefilter.split"));
 }
 
 TEST_F(GlTest, InvalidSettingsAreRefusedWithTheirName)
