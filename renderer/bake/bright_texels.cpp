@@ -137,8 +137,8 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
     const auto rows = std::size_t(std::max(0, h));
     std::vector<double> rowSolidAngle(rows), rowSum(rows), rowSquaredSum(rows);
     std::vector<float> lum(std::size_t(std::max(0, w)) * rows);
-    // Rows in parallel, their sums added in row order after: on a GPU this scan was the
-    // largest part of the split's host work (docs/gpu-timings.md).
+    // Rows in parallel, their sums added in row order after, so that the result does not
+    // depend on the thread count.
     parallelRows(h, [&](int firstRow, int endRow) {
         for (int y = firstRow; y < endRow; ++y) {
             rowSolidAngle[std::size_t(y)] = equirectTexelSolidAngle(y, w, h);
