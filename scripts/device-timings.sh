@@ -42,6 +42,16 @@ for method in splitsum fitted-lobe sampled reference; do
       | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"frame","method":sys.argv[1],"size":sys.argv[2],"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"gpu_timing_method":j.get("gpu_timing_method")}))' "$method" "$1x$2" >>"$out"
   done
 done
+# The fitted lobe's shading lights on the GPU: a copper sphere filling 1280 x 720 (as
+# scripts/measure-lobe.sh's last table) on a map without lights (courtyard) and two with the
+# default's 4 (sunrise, interior), each method's GPU frame time.
+for map in courtyard sunrise interior; do
+  for variant in "splitsum" "fitted-lobe --no-shading-lights" "fitted-lobe"; do
+    # shellcheck disable=SC2086
+    "$iblab" render --scene sphere --env "assets/environments/$map.exr" --method $variant --width 1280 --height 720 --time 30 --json -o "$tmp/sphere.exr" \
+      | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"sphere","map":sys.argv[1],"variant":sys.argv[2],"shading_lights":j.get("shading_lights"),"timings_ms":j.get("timings_ms")}))' "$map" "$variant" >>"$out"
+  done
+done
 # The tables of docs/gpu-timings.md: per map, the minimum over the rounds of each variant.
 python3 - "$out" <<'PY'
 import collections, json, statistics, sys
@@ -66,6 +76,16 @@ for m, k in sorted(bakes.items()):
           f"{least(k['bake-own-steps'], part('prefilter.shading_lights')):.1f} | {least(k['bake-own-steps'], part('prefilter.split')):.1f} |")
 if ratios:
     print(f"default / sampled-only: {min(ratios):.2f}x .. {max(ratios):.2f}x, median {statistics.median(ratios):.2f}x")
+spheres = collections.defaultdict(dict)
+for r in rows:
+    if r["kind"] == "sphere":
+        spheres[r["map"]][r["variant"]] = r
+if spheres:
+    print("| map | lights | split sum GPU ms | fitted lobe without lights | with them (default) |")
+    print("|---|---|---|---|---|")
+    for m, v in spheres.items():
+        g = lambda name: v[name]["timings_ms"].get("frame_gpu_median", v[name]["timings_ms"]["frame_median"])
+        print(f"| {m} | {v['fitted-lobe']['shading_lights']} | {g('splitsum'):.3f} | {g('fitted-lobe --no-shading-lights') / g('splitsum'):.3f}x | {g('fitted-lobe') / g('splitsum'):.3f}x |")
 print("| method | size | GPU median | steady median | reference |")
 print("|---|---|---|---|---|")
 for r in rows:
