@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -371,6 +372,30 @@ TEST_F(GlTest, HostWorkOnWorkerThreadsBakesTheSameAsInItsOwnSteps)
     EXPECT_FALSE(hasPart(own, "prefilter.host_work_start"));
     EXPECT_TRUE(hasPart(threads, "prefilter.host_work_start"));
     EXPECT_TRUE(hasPart(threads, "prefilter.split"));
+}
+
+// A job dropped mid-bake (the GUI switching maps) while its worker threads still read its
+// map: the destructor waits for them before the map goes (under scripts/sanitize.sh a read of
+// the freed map would be reported).
+TEST_F(GlTest, AJobDroppedWhileItsHostWorkRunsWaitsForIt)
+{
+    auto shaders = library();
+    bake::BakeSettings s = smallBakeSettings();
+    s.prefilter.brightTexels = 16;
+    s.prefilter.shadingLights = 4;
+    struct Restore {
+        ~Restore() { bake::setHostWorkPlacement(bake::HostWorkPlacement::Auto); }
+    } restore;
+    bake::setHostWorkPlacement(bake::HostWorkPlacement::WorkerThreads);
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        auto job = std::make_unique<bake::BakeJob>(shaders, loadEnvironment("builtin:sun?width=512&size=3&intensity=1e3"), s);
+        // Up to the upload, the step after the one that starts the worker threads.
+        while (job->currentPhase() != bake::BakePhase::Upload)
+            ASSERT_TRUE(job->step());
+        job.reset();
+    }
+    // And a job run to the end after it bakes as before.
+    EXPECT_NO_THROW(bake::BakeJob(shaders, loadEnvironment("builtin:sun?width=512&size=3&intensity=1e3"), s).runToCompletion());
 }
 
 TEST_F(GlTest, InvalidSettingsAreRefusedWithTheirName)
