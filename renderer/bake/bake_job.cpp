@@ -11,18 +11,10 @@
 
 namespace iblab::bake {
 namespace {
+
 std::atomic<HostWorkPlacement> hostWorkPlacement{HostWorkPlacement::Auto};
-} // namespace
 
-void setHostWorkPlacement(HostWorkPlacement placement)
-{
-    hostWorkPlacement = placement;
-}
-
-namespace {
 bool splitsBrightTexels(const PrefilterSettings& p) { return p.brightTexels > 0 && p.levels > 1; }
-} // namespace
-namespace {
 
 using Clock = std::chrono::steady_clock;
 
@@ -86,6 +78,11 @@ double BakeResult::phaseMilliseconds(BakePhase phase) const
         if (t.phase == phase)
             return t.milliseconds;
     return 0.0;
+}
+
+void setHostWorkPlacement(HostWorkPlacement placement)
+{
+    hostWorkPlacement = placement;
 }
 
 BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const BakeSettings& settings, BakeCache* cache)
@@ -321,8 +318,8 @@ bool BakeJob::planHostWork(double sourceTexels)
 {
     // The host work that reads only the float map: the fitted lobe's shading lights and the
     // split's plan. On a hardware GPU it runs on worker threads from here on, beside the
-    // environment's passes, while this thread waits on their fences: done in its own steps it
-    // left the GPU idle for most of the bake (docs/gpu-timings.md). On llvmpipe the GPU's work
+    // environment's passes, while this thread waits on their fences: in steps of its own it
+    // left the GPU idle for a third to a half of the bake on an H200 (docs/gpu-timings.md). On llvmpipe the GPU's work
     // is the CPU's too (when the shading lights ran beside the prefilter's last passes, the
     // phase grew by about twice their own time), so there the shading lights take this step,
     // while no GL work is in flight, and the split's plan the split's step.
@@ -330,11 +327,12 @@ bool BakeJob::planHostWork(double sourceTexels)
     const bool split = splitsBrightTexels(s.prefilter);
     const HostWorkPlacement placement = hostWorkPlacement.load();
     const bool threads = placement == HostWorkPlacement::Auto ? !gl::isSoftwareRenderer() : placement == HostWorkPlacement::WorkerThreads;
-    const bool hostWorkBeside = threads && !image_.empty() && (split || s.prefilter.shadingLights > 0);
+    const bool hostWorkBeside = threads && (split || s.prefilter.shadingLights > 0);
     if (s.prefilter.shadingLights > 0 || hostWorkBeside)
         steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, sourceTexels, [this, split, hostWorkBeside] {
-                              // Groups no finer than the mirror's texels, so that each covers whole texels of it.
+                              // A copy: the worker threads' lambdas keep it.
                               const PrefilterSettings p = result_.settings.prefilter;
+                              // Groups no finer than the mirror's texels, so that each covers whole texels of it.
                               const int grid = std::min(kShadingLightGrid, p.faceSize);
                               if (!hostWorkBeside) {
                                   result_.shadingLights = findShadingLights(image_, p.shadingLights, grid);

@@ -105,8 +105,8 @@ std::size_t countAbove(const BrightCandidates& c, float threshold)
 std::vector<std::uint32_t> distinctCellsByPrefix(const BrightCandidates& c, int cellFaceSize)
 {
     std::vector<std::uint32_t> counts(c.texels.size() + 1, 0);
-    // One bit per cell (under a megabyte at a 1024 face): a hash set of the cells cost several
-    // times as much, and this runs for every cell size of every threshold search.
+    // One bit per cell (under a megabyte at a 1024 face): with a hash set of the cells the
+    // threshold search took about twice as long, and this runs for every cell size of it.
     std::vector<bool> seen(6 * std::size_t(cellFaceSize) * std::size_t(cellFaceSize), false);
     for (std::size_t i = 0; i < c.texels.size(); ++i) {
         const std::uint64_t cell = cellOf(c.texels[i].direction, cellFaceSize);

@@ -339,20 +339,30 @@ TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)
     }
 }
 
+// Forces where bakes made meanwhile run their host work, Auto again when it goes.
+struct ScopedHostWorkPlacement {
+    explicit ScopedHostWorkPlacement(bake::HostWorkPlacement placement) { bake::setHostWorkPlacement(placement); }
+    ~ScopedHostWorkPlacement() { bake::setHostWorkPlacement(bake::HostWorkPlacement::Auto); }
+};
+
+// The small bake with both kinds of host work: the split's plan and the shading lights.
+bake::BakeSettings hostWorkSettings()
+{
+    bake::BakeSettings s = smallBakeSettings();
+    s.prefilter.brightTexels = 16;
+    s.prefilter.shadingLights = 4;
+    return s;
+}
+
 TEST_F(GlTest, HostWorkOnWorkerThreadsBakesTheSameAsInItsOwnSteps)
 {
     // A hardware GPU runs the shading lights and the split's plan on worker threads beside its
     // passes; llvmpipe, where every test runs, in steps of their own. Both ways, forced.
     auto shaders = library();
     const Environment env = loadEnvironment("builtin:sun?width=128&size=3&intensity=1e3");
-    bake::BakeSettings s = smallBakeSettings();
-    s.prefilter.brightTexels = 16;
-    s.prefilter.shadingLights = 4;
+    const bake::BakeSettings s = hostWorkSettings();
     auto bakeWith = [&](bake::HostWorkPlacement placement) {
-        struct Restore {
-            ~Restore() { bake::setHostWorkPlacement(bake::HostWorkPlacement::Auto); }
-        } restore;
-        bake::setHostWorkPlacement(placement);
+        const ScopedHostWorkPlacement forced(placement);
         return bake::BakeJob(shaders, env, s).runToCompletion();
     };
     const bake::BakeResult own = bakeWith(bake::HostWorkPlacement::OwnSteps);
@@ -380,13 +390,8 @@ TEST_F(GlTest, HostWorkOnWorkerThreadsBakesTheSameAsInItsOwnSteps)
 TEST_F(GlTest, AJobDroppedWhileItsHostWorkRunsWaitsForIt)
 {
     auto shaders = library();
-    bake::BakeSettings s = smallBakeSettings();
-    s.prefilter.brightTexels = 16;
-    s.prefilter.shadingLights = 4;
-    struct Restore {
-        ~Restore() { bake::setHostWorkPlacement(bake::HostWorkPlacement::Auto); }
-    } restore;
-    bake::setHostWorkPlacement(bake::HostWorkPlacement::WorkerThreads);
+    const bake::BakeSettings s = hostWorkSettings();
+    const ScopedHostWorkPlacement forced(bake::HostWorkPlacement::WorkerThreads);
     for (int attempt = 0; attempt < 3; ++attempt) {
         auto job = std::make_unique<bake::BakeJob>(shaders, loadEnvironment("builtin:sun?width=512&size=3&intensity=1e3"), s);
         // Up to the upload, the step after the one that starts the worker threads.
