@@ -468,7 +468,7 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     c->add_flag("--error-floor", o->errorFloor,
                 "Also measure an exact prefilter of the same sizes as shaded (errors.prefilter_shaded_floor): the interpolation's share");
     c->add_option("--error-texel-grid", o->errorTexelGrid,
-                  "The per-mip errors at an N x N grid of texel centres per face, 6 N^2 directions a mip (default 4: 96; "
+                  "The per-mip errors at an N x N grid of texel centres per face, 6 N^2 directions a mip (default 16: 1536; "
                   "each direction costs a sum over the map)")
         ->check(CLI::Range(1, 64));
     c->add_option("--repeat", o->repeat, "Bake N times in this process (the later ones without the cache) and report each total")

@@ -24,11 +24,13 @@
 namespace iblab::bake {
 
 struct AccuracyOptions {
-    // A 4 x 4 grid of texels per face: 96 directions per cube level (`iblab bake
-    // --error-texel-grid N`). At mip 1 that is too few for a stable figure where a bright
-    // area's edge falls between them (studio.exr 0.362 here, 0.091 at a 32 x 32 grid;
-    // docs/bake.md, "How many directions the per-mip figure needs").
-    int texelsPerFaceEdge = 4;
+    // A 16 x 16 grid of texels per face: 1536 directions per cube level, every texel of a
+    // face of 16 or less (`iblab bake --error-texel-grid N`). A 4 x 4 grid (96 directions)
+    // is too few for a stable figure at mip 1, one texel in 1024: where none of them falls
+    // on a bright area, the dim texels beside it decide the whole figure (studio.exr 0.362
+    // at grid 4, 0.017 at 16, 0.018 at 32; docs/bake.md, "How many directions the per-mip
+    // figure needs"). Grid 16 costs about 0.5 s more per map than grid 4 on llvmpipe.
+    int texelsPerFaceEdge = 16;
     // The references cost O(texels) per direction; an environment wider than this is halved
     // (energy-preserving, reference.hpp's downsampleEquirect2x) until it is not, for the
     // rough mips (roughness >= 0.5) and the irradiance only. Their lobes span tens of

@@ -170,13 +170,12 @@ TEST(BakeCli, BakeWritesItsOutputsAndReportsTimingsAndErrors)
 }
 
 // --error-texel-grid N measures each mip at N x N texel centres per face, or at every texel of
-// a smaller face (the default 4 x 4 is 96 directions a mip, few enough that a small bright
-// source's edge decides the figure).
+// a smaller face (the default 16 x 16: on these faces of 16 and less, every texel).
 TEST(BakeCli, ErrorTexelGridSetsTheDirectionsOfEachMip)
 {
     TempDirectory dir("cli-grid");
     const std::string bake = "bake --env 'builtin:sky?width=64' --json --no-cache --prefilter-size 16 --prefilter-levels 3 --lut-size 16 --lut-samples 64";
-    for (const auto& [option, grid] : {std::pair{"", 4}, std::pair{" --error-texel-grid 2", 2}, std::pair{" --error-texel-grid 8", 8}}) {
+    for (const auto& [option, grid] : {std::pair{"", 16}, std::pair{" --error-texel-grid 2", 2}, std::pair{" --error-texel-grid 8", 8}}) {
         const CommandRun run = iblab(bake + option, dir.path());
         ASSERT_EQ(run.status, 0) << run.err;
         const nlohmann::json j = nlohmann::json::parse(run.out);
