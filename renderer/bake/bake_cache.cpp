@@ -102,8 +102,9 @@ namespace {
 // of the same settings, and a cache written by an older build would then be read as this
 // build's bake. Raise it with every such change. 2: bright lights merged at alpha / 2 and the
 // rough mips' far cells capped at 8N. 3: mip 1 refined where its samples disagree, its
-// bases from the finest level its refined samples read. 4: mip 2 refined too.
-constexpr int kBakeOutputRevision = 4;
+// bases from the finest level its refined samples read. 4: mip 2 refined too. 5: the
+// refinement's spread against the base's RMS in blocks as wide as the samples' footprint.
+constexpr int kBakeOutputRevision = 5;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

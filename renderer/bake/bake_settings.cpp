@@ -246,7 +246,7 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
          "With the bright split: a texel of mips 1 and 2 whose samples' luminances spread by more than --prefilter-refine-spread x its base's RMS luminance is sampled again with this many times the samples (1: never)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineFactor; }), {1, 64}, "--prefilter-refine-factor", value},
         {"prefilter.refine_spread", "Refine spread",
-         "The spread of the sample luminances of a texel of mips 1 and 2, in units of its base's RMS luminance (the map clamped at its mip's bright threshold), above which it is sampled again (--prefilter-refine-factor)",
+         "The spread of the sample luminances of a texel of mips 1 and 2, in units of its base's RMS luminance (the map clamped at its mip's bright threshold, averaged in blocks as wide as the samples' median footprint), above which it is sampled again (--prefilter-refine-factor)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineSpread; }), {0, 1e9}, "--prefilter-refine-spread", value},
         {"prefilter.shading_lights", "Shading lights",
          "The map's brightest texel groups the fitted lobe shades exactly, as lights, reading the prefiltered cube without them (0: none)",

@@ -142,7 +142,8 @@ struct PrefilterSettings {
     int exactSumTexels = 1536;
     // With the split, a texel of mips 1 and 2 whose samples' luminances spread by more than
     // refineSpread x the RMS luminance of its base (the map clamped at its mip's threshold,
-    // over the sphere) is sampled again with refineFactor times as many: near the edge of a
+    // averaged in blocks as wide as the samples' median footprint, block_luminance.hpp; over
+    // the sphere) is sampled again with refineFactor times as many: near the edge of a
     // large bright area that the caps leave in the base, a few samples that each read a mip
     // the edge cuts alias it (docs/bake.md, "The prefilter's estimator"). 1: never.
     int refineFactor = 8;

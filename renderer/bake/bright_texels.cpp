@@ -131,12 +131,15 @@ int farFaceSize(int cellFaceSize) { return std::min(kFarFace, cellFaceSize); }
 
 } // namespace
 
-BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates)
+BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates, BlockLuminance* blocks)
 {
     const int w = equirect.width, h = equirect.height;
     const auto rows = std::size_t(std::max(0, h));
     std::vector<double> rowSolidAngle(rows), rowSum(rows), rowSquaredSum(rows);
     std::vector<float> lum(std::size_t(std::max(0, w)) * rows);
+    const int blockScale = blocks ? blocks->scale : 0;
+    const std::size_t blocksPerRow = blocks ? std::size_t((w + (1 << blockScale) - 1) >> blockScale) : 0;
+    std::vector<double> rowBlockSums(blocksPerRow * rows, 0.0);
     // Rows in parallel, their sums added in row order after, so that the result does not
     // depend on the thread count.
     parallelRows(h, [&](int firstRow, int endRow) {
@@ -150,11 +153,15 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
                 const double positive = std::max(0.0f, rowLum[x]);
                 row += positive;
                 rowSquared += positive * positive;
+                if (blocks)
+                    rowBlockSums[std::size_t(y) * blocksPerRow + std::size_t(x >> blockScale)] += positive;
             }
             rowSum[std::size_t(y)] = row;
             rowSquaredSum[std::size_t(y)] = rowSquared;
         }
     });
+    if (blocks)
+        *blocks = blockLuminanceFromRows(rowBlockSums, rowSolidAngle, w, blockScale);
     double flux = 0.0, squared = 0.0;
     for (std::size_t y = 0; y < rows; ++y) {
         flux += rowSum[y] * rowSolidAngle[y];
@@ -167,7 +174,7 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
             ranked.push_back({lum[i], std::uint32_t(i)});
     return finishCandidates(std::move(ranked), floorThreshold, flux, squared, maxCandidates, [&](std::uint32_t i) {
         const int x = int(i % std::uint32_t(w)), y = int(i / std::uint32_t(w));
-        return BrightTexel{equirectTexelDirection(x, y, w, h), glm::dvec3(equirect.at(x, y)), rowSolidAngle[std::size_t(y)], lum[i]};
+        return BrightTexel{equirectTexelDirection(x, y, w, h), glm::dvec3(equirect.at(x, y)), rowSolidAngle[std::size_t(y)], lum[i], i};
     });
 }
 
@@ -214,9 +221,19 @@ int brightCellFaceSize(double roughness)
     return size;
 }
 
-double clampedLuminanceRms(const BrightCandidates& candidates, float threshold)
+double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, int mip)
 {
-    // Texels outside the list are at most the floor, and the threshold is at least the floor.
+    // Texels outside the list are at most the floor, and the threshold is at least the floor:
+    // the list holds every texel the clamp changes.
+    for (const BlockLuminance& blocks : candidates.refinedMipBlocks) {
+        if (blocks.mip != mip)
+            continue;
+        BlockLuminance clamped = blocks;
+        for (const BrightTexel& t : candidates.texels)
+            if (t.luminance > threshold)
+                clamped.removeExcess(t.sourceIndex, (double(t.luminance) - double(threshold)) * t.solidAngle);
+        return clamped.rms();
+    }
     double squared = candidates.squaredLuminanceOutsideList;
     for (const BrightTexel& t : candidates.texels) {
         const double clamped = std::min(double(t.luminance), double(threshold));
@@ -461,7 +478,7 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
         // an earlier rule (a spread against T) refining it took every texel, and it has not
         // been tried under this one.
         if (level <= kLastRefinedMip && settings.refineFactor > 1)
-            l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold));
+            l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold, level));
     }
     plan.meanLuminance = candidates.meanLuminance;
     return plan;
@@ -469,7 +486,20 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
 
 BrightCandidates splitCandidates(const ImageRGB32F& equirect, const PrefilterSettings& settings)
 {
-    return brightCandidates(equirect, settings.brightThreshold, kMaxBrightCandidates);
+    std::vector<std::pair<int, int>> refinedScales; // (mip, block scale)
+    if (settings.refineFactor > 1)
+        for (int level = 1; level <= std::min(kLastRefinedMip, settings.levels - 1); ++level)
+            if (prefilterMipRoughness(settings, level) > 0.0f)
+                refinedScales.emplace_back(level, refinedSampleScale(settings, level, equirect.width, equirect.height));
+    if (refinedScales.empty())
+        return brightCandidates(equirect, settings.brightThreshold, kMaxBrightCandidates);
+    // The finest blocks from the scan, each mip's merged from them.
+    BlockLuminance finest;
+    finest.scale = std::min_element(refinedScales.begin(), refinedScales.end(), [](auto a, auto b) { return a.second < b.second; })->second;
+    BrightCandidates candidates = brightCandidates(equirect, settings.brightThreshold, kMaxBrightCandidates, &finest);
+    for (const auto& [level, scale] : refinedScales)
+        candidates.refinedMipBlocks.push_back(coarsenedBlocks(finest, scale, level));
+    return candidates;
 }
 
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const BrightSplitPlan& plan,

@@ -32,12 +32,17 @@
 // refineFactor times as many (prefilter_ggx.comp); the
 // RMS, not T, sets the scale, because the error that matters is against the level's own
 // magnitude (the per-mip relative RMSE), and T sits at the floor on maps without large areas.
+// The RMS is of the base as the samples see it, averaged in blocks as wide as their median
+// footprint (block_luminance.hpp): thin bright lines, diluted in every sample, otherwise
+// spread too little against it to be refined.
+#include <cstdint>
 #include <vector>
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "bake/baked_texture.hpp"
+#include "bake/block_luminance.hpp"
 #include "bake/bake_settings.hpp"
 #include "gl/handles.hpp"
 #include "ibl/image.hpp"
@@ -52,6 +57,7 @@ struct BrightTexel {
     glm::dvec3 radiance;
     double solidAngle = 0.0;
     float luminance = 0.0f; // Rec. 709 weights
+    std::uint32_t sourceIndex = 0; // row-major in the equirect it came from
 };
 
 struct BrightCandidates {
@@ -60,16 +66,22 @@ struct BrightCandidates {
     float meanLuminance = 0.0f;      // over the sphere, by solid angle
     // The integral of luminance^2 over the texels not in `texels` (all at most the floor).
     double squaredLuminanceOutsideList = 0.0;
+    // Per refined mip, the equirect's luminance in blocks as wide as its samples' footprint
+    // (block_luminance.hpp); none where the candidates came from a cube.
+    std::vector<BlockLuminance> refinedMipBlocks;
 };
 
 // The root mean square over the sphere of the luminance clamped at threshold (>= the floor):
-// the scale of the base a level with that threshold samples.
-double clampedLuminanceRms(const BrightCandidates& candidates, float threshold);
+// the scale of the base a level with that threshold samples. With mip > 0 and its blocks
+// among the candidates', of the base averaged over those blocks (as the mip's samples see it).
+double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, int mip = 0);
 
 // Every texel of the equirect (exact row solid angles) or of a cube level above
 // thresholdOverMean x the mean luminance, at most maxCandidates of them (the brightest;
 // the floor threshold then rises to the first one left out).
-BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates);
+// With blocks, also the map's luminance in blocks of 2^blocks->scale texels, from the same scan.
+BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates,
+                                  BlockLuminance* blocks = nullptr);
 BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMean, int maxCandidates);
 
 // The lights of the candidates strictly above threshold: their excess over it, merged in the

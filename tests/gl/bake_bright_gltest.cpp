@@ -341,5 +341,79 @@ TEST(BrightTexelSplit, ClampedRmsCountsEveryTexelOnce)
     }
 }
 
+// The refined mips' spread is compared with the RMS of the clamped base averaged in blocks as
+// wide as their samples' footprint (block_luminance.hpp). Checked against a direct sum: each
+// texel clamped at the threshold, each block's mean by solid angle, their RMS over the sphere.
+// Blocks of one texel are the unblocked RMS.
+TEST(BrightTexelSplit, BlockRmsIsTheClampedMapAveragedOverBlocks)
+{
+    ImageRGB32F map(64, 32);
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) {
+            // A line one texel wide every 8 columns, brighter down the map, on a dim ramp.
+            const float v = 0.2f + 0.01f * float(y) + (x % 8 == 5 ? 30.0f + float(y) : 0.0f);
+            for (int c = 0; c < 3; ++c)
+                map.texels[map.offset(x, y) + std::size_t(c)] = v;
+        }
+    bake::BlockLuminance texels; // blocks of one texel, from the candidates' scan of the map
+    texels.scale = 0;
+    bake::BrightCandidates candidates = bake::brightCandidates(map, 4.0f, 1 << 14, &texels);
+    ASSERT_FALSE(candidates.texels.empty());
+    candidates.refinedMipBlocks = {bake::coarsenedBlocks(texels, 0, 1), bake::coarsenedBlocks(texels, 2, 2)};
+    for (float threshold : {candidates.floorThreshold, 45.0f, 1e4f}) {
+        EXPECT_NEAR(bake::clampedLuminanceRms(candidates, threshold, 1), bake::clampedLuminanceRms(candidates, threshold), 1e-5) << threshold;
+        double squared = 0.0;
+        for (int by = 0; by < map.height; by += 4)
+            for (int bx = 0; bx < map.width; bx += 4) {
+                double sum = 0.0, solidAngle = 0.0;
+                for (int y = by; y < by + 4; ++y)
+                    for (int x = bx; x < bx + 4; ++x) {
+                        const double omega = equirectTexelSolidAngle(y, map.width, map.height);
+                        sum += std::min(double(map.at(x, y).x), double(threshold)) * omega; // grey: luminance = value
+                        solidAngle += omega;
+                    }
+                squared += (sum / solidAngle) * (sum / solidAngle) * solidAngle;
+            }
+        const double blocked = bake::clampedLuminanceRms(candidates, threshold, 2);
+        EXPECT_NEAR(blocked, std::sqrt(squared / (4.0 * kPi)), 1e-6) << threshold;
+        // Lines a quarter of a block wide: diluted, their RMS about half the texels' (sqrt 1/4).
+        EXPECT_LT(blocked, 0.6 * bake::clampedLuminanceRms(candidates, threshold)) << threshold;
+    }
+}
+
+// A block is as wide as the median sample's footprint: wider for mip 2 (a wider lobe, 24
+// samples) than for mip 1 (8), one step more on a map twice as wide, and narrower with 8 times
+// the samples (each a solid angle 8 times smaller: 1.5 levels).
+TEST(BrightTexelSplit, BlockScaleFollowsTheSamplesFootprint)
+{
+    bake::PrefilterSettings settings = bake::defaultPreset().prefilter;
+    const int mip1 = bake::refinedSampleScale(settings, 1, 1024, 512), mip2 = bake::refinedSampleScale(settings, 2, 1024, 512);
+    EXPECT_GT(mip1, 0);
+    EXPECT_GT(mip2, mip1);
+    EXPECT_EQ(bake::refinedSampleScale(settings, 1, 2048, 1024), mip1 + 1);
+    EXPECT_EQ(bake::refinedSampleScale(settings, 2, 2048, 1024), mip2 + 1);
+    settings.samples *= 8;
+    const int finer = bake::refinedSampleScale(settings, 1, 1024, 512);
+    EXPECT_TRUE(finer == mip1 - 1 || finer == mip1 - 2) << finer << " against " << mip1;
+}
+
+// Thin bright lines (builtin:slits: 48 of 0.3 degrees at 100 on black, the map that showed the
+// problem, docs/bake.md): mip 2's 24 samples each read a source texel several lines wide and
+// spread little against the full-resolution RMS, so they were not refined (0.093 at mip 2).
+// Against the RMS of the base in blocks as wide as their footprint (under half of it here)
+// mips 2-5 meet the bound. Mip 1 does not (0.083): "What is not met" in docs/bake.md.
+TEST_F(GlTest, ThinBrightLinesMeetThePerMipBoundFromMipTwo)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const std::string spec = "builtin:slits?width=1024";
+    const Environment environment = loadEnvironment(spec);
+    const bake::PrefilterSettings settings = brightTexelsSplit().prefilter;
+    const bake::BrightCandidates candidates = bake::splitCandidates(environment.image, settings);
+    const bake::BrightSplitPlan plan = bake::planBrightSplit(candidates, settings);
+    const float threshold = plan.levels.at(2).threshold;
+    EXPECT_LT(bake::clampedLuminanceRms(candidates, threshold, 2), 0.5 * bake::clampedLuminanceRms(candidates, threshold));
+    expectWithinPerMipBound(perMipErrors(shaders, spec, brightTexelsSplit()), spec, 2);
+}
+
 } // namespace
 } // namespace iblab
