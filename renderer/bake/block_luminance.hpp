@@ -8,7 +8,7 @@
 // smooth and was left to aliased samples. The RMS is therefore taken over the base averaged
 // in blocks of the equirect about as wide as the samples' median footprint: where the bright
 // areas are larger than that block (a softbox, a window, the sky) it is the full RMS, and
-// where they are thinner it falls with their dilution (docs/bake.md, "Thin bright lines").
+// where they are thinner it falls with their dilution (docs/bake.md, "The refinement's scale").
 #include <cstdint>
 #include <span>
 #include <vector>
