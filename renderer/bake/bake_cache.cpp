@@ -104,7 +104,8 @@ namespace {
 // rough mips' far cells capped at 8N. 3: mip 1 refined where its samples disagree, its
 // bases from the finest level its refined samples read. 4: mip 2 refined too. 5: the
 // refinement's spread against the base's RMS in blocks as wide as the samples' footprint.
-constexpr int kBakeOutputRevision = 5;
+// 6: the bases near the bright texels resampled from the map clamped (near_lights.hpp).
+constexpr int kBakeOutputRevision = 6;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

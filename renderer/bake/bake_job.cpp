@@ -356,8 +356,8 @@ void BakeJob::planPrefilter(int envFace, bool hostWorkBeside)
                               if (shadingLights_.valid()) result_.shadingLights = shadingLights_.get();
                               if (!split) return;
                               const PrefilterSettings& p = result_.settings.prefilter;
-                              bright_ = splitPlan_.valid() ? splitBrightTexels(passes_, result_.environmentCube, splitPlan_.get(), p)
-                                                           : splitBrightTexels(passes_, result_.environmentCube, image_, p);
+                              bright_ = splitPlan_.valid() ? splitBrightTexels(passes_, result_.environmentCube, splitPlan_.get(), p, equirect_.id())
+                                                           : splitBrightTexels(passes_, result_.environmentCube, image_, p, equirect_.id());
                           }, split ? "split" : "host_work_wait"});
     for (int level = 0; level < s.prefilter.levels; ++level)
         planCubeSlices(BakePhase::Prefilter, StepGroup::Environment, s.prefilter.faceSize, level,

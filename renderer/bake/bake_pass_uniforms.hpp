@@ -126,4 +126,18 @@ struct ClampLuminanceUniforms {
     gl::Uniform<int> targets;
 };
 
+struct ClampNearLightsUniforms {
+    explicit ClampNearLightsUniforms(const gl::ShaderProgram& p)
+        : count(p, "uCount"), step(p, "uStep"), sourceSize(p, "uSourceSize"), thresholds(p, "uThresholds"), targets(p, "uTargets"),
+          equirect(p, "uEquirect")
+    {
+    }
+    gl::Uniform<int> count;
+    gl::Uniform<int> step;
+    gl::Uniform<int> sourceSize;
+    gl::Uniform<glm::vec2> thresholds;
+    gl::Uniform<int> targets;
+    gl::Uniform<int> equirect;
+};
+
 } // namespace iblab::bake::detail

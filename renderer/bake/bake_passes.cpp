@@ -12,6 +12,7 @@
 
 #include "ibl/prefilter_lod.hpp"
 #include "bake/bright_texels_block.hpp"
+#include "bake/near_lights.hpp"
 #include "bake/source_samples.hpp"
 #include "io/error.hpp"
 #include "ibl/conventions.hpp"
@@ -37,6 +38,7 @@ constexpr const char* kPrefilter = "bake/prefilter_ggx.comp";
 constexpr const char* kBrdfLut = "bake/brdf_lut.comp";
 constexpr const char* kDownsample = "bake/downsample.comp";
 constexpr const char* kClampLuminance = "bake/clamp_luminance.comp";
+constexpr const char* kClampNearLights = "bake/clamp_near_lights.comp";
 constexpr const char* kSamplePrefiltered = "bake/sample_prefiltered.comp";
 
 
@@ -103,8 +105,10 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
     if (equirectLevels > 1)
         shaders_.program({kDownsample}, {{"CUBE", "0"}, {"FORMAT", imageFormatName(GL_RGBA32F)}});
     shaders_.program({kDownsample}, {{"CUBE", "1"}, {"FORMAT", imageFormatName(format)}});
-    if (settings.prefilter.brightTexels > 0)
+    if (settings.prefilter.brightTexels > 0) {
         shaders_.program({kClampLuminance}, {{"FORMAT", imageFormatName(format)}});
+        shaders_.program({kClampNearLights});
+    }
     if (settings.sh.device == ShDevice::Gpu)
         shaders_.program({kSh9Project});
     switch (settings.irradiance) {
@@ -279,16 +283,50 @@ void BakePasses::clampPass(const BakedTexture& environment, const BakedTexture& 
     clearPassBindings();
 }
 
-void BakePasses::clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds)
+void BakePasses::nearLightsPass(const BakedTexture& environment, const BakedTexture& first, const BakedTexture& second,
+                                glm::vec2 thresholds, int targets, const NearLights& nearLights)
+{
+    if (nearLights.equirect == 0 || nearLights.marks == nullptr || nearLights.marks->empty())
+        return;
+    const int step = environment.size / first.size;
+    const std::vector<glm::ivec4> texels = nearLightsBaseTexels(*nearLights.marks, environment.size, step);
+    if (texels.empty())
+        return;
+    const gl::ShaderProgram& program = shaders_.program({kClampNearLights});
+    const ClampNearLightsUniforms& uniforms = program.uniforms<ClampNearLightsUniforms>();
+    glUseProgram(program.id());
+    uniforms.count.set(int(texels.size()));
+    uniforms.step.set(step);
+    uniforms.sourceSize.set(environment.size);
+    uniforms.thresholds.set(thresholds);
+    uniforms.targets.set(targets);
+    uniforms.equirect.set(1);
+    const gl::Buffer list = gl::createBufferWith<glm::ivec4>(texels);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list.id());
+    glBindTextureUnit(1, nearLights.equirect);
+    glBindImageTexture(0, first.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
+    glBindImageTexture(2, second.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, first.internalFormat);
+    glDispatchCompute(GLuint((texels.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, first.internalFormat);
+    clearPassBindings();
+}
+
+void BakePasses::clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds,
+                              const NearLights& nearLights)
 {
     if (bases.empty() || bases.size() > 2 || thresholds.size() != bases.size())
         throw Error("prefilter", "the bright-texel split builds one or two bases, each with its threshold");
     // Bases of one size from one read of each texel; of two sizes (mip 1's finer), one pass each.
     if (bases.front().size == bases.back().size) {
-        clampPass(environment, bases.front(), bases.back(), glm::vec2(thresholds.front(), thresholds.back()), int(bases.size()));
+        const glm::vec2 both(thresholds.front(), thresholds.back());
+        clampPass(environment, bases.front(), bases.back(), both, int(bases.size()));
+        nearLightsPass(environment, bases.front(), bases.back(), both, int(bases.size()), nearLights);
     } else {
-        for (std::size_t i = 0; i < bases.size(); ++i)
+        for (std::size_t i = 0; i < bases.size(); ++i) {
             clampPass(environment, bases[i], bases[i], glm::vec2(thresholds[i]), 1);
+            nearLightsPass(environment, bases[i], bases[i], glm::vec2(thresholds[i]), 1, nearLights);
+        }
     }
     for (const BakedTexture& base : bases)
         generateMips(base);

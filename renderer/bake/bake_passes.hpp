@@ -39,6 +39,13 @@ struct MomentTexels {
 // Largest finite value the texture's format stores (half: 65504).
 float storeMax(GLenum internalFormat);
 
+// Where a split's bases are resampled from the map clamped (BakePasses::clampedBases,
+// near_lights.hpp).
+struct NearLights {
+    GLuint equirect = 0;                        // the map the environment was resampled from
+    const std::vector<std::uint8_t>* marks = nullptr; // per level-0 texel of the environment: 1 near a bright map texel
+};
+
 class BakePasses {
 public:
     // Sample tables of up to this many entries are read from a uniform block, larger ones
@@ -77,8 +84,11 @@ public:
     // clamp_luminance.comp, which reads each texel once for both, and a 2 x 2 block too dim
     // to hold a texel above either threshold as its average from the environment's level 1,
     // which must be built), then each base's mips. Bases of two sizes (mip 1's from a finer
-    // level than the rougher mips') take one pass each.
-    void clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds);
+    // level than the rougher mips') take one pass each. With nearLights, the texels within
+    // reach of a map texel above a threshold are the environment pass's filter applied to the
+    // map clamped instead (clamp_luminance.comp).
+    void clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds,
+                      const NearLights& nearLights = {});
 
     // Radiance L_lm on the GPU: float sums over groups of rows, each row weighted by its
     // exact solid angle, the groups added in double on the host (see sh9_project.comp).
@@ -129,6 +139,9 @@ private:
     // targets is 2).
     void clampPass(const BakedTexture& environment, const BakedTexture& first, const BakedTexture& second, glm::vec2 thresholds,
                    int targets);
+    // clamp_near_lights.comp over the base texels under nearLights' marks, after clampPass.
+    void nearLightsPass(const BakedTexture& environment, const BakedTexture& first, const BakedTexture& second, glm::vec2 thresholds,
+                        int targets, const NearLights& nearLights);
     // The prefilter's mirror level as a texel copy (mirrorSourceLevel); false: nothing done.
     bool copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                          const PrefilterSettings& settings);

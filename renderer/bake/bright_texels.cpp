@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "bake/bake_passes.hpp"
+#include "bake/near_lights.hpp"
 #include "bake/source_samples.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
@@ -172,10 +173,13 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
     for (std::size_t i = 0; i < lum.size(); ++i)
         if (lum[i] > floorThreshold)
             ranked.push_back({lum[i], std::uint32_t(i)});
-    return finishCandidates(std::move(ranked), floorThreshold, flux, squared, maxCandidates, [&](std::uint32_t i) {
+    BrightCandidates candidates = finishCandidates(std::move(ranked), floorThreshold, flux, squared, maxCandidates, [&](std::uint32_t i) {
         const int x = int(i % std::uint32_t(w)), y = int(i / std::uint32_t(w));
         return BrightTexel{equirectTexelDirection(x, y, w, h), glm::dvec3(equirect.at(x, y)), rowSolidAngle[std::size_t(y)], lum[i], i};
     });
+    candidates.sourceWidth = w;
+    candidates.sourceHeight = h;
+    return candidates;
 }
 
 BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMean, int maxCandidates)
@@ -481,6 +485,11 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold, level));
     }
     plan.meanLuminance = candidates.meanLuminance;
+    if (candidates.sourceWidth > 0) {
+        plan.sourceWidth = candidates.sourceWidth;
+        plan.sourceHeight = candidates.sourceHeight;
+        plan.edgeTexels = brightEdgeTexels(candidates, plan.mip1Threshold, plan.roughThreshold);
+    }
     return plan;
 }
 
@@ -503,7 +512,7 @@ BrightCandidates splitCandidates(const ImageRGB32F& equirect, const PrefilterSet
 }
 
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const BrightSplitPlan& plan,
-                                        const PrefilterSettings& settings)
+                                        const PrefilterSettings& settings, GLuint equirectTexture)
 {
     PrefilterBrightTexels out;
     const int capacity = brightBlockCapacity(settings);
@@ -529,7 +538,11 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
     }
     for (int top : topLevels)
         out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size >> top, environment.levels - top));
-    passes.clampedBases(environment, out.bases, baseThresholds);
+    const std::vector<std::uint8_t> marks = equirectTexture != 0 ? nearLightsMarks(plan, environment.size) : std::vector<std::uint8_t>();
+    NearLights nearLights;
+    if (!marks.empty())
+        nearLights = {equirectTexture, &marks};
+    passes.clampedBases(environment, out.bases, baseThresholds, nearLights);
     auto baseFor = [&](float threshold) { return threshold == mip1Threshold ? 0 : 1; };
     out.levels.resize(plan.levels.size());
     for (std::size_t level = 1; level < plan.levels.size(); ++level) {
@@ -559,12 +572,12 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
 }
 
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
-                                        const PrefilterSettings& settings)
+                                        const PrefilterSettings& settings, GLuint equirectTexture)
 {
     BrightCandidates candidates = equirect.empty()
                                       ? brightCandidates(readCubeLevel(environment, 0), settings.brightThreshold, kMaxBrightCandidates)
                                       : splitCandidates(equirect, settings);
-    return splitBrightTexels(passes, environment, planBrightSplit(std::move(candidates), settings), settings);
+    return splitBrightTexels(passes, environment, planBrightSplit(std::move(candidates), settings), settings, equirectTexture);
 }
 
 

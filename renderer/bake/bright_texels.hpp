@@ -69,6 +69,8 @@ struct BrightCandidates {
     // Per refined mip, the equirect's luminance in blocks as wide as its samples' footprint
     // (block_luminance.hpp); none where the candidates came from a cube.
     std::vector<BlockLuminance> refinedMipBlocks;
+    int sourceWidth = 0; // of the equirect the texels came from (0: a cube)
+    int sourceHeight = 0;
 };
 
 // The root mean square over the sphere of the luminance clamped at threshold (>= the floor):
@@ -138,20 +140,29 @@ struct BrightSplitPlan {
     float roughThreshold = 0.0f;
     float meanLuminance = 0.0f;
     std::vector<Level> levels;
+    // The equirect's bright texels at the edge of a bright area (row-major indices,
+    // near_lights.hpp's brightEdgeTexels), near which the bases are resampled from the map
+    // clamped (NearLights in bake_passes.hpp); empty where the candidates came from a cube.
+    std::vector<std::uint32_t> edgeTexels;
+    int sourceWidth = 0;
+    int sourceHeight = 0;
 };
 // The candidates of the split from the float map (the equirect as loaded).
 BrightCandidates splitCandidates(const ImageRGB32F& equirect, const PrefilterSettings& settings);
 BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings);
 
 // Builds the split from its plan: the bases on the GPU from the cube's level 0
-// (BakePasses::clampedBases), the lights' blocks and the exact sums' tables.
+// (BakePasses::clampedBases), the lights' blocks and the exact sums' tables. With
+// equirectTexture (the map the environment cube was resampled from, as uploaded), the bases
+// near the bright texels are resampled from the map clamped, so that nothing the lights hold
+// stays in them.
 // Throws iblab::Error where the driver's uniform blocks cannot hold the lights.
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const BrightSplitPlan& plan,
-                                        const PrefilterSettings& settings);
+                                        const PrefilterSettings& settings, GLuint equirectTexture = 0);
 // Plans and builds it in one: the candidates from the equirect when the job still holds it
 // (else from the cube's level 0).
 PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& environment, const ImageRGB32F& equirect,
-                                        const PrefilterSettings& settings);
+                                        const PrefilterSettings& settings, GLuint equirectTexture = 0);
 
 // The mip of a base (face baseSize, baseLevels mips) that level `roughness` sums exactly
 // instead of sampling (PrefilterSettings::exactSumTexels): the smallest whose texels are at

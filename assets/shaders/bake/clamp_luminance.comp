@@ -5,8 +5,10 @@
 // with its threshold, from one read of each texel. A texel that is not finite
 // (a half float that overflowed) becomes grey at the threshold: its flux is in the lights,
 // summed from the float map. On the GPU, so that the split reads nothing back and uploads
-// no cube (a 512^2 half-float cube is 12 MB each way).
+// no cube (a 512^2 half-float cube is 12 MB each way). Near the bright texels
+// clamp_near_lights.comp then rewrites the bases' texels from the map clamped.
 #include "common/luminance.glsl"
+#include "bake/luminance_clamp.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -23,13 +25,6 @@ uniform int uSize; // the base's face
 uniform int uStep;
 uniform vec2 uThresholds;
 uniform int uTargets; // 1: uTarget only, 2: both
-
-vec3 clamped(vec3 rgb, float y, float threshold)
-{
-    if (isinf(y) || isnan(y))
-        return vec3(threshold);
-    return y > threshold ? rgb * (threshold / y) : rgb;
-}
 
 void main()
 {
