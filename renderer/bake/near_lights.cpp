@@ -25,11 +25,16 @@ void dilateFaces(std::vector<std::uint8_t>& mask, int faceSize, int radius)
                 auto at = [&](int j) -> std::uint8_t& { return pass == 0 ? texels[i * faceSize + j] : texels[j * faceSize + i]; };
                 for (int j = 0; j < faceSize; ++j)
                     line[std::size_t(j)] = at(j);
+                // A running count of the marks in [j - radius, j + radius].
+                int inWindow = 0;
+                for (int k = 0; k < std::min(radius, faceSize); ++k)
+                    inWindow += line[std::size_t(k)];
                 for (int j = 0; j < faceSize; ++j) {
-                    std::uint8_t any = 0;
-                    for (int k = std::max(0, j - radius); k <= std::min(faceSize - 1, j + radius) && !any; ++k)
-                        any = line[std::size_t(k)];
-                    at(j) = any;
+                    if (j + radius < faceSize)
+                        inWindow += line[std::size_t(j + radius)];
+                    if (j - radius - 1 >= 0)
+                        inWindow -= line[std::size_t(j - radius - 1)];
+                    at(j) = inWindow > 0 ? 1 : 0;
                 }
             }
     }
