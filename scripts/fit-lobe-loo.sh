@@ -43,7 +43,7 @@ log() { echo "[$(($(date +%s) - start)) s] $*" >&2; }
 # The default bake of every map the study reads, and the synthetic maps.
 scripts/accuracy-bakes.sh "$bakes" >/dev/null
 missing=()
-for n in twosuns strip corner edge1e6 pole lamps tubes neon frames arcs; do [ -f "$out/synthetic/$n.hdr" ] || missing+=("$n"); done
+for n in twosuns strip corner edge1e6 pole lamps tubes neon frames arcs citylights; do [ -f "$out/synthetic/$n.hdr" ] || missing+=("$n"); done
 if [ ${#missing[@]} -gt 0 ]; then python3 scripts/heldout-maps.py "$out/synthetic" "${missing[@]}" >/dev/null; fi
 synthetic=()
 for f in "$out"/synthetic/*.hdr; do

@@ -96,8 +96,8 @@ def arcs(d):
     return sky(d, 0.02, 0.1)
 maps["arcs"] = arcs
 # citylights: 400 lamps of 0.2-0.5 degrees (one or two texels) at 100-3000 below the horizon,
-# on a dim sky: so many that the split's threshold rises to the lamps' own level
-# (docs/bake.md, "What is not met": the default bake fails on it).
+# on a dim sky: so many that the split's threshold rises to the lamps' own level (docs/bake.md,
+# "Small lamps", and "What is not met" for its mip 1).
 city_lamps = [(ea(random.uniform(-25, -2), random.uniform(0, 360)), random.choice([0.2, 0.3, 0.5]), random.uniform(100, 3000)) for _ in range(400)]
 def citylights(d):
     if d[1] > -0.05:
