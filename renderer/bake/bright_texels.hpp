@@ -11,7 +11,8 @@
 // The bright texels are the float equirect's (the map as loaded), not the environment
 // cube's: a half-float cube stores a sun of 1e6 as at most 65504 and loses its flux. The
 // base is the cube's level 0 with every texel clamped to T, from the level nearest the
-// finest its samples read (splitBaseTopLevel).
+// finest its samples read (splitBaseTopLevel); near the bright texels it is the map clamped
+// and resampled as the cube was (near_lights.hpp), so that nothing the lights hold stays in it.
 //
 // The cost of the exact sum is (output texels) x (lights), and mip 1 has four times the texels
 // of mip 2, so each mip gets its own list: texels closer together than half of alpha radians
