@@ -126,6 +126,7 @@ struct ClampLuminanceUniforms {
     gl::Uniform<int> targets;
 };
 
+// bake/clamp_near_lights.comp's.
 struct ClampNearLightsUniforms {
     explicit ClampNearLightsUniforms(const gl::ShaderProgram& p)
         : count(p, "uCount"), step(p, "uStep"), sourceSize(p, "uSourceSize"), thresholds(p, "uThresholds"), targets(p, "uTargets"),

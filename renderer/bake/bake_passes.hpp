@@ -86,7 +86,7 @@ public:
     // which must be built), then each base's mips. Bases of two sizes (mip 1's from a finer
     // level than the rougher mips') take one pass each. With nearLights, the texels within
     // reach of a map texel above a threshold are the environment pass's filter applied to the
-    // map clamped instead (clamp_luminance.comp).
+    // map clamped instead (clamp_near_lights.comp, after the clamp pass).
     void clampedBases(const BakedTexture& environment, const std::vector<BakedTexture>& bases, const std::vector<float>& thresholds,
                       const NearLights& nearLights = {});
 

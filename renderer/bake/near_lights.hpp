@@ -1,6 +1,6 @@
 #pragma once
 // Where the split's bases must be resampled from the map clamped rather than clamped in the
-// cube (clamp_luminance.comp, NearLights in bake_passes.hpp): the environment's level-0 texels
+// cube (clamp_near_lights.comp, NearLights in bake_passes.hpp): the environment's level-0 texels
 // within reach of a map texel that the lights hold. The environment pass spreads each map
 // texel over the cube texels whose footprints read it; clamped in the cube, the spread parts
 // that fall under the threshold stay in the base, though the lights hold them already.

@@ -46,11 +46,11 @@ void addFilteredClampedMap(int face, ivec2 texel, inout vec3 first, inout vec3 s
 {
     ivec2 size = textureSize(uEquirect, 0);
     EquirectFootprint f = equirectFootprint(face, (vec2(texel) + 0.5) / float(uSourceSize), uSourceSize, vec2(size));
+    float perTap = 1.0 / f.taps;
     for (float k = 0.0; k < f.taps; k += 1.0) {
         vec2 st = equirectFootprintTap(f, k) * vec2(size) - 0.5;
         ivec2 p = ivec2(floor(st));
         vec2 w = st - floor(st);
-        float perTap = 1.0 / f.taps;
         addClampedMapTexel(p, size, perTap * (1.0 - w.x) * (1.0 - w.y), first, second);
         addClampedMapTexel(p + ivec2(1, 0), size, perTap * w.x * (1.0 - w.y), first, second);
         addClampedMapTexel(p + ivec2(0, 1), size, perTap * (1.0 - w.x) * w.y, first, second);

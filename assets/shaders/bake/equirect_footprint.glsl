@@ -1,7 +1,7 @@
 // The footprint of a cube texel on the equirect, as the environment cube pass filters it
 // (equirect_to_cube.comp): the texel's two edge vectors mapped to equirect uv, read as
 // anisotropic hardware reads it but explicitly, so that it does not depend on the driver.
-// The bright-texel split's bases (clamp_luminance.comp) read the same taps of the clamped
+// The bright-texel split's bases (clamp_near_lights.comp) read the same taps of the clamped
 // map, so that a base is the environment pass's filter applied to the map clamped at its
 // threshold: base plus lights is then the map, with nothing counted twice.
 // Needs common/conventions.glsl.
