@@ -1,7 +1,7 @@
 # Synthetic maps that no fit or bake setting has seen (issue #29): two small suns, a thin
 # bright strip, a sun on a cube corner, a 1e6 sun on a cube edge, a sun near the pole, 24
 # lamps on a dark sky; four maps of thin bright lines (tubes, neon, frames, arcs); 400 small
-# city lamps (citylights); and cornerdim, a diagnostic (below). 1024 x 512 Radiance .hdr, flat RGBE, the same bytes every run (seeded).
+# city lamps (citylights); texel noise (noise, sparks); and cornerdim, a diagnostic (below). 1024 x 512 Radiance .hdr, flat RGBE, the same bytes every run (seeded).
 #   python3 scripts/heldout-maps.py OUT_DIR [NAME ...]      (scripts/fit-lobe-loo.sh calls it)
 import math, os, random, sys
 W, H = 1024, 512
@@ -107,6 +107,16 @@ def citylights(d):
             return (intensity, 0.8 * intensity, 0.5 * intensity)
     return (0.02, 0.02, 0.025)
 maps["citylights"] = citylights
+# Texel noise (docs/bake.md, "Mip 1's local lights"): every texel its own random value, so that
+# no threshold leaves mip 1's samples a smooth base. noise: u^8 x 1000 (a tenth of the texels
+# above 4 times the mean); sparks: u^30 x 20000 (one in fifteen above it, most of them dim).
+# Each draws from its own generator, in texel order, so the bytes do not depend on which
+# maps are written.
+def texel_noise(seed, power, scale):
+    rng = random.Random(seed)
+    return lambda d: (lambda v: (v, v, v))(scale * rng.random() ** power)
+maps["noise"] = texel_noise(1, 8, 1000.0)
+maps["sparks"] = texel_noise(2, 30, 20000.0)
 out = sys.argv[1]
 os.makedirs(out, exist_ok=True)
 for name in sys.argv[2:] or maps:

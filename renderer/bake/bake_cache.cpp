@@ -105,7 +105,8 @@ namespace {
 // bases from the finest level its refined samples read. 4: mip 2 refined too. 5: the
 // refinement's spread against the base's RMS in blocks as wide as the samples' footprint.
 // 6: the bases near the bright texels resampled from the map clamped (near_lights.hpp).
-constexpr int kBakeOutputRevision = 6;
+// 7: mip 1's local lights (local_lights.hpp).
+constexpr int kBakeOutputRevision = 7;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

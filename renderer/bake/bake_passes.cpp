@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <bit>
-#include <span>
 #include <cmath>
+#include <numeric>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,6 @@ constexpr const char* kDownsample = "bake/downsample.comp";
 constexpr const char* kClampLuminance = "bake/clamp_luminance.comp";
 constexpr const char* kClampNearLights = "bake/clamp_near_lights.comp";
 constexpr const char* kSamplePrefiltered = "bake/sample_prefiltered.comp";
-
 
 // Seamless filtering across cube faces (GL 4.5 core, global state): without it a texel
 // near a face edge is clamped to its own face, and the blurred mips show their seams.
@@ -490,9 +490,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0);
     std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias, settings.sampleRotation);
     auto weightSumOf = [](std::span<const glm::vec4> set) {
-        float sum = 0.0f;
-        for (const glm::vec4& sample : set) sum += sample.z;
-        return sum;
+        return std::accumulate(set.begin(), set.end(), 0.0f, [](float sum, const glm::vec4& sample) { return sum + sample.z; });
     };
     const float weightSum = weightSumOf(samples);
     float refineWeightSum = 0.0f;
@@ -519,6 +517,8 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
         uniforms.exactCount.set(lights->exactCount);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights->exactCount > 0 ? lights->exactTexels.id() : 0);
+        uniforms.localTilesPerEdge.set(lights->localTilesPerEdge);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights->localTilesPerEdge > 0 ? lights->localLights.id() : 0);
     }
     // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop of a bake without the mirror copy does).
     bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);

@@ -148,6 +148,12 @@ struct PrefilterSettings {
     // the edge cuts alias it (docs/bake.md, "The prefilter's estimator"). 1: never.
     int refineFactor = 8;
     float refineSpread = 1.0f;
+    // With the split, mip 1's local lights (local_lights.hpp): below its far-cell cap's
+    // threshold, the bright texels summed as lights by the output texels within 18 degrees of
+    // them only, merged where far from them, at most this many per tile of 8 x 8 texels
+    // (docs/bake.md, "Mip 1's local lights"). 0: none, the lamps and lines that the cap leaves
+    // are sampled. 128 left thin lines (tubes, arcs) to the samples that 256 sums.
+    int localLights = 256;
     // Degrees the sample set is turned about each texel's normal (0: as generated).
     float sampleRotation = 0.0f;
     // The fitted lobe's shading lights (ibl/shading_lights.hpp): at most this many of the

@@ -85,14 +85,6 @@ BrightCandidates finishCandidates(std::vector<RankedTexel> ranked, float floorTh
     return c;
 }
 
-std::uint64_t cellOf(const glm::dvec3& direction, int faceSize)
-{
-    const glm::vec3 fuv = directionToCubeFaceUv(glm::vec3(direction));
-    const int x = std::clamp(int(fuv.y * float(faceSize)), 0, faceSize - 1);
-    const int row = std::clamp(int(fuv.z * float(faceSize)), 0, faceSize - 1);
-    return (std::uint64_t(fuv.x) * std::uint64_t(faceSize) + std::uint64_t(row)) * std::uint64_t(faceSize) + std::uint64_t(x);
-}
-
 // Candidates strictly above threshold: a prefix, since they are sorted brightest first.
 std::size_t countAbove(const BrightCandidates& c, float threshold)
 {
@@ -110,7 +102,7 @@ std::vector<std::uint32_t> distinctCellsByPrefix(const BrightCandidates& c, int 
     // threshold search took about twice as long, and this runs for every cell size of it.
     std::vector<bool> seen(6 * std::size_t(cellFaceSize) * std::size_t(cellFaceSize), false);
     for (std::size_t i = 0; i < c.texels.size(); ++i) {
-        const std::uint64_t cell = cellOf(c.texels[i].direction, cellFaceSize);
+        const std::uint64_t cell = brightCellOf(c.texels[i].direction, cellFaceSize);
         counts[i + 1] = counts[i] + (seen[cell] ? 0 : 1);
         seen[cell] = true;
     }
@@ -131,6 +123,14 @@ constexpr std::size_t kLightsPerFarCell = 8;
 int farFaceSize(int cellFaceSize) { return std::min(kFarFace, cellFaceSize); }
 
 } // namespace
+
+std::uint64_t brightCellOf(const glm::dvec3& direction, int faceSize)
+{
+    const glm::vec3 fuv = directionToCubeFaceUv(glm::vec3(direction));
+    const int x = std::clamp(int(fuv.y * float(faceSize)), 0, faceSize - 1);
+    const int row = std::clamp(int(fuv.z * float(faceSize)), 0, faceSize - 1);
+    return (std::uint64_t(fuv.x) * std::uint64_t(faceSize) + std::uint64_t(row)) * std::uint64_t(faceSize) + std::uint64_t(x);
+}
 
 BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates, BlockLuminance* blocks)
 {
@@ -257,7 +257,7 @@ std::vector<glm::vec4> mergedBrightLights(const BrightCandidates& candidates, fl
     for (std::size_t i = 0; i < count; ++i) {
         const BrightTexel& t = candidates.texels[i];
         const glm::dvec3 excess = t.radiance * (1.0 - double(threshold) / double(t.luminance)) * t.solidAngle;
-        Cell& cell = cells[cellOf(t.direction, cellFaceSize)];
+        Cell& cell = cells[brightCellOf(t.direction, cellFaceSize)];
         cell.flux += excess;
         cell.weightedDirection += t.direction * double(luminance(glm::vec3(excess)));
     }
@@ -292,7 +292,7 @@ std::vector<glm::vec4> hierarchicalLights(const BrightCandidates& candidates, fl
     std::map<std::uint64_t, Cell> cells;
     for (std::size_t i = 0; i < lights.size(); i += 2) {
         const glm::dvec3 direction(lights[i]), flux(lights[i + 1]);
-        Cell& cell = cells[cellOf(direction, farFace)];
+        Cell& cell = cells[brightCellOf(direction, farFace)];
         cell.flux += flux;
         cell.weightedDirection += direction * double(luminance(glm::vec3(flux)));
         cell.lights.push_back(i);
@@ -467,7 +467,11 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             roughCaps.push_back(brightTexelCap(settings, level));
         }
     const float mip1Roughness = settings.levels > 1 ? prefilterMipRoughness(settings, 1) : 0.0f;
-    plan.mip1Threshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
+    plan.mip1LightsThreshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
+    LocalLights local;
+    if (mip1Roughness > 0.0f)
+        local = planLocalLights(candidates, plan.mip1LightsThreshold, mip1Roughness, std::max(settings.faceSize >> 1, 1), settings.localLights);
+    plan.mip1Threshold = std::min(local.threshold, plan.mip1LightsThreshold);
     plan.roughThreshold = brightThresholdFor(candidates, roughRoughness, roughCaps);
     plan.levels.resize(std::size_t(std::max(0, settings.levels)));
     for (int level = 1; level < settings.levels; ++level) {
@@ -477,7 +481,9 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
         BrightSplitPlan::Level& l = plan.levels[std::size_t(level)];
         l.split = true;
         l.threshold = level == 1 ? plan.mip1Threshold : plan.roughThreshold;
-        l.block = hierarchicalLights(candidates, l.threshold, brightCellFaceSize(roughness), l.farCells);
+        l.block = hierarchicalLights(candidates, level == 1 ? plan.mip1LightsThreshold : l.threshold, brightCellFaceSize(roughness), l.farCells);
+        if (level == 1)
+            l.local = std::move(local);
         // Mips 1 and 2 (kLastRefinedMip). Mip 3's 144 samples meet the bound without it; under
         // an earlier rule (a spread against T) refining it took every texel, and it has not
         // been tried under this one.
@@ -567,6 +573,10 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         // A level that sums its base exactly has no samples to refine.
         if (l.exactCount == 0)
             l.refineSpread = planned.refineSpread;
+        if (planned.local.tilesPerEdge > 0) {
+            l.localLights = gl::createBufferWith<glm::vec4>(planned.local.buffer);
+            l.localTilesPerEdge = planned.local.tilesPerEdge;
+        }
     }
     return out;
 }

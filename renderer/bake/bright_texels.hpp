@@ -26,6 +26,10 @@
 // mips 2 and up) to the lowest value, at least brightThreshold x the mean luminance, at
 // which the caps hold; a group with its own T has its own base.
 //
+// Below mip 1's T, a band of the bright texels down to a lower T_local is summed by the
+// texels near them only, in per-tile lists (local_lights.hpp): lamps and thin lines that the
+// cap on far cells would leave to mip 1's samples. Mip 1's base is clamped at T_local.
+//
 // Mip 1's cap leaves most of a large bright area (a softbox, a row of lamps) in its base,
 // where its 8 samples, each reading a mip that the area's edge cuts, alias the edge (mip 2's
 // 24 likewise, less). A texel of mips 1 and 2 (kLastRefinedMip) whose samples' luminances
@@ -44,6 +48,7 @@
 
 #include "bake/baked_texture.hpp"
 #include "bake/block_luminance.hpp"
+#include "bake/local_lights.hpp"
 #include "bake/bake_settings.hpp"
 #include "gl/handles.hpp"
 #include "ibl/image.hpp"
@@ -91,6 +96,10 @@ BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMe
 // texels of a cellFaceSize cube (two vec4 each: (direction, 0), (flux rgb, 0)), cells in order.
 std::vector<glm::vec4> mergedBrightLights(const BrightCandidates& candidates, float threshold, int cellFaceSize);
 
+// The texel of a cellFaceSize cube that direction falls in, (face, row, column) row-major:
+// the cell that merges the lights there.
+std::uint64_t brightCellOf(const glm::dvec3& direction, int cellFaceSize);
+
 // The face size of the cube whose texels merge lights for a lobe of this roughness
 // (half of alpha radians across, a power of two from 16 to 1024).
 int brightCellFaceSize(double roughness);
@@ -114,6 +123,9 @@ struct PrefilterBrightTexels {
         // above which it takes PrefilterSettings::refineFactor times as many (refineSpread x
         // the base's RMS); < 0: never.
         float refineSpread = -1.0f;
+        // Mip 1: its local lights (local_lights.hpp's buffer); 0 tiles: none.
+        gl::Buffer localLights;
+        int localTilesPerEdge = 0;
         // The base's mip this level sums exactly (exactSumSourceLevel), two entries per
         // texel: (direction, 0), (radiance x solid angle, solid angle); 0 texels: sampled.
         gl::Buffer exactTexels;
@@ -136,8 +148,12 @@ struct BrightSplitPlan {
         std::vector<glm::vec4> block; // bright_texels_block.hpp's layout, unpadded
         int farCells = 0;
         float refineSpread = -1.0f; // Level::refineSpread where the level samples its base
+        // Mip 1: the band between its base's threshold and its block's, as local lights.
+        LocalLights local;
     };
+    // Mip 1's base threshold (its local lights' T_local where it has them) and its block's.
     float mip1Threshold = 0.0f;
+    float mip1LightsThreshold = 0.0f;
     float roughThreshold = 0.0f;
     float meanLuminance = 0.0f;
     std::vector<Level> levels;

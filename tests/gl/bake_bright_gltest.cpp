@@ -16,11 +16,13 @@
 #include "bake/bake_accuracy.hpp"
 #include "bake/bake_passes.hpp"
 #include "bake/bright_texels.hpp"
+#include "bake/local_lights.hpp"
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/image.hpp"
+#include "ibl/luminance.hpp"
 
 namespace iblab {
 namespace {
@@ -166,16 +168,21 @@ TEST_F(GlTest, LargeBrightAreasMeetThePerMipBoundAtEveryMip)
 // it, so mip 2 was left to its samples (0.12). Merged at alpha / 2 and capped at 8 times, they
 // are summed. Mip 1's cap keeps most of the lamps in its sampled base, whose 8 samples alias
 // their edges; refined where the samples disagree (PrefilterSettings::refineFactor), it meets
-// the bound too. Mip 1 is measured at the default 16 x 16 texels a face (1536 directions): at
-// 4 x 4 the figure rests on the two or three directions that fall near a lamp (0.34 refined,
-// 0.40 not; docs/bake.md, "How many directions the per-mip figure needs").
+// the bound too, and so it does with the lamps summed as mip 1's local lights (0.002 unrefined),
+// which the refinement's check turns off. Mip 1 is measured at the default 16 x 16 texels a
+// face (1536 directions): at 4 x 4 the figure rests on the two or three directions that fall
+// near a lamp (0.34 refined, 0.40 not; docs/bake.md, "How many directions the per-mip figure
+// needs").
 TEST_F(GlTest, ADozenLampsMeetThePerMipBoundAtEveryMip)
 {
     auto shaders = testing::bakeShaderLibrary();
     const std::string spec = "builtin:lights?width=1024&count=12&size=5&intensity=1000";
     ASSERT_EQ(bake::AccuracyOptions{}.texelsPerFaceEdge, 16);
     expectWithinPerMipBound(perMipErrors(shaders, spec, brightTexelsSplit()), spec);
-    bake::BakeSettings unrefined = brightTexelsSplit();
+    bake::BakeSettings refinedOnly = brightTexelsSplit();
+    refinedOnly.prefilter.localLights = 0;
+    EXPECT_LE(perMipErrors(shaders, spec, refinedOnly).front(), kPerMipBound) << spec << ", mip 1 without local lights";
+    bake::BakeSettings unrefined = refinedOnly;
     unrefined.prefilter.refineFactor = 1;
     EXPECT_GT(perMipErrors(shaders, spec, unrefined).front(), kPerMipBound) << spec << ", mip 1 unrefined";
 }
@@ -453,6 +460,67 @@ TEST_F(GlTest, ManySmallLampsAreNotCountedTwice)
     // Mips 4 and 5 sum their base exactly, so what is left there is what was counted twice.
     EXPECT_LE(std::max(errors[3], errors[4]), 0.02) << environment.source;
     expectWithinPerMipBound(errors, environment.source, 3);
+}
+
+// 32 lamps of 0.3 degrees at 1000 below the horizon, on black: far more lights than mip 1's
+// far-cell cap, which leaves them to its base, where its samples alias them (0.076 at mip 1
+// without the local lights). As local lights (local_lights.hpp) every mip meets the bound.
+TEST_F(GlTest, ManySmallLampsMeetThePerMipBoundAtMipOne)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const std::string spec = "builtin:lights?width=1024&count=32&size=0.3&intensity=1000&elevation=-10";
+    expectWithinPerMipBound(perMipErrors(shaders, spec, brightTexelsSplit()), spec);
+    bake::BakeSettings withoutLocalLights = brightTexelsSplit();
+    withoutLocalLights.prefilter.localLights = 0;
+    EXPECT_GT(perMipErrors(shaders, spec, withoutLocalLights).front(), kPerMipBound) << spec << ", mip 1 without local lights";
+}
+
+// The local lights' plan on lamps at random places: no tile lists more than the cap, the
+// band below the block's threshold is all that the lights hold, and every tile's list holds
+// at least the band flux of the lights within reach of its centre (a node summed whole holds
+// all of its lights' flux), and at most the whole band's.
+TEST(BrightTexelSplit, LocalLightsHoldTheBandNearEveryTile)
+{
+    ImageRGB32F map(512, 256);
+    std::fill(map.texels.begin(), map.texels.end(), 0.05f);
+    std::uint32_t state = 7;
+    auto next = [&state] { return (state = state * 1664525u + 1013904223u) >> 8; };
+    for (int lamp = 0; lamp < 200; ++lamp) {
+        const int x = int(next() % 512u), y = 40 + int(next() % 176u);
+        const float radiance = 50.0f + float(next() % 500u);
+        for (int c = 0; c < 3; ++c)
+            map.texels[map.offset(x, y) + std::size_t(c)] = radiance * (c == 0 ? 1.0f : 0.8f);
+    }
+    const bake::BrightCandidates candidates = bake::brightCandidates(map, 4.0f, bake::kMaxBrightCandidates);
+    const double roughness = 0.1;
+    const float upper = 400.0f;
+    const int faceSize = 64, cap = 24;
+    const bake::LocalLights local = bake::planLocalLights(candidates, upper, roughness, faceSize, cap);
+    ASSERT_EQ(local.tilesPerEdge, faceSize / bake::kLocalLightTile);
+    EXPECT_LT(local.threshold, upper);
+    EXPECT_GE(local.threshold, candidates.floorThreshold);
+    EXPECT_LE(local.longestList, cap);
+    EXPECT_GT(local.longestList, cap / 2); // the threshold is as low as the cap allows
+    const double reach = bake::localLightRadius(roughness);
+    double totalBand = 0.0;
+    for (const bake::BrightTexel& t : candidates.texels)
+        if (t.luminance > local.threshold)
+            totalBand += (std::min(double(t.luminance), double(upper)) - double(local.threshold)) * t.solidAngle;
+    const int tiles = local.tilesPerEdge;
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < tiles; ++row)
+            for (int column = 0; column < tiles; ++column) {
+                const glm::vec4 entry = local.buffer[std::size_t((face * tiles + row) * tiles + column)];
+                const glm::dvec3 centre = glm::normalize(glm::dvec3(cubeFaceUvToDirection(face, glm::vec2((column + 0.5f) / float(tiles), (row + 0.5f) / float(tiles)))));
+                double near = 0.0, listed = 0.0;
+                for (const bake::BrightTexel& t : candidates.texels)
+                    if (t.luminance > local.threshold && std::acos(std::clamp(glm::dot(centre, t.direction), -1.0, 1.0)) < reach)
+                        near += (std::min(double(t.luminance), double(upper)) - double(local.threshold)) * t.solidAngle;
+                for (int k = 0; k < int(entry.y); ++k)
+                    listed += double(luminance(glm::vec3(local.buffer[std::size_t(entry.x) + 2 * std::size_t(k) + 1])));
+                EXPECT_GE(listed, near * (1.0 - 1e-4)) << "tile " << face << " " << row << " " << column;
+                EXPECT_LE(listed, totalBand * (1.0 + 1e-4));
+            }
 }
 
 } // namespace

@@ -58,6 +58,27 @@ vec3 sumBrightTexels(vec3 n)
     return sum * uBrightScale;
 }
 
+// uLocalTilesPerEdge > 0 (mip 1): the band of bright texels below the block's threshold,
+// summed by the texels near them only (renderer/bake/local_lights.hpp): per tile of 8 x 8
+// texels, a work group, (index of its first light's entry, light count, 0, 0), then the
+// lights, (direction, 0), (band flux, 0). Every lane of a group reads the same entries.
+layout(std430, binding = 3) readonly buffer LocalLights {
+    vec4 localLights[];
+};
+uniform int uLocalTilesPerEdge;
+
+vec3 sumLocalLights(vec3 n, ivec2 texel)
+{
+    const int tileTexels = 8;
+    ivec2 tile = texel / tileTexels;
+    vec4 list = localLights[(outputFace() * uLocalTilesPerEdge + tile.y) * uLocalTilesPerEdge + tile.x];
+    int first = int(list.x), end = first + 2 * int(list.y);
+    vec3 sum = vec3(0.0);
+    for (int k = first; k < end; k += 2)
+        sum += brightTerm(dot(n, localLights[k].xyz), localLights[k + 1].xyz);
+    return sum * uBrightScale;
+}
+
 // uExactCount > 0: the base summed over every texel of one of its mips (texels at most
 // alpha / 2 across, so that the weight is nearly constant over each; the host chooses it,
 // bright_texels.hpp's exactSumSourceLevel), each texel weighted by D(h) max(0, n.l) times its
@@ -140,6 +161,8 @@ void main()
     }
 #if BRIGHT_CAPACITY > 0
     radiance += sumBrightTexels(n);
+    if (uLocalTilesPerEdge > 0)
+        radiance += sumLocalLights(n, texel);
 #endif
     storeOutput(texel, radiance);
 }
