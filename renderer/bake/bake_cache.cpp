@@ -105,8 +105,9 @@ namespace {
 // bases from the finest level its refined samples read. 4: mip 2 refined too. 5: the
 // refinement's spread against the base's RMS in blocks as wide as the samples' footprint.
 // 6: the bases near the bright texels resampled from the map clamped (near_lights.hpp).
-// 7: mip 1's local lights (local_lights.hpp).
-constexpr int kBakeOutputRevision = 7;
+// 7: mip 1's band of lights per tile. 8: mip 2's lights per tile, the rougher mips' caps
+// four times the mip before's (tile_lights.hpp).
+constexpr int kBakeOutputRevision = 8;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bake/near_lights.hpp"
 #include "gl/pass_timer.hpp"
 #include "io/error.hpp"
 
@@ -270,7 +271,7 @@ void BakeJob::plan()
         return;
     }
 
-    const bool hostWorkBeside = planHostWork(sourceTexels);
+    const bool hostWorkBeside = planHostWork(sourceTexels, envFace);
     steps_.push_back({BakePhase::Upload, StepGroup::Environment, sourceTexels, [this, format, envFace, envLevels, equirectLevels] {
                           equirect_ = passes_.uploadEquirect(image_, equirectLevels);
                           const BakeSettings& st = result_.settings;
@@ -314,7 +315,7 @@ void BakeJob::plan()
         totalCost_ += step.cost;
 }
 
-bool BakeJob::planHostWork(double sourceTexels)
+bool BakeJob::planHostWork(double sourceTexels, int envFace)
 {
     // The host work that reads only the float map: the fitted lobe's shading lights and the
     // split's plan. On a hardware GPU it runs on worker threads from here on, beside the
@@ -329,7 +330,7 @@ bool BakeJob::planHostWork(double sourceTexels)
     const bool threads = placement == HostWorkPlacement::Auto ? !gl::isSoftwareRenderer() : placement == HostWorkPlacement::WorkerThreads;
     const bool hostWorkBeside = threads && (split || s.prefilter.shadingLights > 0);
     if (s.prefilter.shadingLights > 0 || hostWorkBeside)
-        steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, sourceTexels, [this, split, hostWorkBeside] {
+        steps_.push_back({BakePhase::Prefilter, StepGroup::Environment, sourceTexels, [this, split, hostWorkBeside, envFace] {
                               // A copy: the worker threads' lambdas keep it.
                               const PrefilterSettings p = result_.settings.prefilter;
                               // Groups no finer than the mirror's texels, so that each covers whole texels of it.
@@ -341,7 +342,12 @@ bool BakeJob::planHostWork(double sourceTexels)
                               if (p.shadingLights > 0)
                                   shadingLights_ = std::async(std::launch::async, [this, p, grid] { return findShadingLights(image_, p.shadingLights, grid); });
                               if (split)
-                                  splitPlan_ = std::async(std::launch::async, [this, p] { return planBrightSplit(splitCandidates(image_, p), p); });
+                                  splitPlan_ = std::async(std::launch::async, [this, p, envFace] {
+                                      BrightSplitPlan plan = planBrightSplit(splitCandidates(image_, p), p);
+                                      plan.nearLightsMarks = nearLightsMarks(plan, envFace);
+                                      plan.nearLightsFaceSize = envFace;
+                                      return plan;
+                                  });
                           }, hostWorkBeside ? "host_work_start" : "shading_lights"});
     return hostWorkBeside;
 }

@@ -77,7 +77,7 @@ struct PrefilterUniforms {
         : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
           brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos"), exactCount(p, "uExactCount"),
           refineCount(p, "uRefineCount"), refineSpread(p, "uRefineSpread"), refineWeightSum(p, "uRefineWeightSum"),
-          localTilesPerEdge(p, "uLocalTilesPerEdge")
+          tileLightsPerEdge(p, "uTileLightsPerEdge")
     {
     }
     gl::Uniform<float> roughness;
@@ -92,7 +92,7 @@ struct PrefilterUniforms {
     gl::Uniform<int> refineCount; // the table's second set (after uSampleCount entries); 0: none
     gl::Uniform<float> refineSpread;
     gl::Uniform<float> refineWeightSum;
-    gl::Uniform<int> localTilesPerEdge; // mip 1's local lights' tiles (binding 3); 0: none
+    gl::Uniform<int> tileLightsPerEdge; // mip 1's local lights' tiles (binding 3); 0: none
 };
 
 struct SamplePrefilteredUniforms {

@@ -517,8 +517,8 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
         uniforms.exactCount.set(lights->exactCount);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights->exactCount > 0 ? lights->exactTexels.id() : 0);
-        uniforms.localTilesPerEdge.set(lights->localTilesPerEdge);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights->localTilesPerEdge > 0 ? lights->localLights.id() : 0);
+        uniforms.tileLightsPerEdge.set(lights->tileLightsPerEdge);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights->tileLightsPerEdge > 0 ? lights->tileLights.id() : 0);
     }
     // Roughness 0 is a delta: no footprint to filter, every sample reads mip 0 (as the loop of a bake without the mirror copy does).
     bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);

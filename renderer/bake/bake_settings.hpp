@@ -148,12 +148,12 @@ struct PrefilterSettings {
     // the edge cuts alias it (docs/bake.md, "The prefilter's estimator"). 1: never.
     int refineFactor = 8;
     float refineSpread = 1.0f;
-    // With the split, mip 1's local lights (local_lights.hpp): below its far-cell cap's
-    // threshold, the bright texels summed as lights by the output texels within 18 degrees of
-    // them only, merged where far from them, at most this many per tile of 8 x 8 texels
-    // (docs/bake.md, "Mip 1's local lights"). 0: none, the lamps and lines that the cap leaves
-    // are sampled. 128 left thin lines (tubes, arcs) to the samples that 256 sums.
-    int localLights = 256;
+    // With the split, the lights of mips 1 and 2 listed per tile of 8 x 8 output texels
+    // (tile_lights.hpp), merged where far from it, at most this many per tile: mip 1's below
+    // the threshold of the block every texel sums, within 18 degrees, mip 2's all of them
+    // (docs/bake.md, "Lights per tile"). 128 left thin lines (tubes, arcs) to mip 1's samples
+    // that 256 sums. 0: none, mip 2 sums a block as the rougher mips do.
+    int tileLights = 256;
     // Degrees the sample set is turned about each texel's normal (0: as generated).
     float sampleRotation = 0.0f;
     // The fitted lobe's shading lights (ibl/shading_lights.hpp): at most this many of the

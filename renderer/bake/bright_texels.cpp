@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
+#include <limits>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -367,62 +369,6 @@ float brightThresholdFor(const BrightCandidates& candidates, const std::vector<d
     return thresholdAt(lo);
 }
 
-int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness)
-{
-    // A face-centre texel of a size-S face spans 2 / S radians: alpha / 2 needs S >= 4 / alpha.
-    // Over such a texel the weight's curvature at the lobe's peak moves the midpoint rule by
-    // about (texel / alpha)^2 / 12 in l (whose lobe is twice h's), about 2% for an isolated
-    // point and far less for an area. At least an 8 face: at roughness 1 the lobe is the
-    // cosine over a hemisphere, whose edge (the clamp of n.l at 0) a 4 face (texels of 30
-    // degrees) resolves badly (0.133 against 0.009 on builtin:lights?count=6&size=15).
-    constexpr int kExactSumMinFace = 8;
-    const double alpha = roughness * roughness;
-    if (settings.exactSumTexels <= 0 || !(alpha > 0.0))
-        return -1;
-    int level = 0;
-    const double smallest = std::max(4.0 / alpha, double(kExactSumMinFace));
-    while (level + 1 < baseLevels && double(std::max(baseSize >> (level + 1), 1)) >= smallest)
-        ++level;
-    const double size = std::max(baseSize >> level, 1);
-    return 6.0 * size * size <= double(settings.exactSumTexels) ? level : -1;
-}
-
-int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels, int firstMip, int lastMip)
-{
-    if (!settings.mipFiltering)
-        return 0; // every sample reads level 0
-    // The largest texel of a level-0 face is at its centre, about (2 / size)^2 sr: the
-    // smallest lod any sample's pdf picks (readSource), whichever texel solid angle it uses.
-    const float largestTexel = 4.0f / (float(environmentSize) * float(environmentSize));
-    float finest = float(environmentLevels - 1);
-    for (int level = std::max(firstMip, 1); level < settings.levels && (lastMip < 0 || level <= lastMip); ++level) {
-        const float roughness = prefilterMipRoughness(settings, level);
-        if (!(roughness > 0.0f))
-            continue;
-        if (const int exact = exactSumSourceLevel(settings, environmentSize, environmentLevels, roughness); exact >= 0) {
-            finest = std::min(finest, float(exact));
-            continue;
-        }
-        for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level), settings.mipBias, settings.sampleRotation))
-            finest = std::min(finest, sourceLodFromSampleTerm(sample.w, largestTexel));
-        // A refined set (PrefilterSettings::refineFactor) reads finer than its first, but no
-        // base level finer than half of its mip's texels is built for it: on a 512 cube mip
-        // 1's peak reads lod 0.45, and a base from level 0 would clamp four times the texels
-        // of one from level 1 for texels a quarter of mip 1's.
-        if (level <= kLastRefinedMip && settings.refineFactor > 1) {
-            const float halfTexel = std::max(0.0f, std::log2(float(environmentSize) / float(std::max(settings.faceSize >> (level - 1), 1))));
-            for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level) * settings.refineFactor,
-                                                                   settings.mipBias, settings.sampleRotation))
-                finest = std::min(finest, std::max(halfTexel, sourceLodFromSampleTerm(sample.w, largestTexel)));
-        }
-    }
-    // The nearest level: a read between it and the next finer one (at most half a level)
-    // reads it instead, a blur of at most half a level on the few samples at a lobe's peak
-    // (the default's mip 1 reads lod 0.95 of a 256 cube there). Building the finer level
-    // took about a third of the split's own time on the bundled maps.
-    return std::clamp(int(std::floor(finest + 0.5f)), 0, std::max(0, environmentLevels - 1));
-}
-
 namespace {
 
 // A base mip's texels as prefilter_ggx.comp's exact sum reads them: (direction, 0),
@@ -451,39 +397,66 @@ int brightTexelCap(const PrefilterSettings& settings, int level)
     // Mip 2 has a quarter of mip 1's texels, so eight times the far cells cost it twice what
     // mip 1's cost it. Four times left a dozen lamps of a few degrees (more far cells than 4N)
     // to mip 2's samples, 0.12-0.15 relative RMSE from the exact prefilter; eight times sums
-    // them (bake_bright_gltest's ADozenLampsMeetThePerMipBoundFromMipTwo).
-    return level <= 1 ? settings.brightTexels : std::min(8 * settings.brightTexels, kMaxBrightLights);
+    // them (bake_bright_gltest's ADozenLampsMeetThePerMipBoundAtEveryMip). Each further mip
+    // has a quarter of the texels again, so four times the cells cost it what mip 2's cost
+    // it: 8N at mip 2 left 400 small lamps to mips 3-5 (their far cells capped the rough
+    // mips' threshold), 32N at mip 3 sums them.
+    if (level <= 1)
+        return settings.brightTexels;
+    const int shift = std::min(2 * (level - 2), 16);
+    return int(std::min<std::int64_t>(std::int64_t(8 * settings.brightTexels) << shift, kMaxBrightLights));
 }
 
 BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings)
 {
     BrightSplitPlan plan;
-    // Two groups, mip 1 and the rougher mips, each with the threshold its caps allow.
-    std::vector<double> roughRoughness;
-    std::vector<int> roughCaps;
-    for (int level = 2; level < settings.levels; ++level)
-        if (const float r = prefilterMipRoughness(settings, level); r > 0.0f) {
-            roughRoughness.push_back(r);
-            roughCaps.push_back(brightTexelCap(settings, level));
-        }
-    const float mip1Roughness = settings.levels > 1 ? prefilterMipRoughness(settings, 1) : 0.0f;
-    plan.mip1LightsThreshold = brightThresholdFor(candidates, {double(mip1Roughness)}, {brightTexelCap(settings, 1)});
-    LocalLights local;
-    if (mip1Roughness > 0.0f)
-        local = planLocalLights(candidates, plan.mip1LightsThreshold, mip1Roughness, std::max(settings.faceSize >> 1, 1), settings.localLights);
-    plan.mip1Threshold = std::min(local.threshold, plan.mip1LightsThreshold);
-    plan.roughThreshold = brightThresholdFor(candidates, roughRoughness, roughCaps);
     plan.levels.resize(std::size_t(std::max(0, settings.levels)));
+    auto roughnessOf = [&](int level) { return level < settings.levels ? double(prefilterMipRoughness(settings, level)) : 0.0; };
+    auto faceOf = [&](int level) { return std::max(settings.faceSize >> level, 1); };
+    const bool tiled = settings.tileLights > 0;
+    // Two groups, mip 1 and the rougher mips, each with the threshold its caps allow: the
+    // blocks' caps (brightThresholdFor), and where the lights are tiled, the tiles' (mip 1's
+    // band below its block's threshold; mip 2's lights, which have no block).
+    plan.mip1LightsThreshold = brightThresholdFor(candidates, {roughnessOf(1)}, {brightTexelCap(settings, 1)});
+    TileLights mip1Tiles, mip2Tiles;
+    std::vector<double> blockRoughness;
+    std::vector<int> blockCaps;
+    for (int level = tiled ? 3 : 2; level < settings.levels; ++level)
+        if (roughnessOf(level) > 0.0) {
+            blockRoughness.push_back(roughnessOf(level));
+            blockCaps.push_back(brightTexelCap(settings, level));
+        }
+    plan.roughThreshold = brightThresholdFor(candidates, blockRoughness, blockCaps);
+    // Mip 2's tiles on a thread of their own beside mip 1's (each a few milliseconds).
+    std::future<TileLights> mip2Planned;
+    if (tiled && roughnessOf(2) > 0.0)
+        mip2Planned = std::async(std::launch::async, [&] {
+            // The hemisphere: beyond it a light's weight is 0.
+            return planTileLights(candidates, std::numeric_limits<float>::infinity(), roughnessOf(2), faceOf(2), settings.tileLights,
+                                  0.5 * kPi, plan.roughThreshold);
+        });
+    plan.mip1Threshold = plan.mip1LightsThreshold;
+    if (tiled && roughnessOf(1) > 0.0) {
+        mip1Tiles = planTileLights(candidates, plan.mip1LightsThreshold, roughnessOf(1), faceOf(1), settings.tileLights, bandReach(roughnessOf(1)));
+        plan.mip1Threshold = std::min(mip1Tiles.threshold, plan.mip1LightsThreshold);
+    }
+    if (mip2Planned.valid()) {
+        mip2Tiles = mip2Planned.get();
+        plan.roughThreshold = mip2Tiles.threshold;
+    }
     for (int level = 1; level < settings.levels; ++level) {
-        const float roughness = prefilterMipRoughness(settings, level);
-        if (!(roughness > 0.0f))
+        const double roughness = roughnessOf(level);
+        if (!(roughness > 0.0))
             continue;
         BrightSplitPlan::Level& l = plan.levels[std::size_t(level)];
         l.split = true;
         l.threshold = level == 1 ? plan.mip1Threshold : plan.roughThreshold;
-        l.block = hierarchicalLights(candidates, level == 1 ? plan.mip1LightsThreshold : l.threshold, brightCellFaceSize(roughness), l.farCells);
         if (level == 1)
-            l.local = std::move(local);
+            l.tiles = std::move(mip1Tiles);
+        if (level == 2 && tiled)
+            l.tiles = std::move(mip2Tiles);
+        else
+            l.block = hierarchicalLights(candidates, level == 1 ? plan.mip1LightsThreshold : l.threshold, brightCellFaceSize(roughness), l.farCells);
         // Mips 1 and 2 (kLastRefinedMip). Mip 3's 144 samples meet the bound without it; under
         // an earlier rule (a spread against T) refining it took every texel, and it has not
         // been tried under this one.
@@ -544,10 +517,13 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
     }
     for (int top : topLevels)
         out.bases.push_back(createCubeTexture(environment.internalFormat, environment.size >> top, environment.levels - top));
-    const std::vector<std::uint8_t> marks = equirectTexture != 0 ? nearLightsMarks(plan, environment.size) : std::vector<std::uint8_t>();
+    std::vector<std::uint8_t> marks;
+    if (equirectTexture != 0 && plan.nearLightsFaceSize != environment.size)
+        marks = nearLightsMarks(plan, environment.size);
+    const std::vector<std::uint8_t>& planned = plan.nearLightsFaceSize == environment.size ? plan.nearLightsMarks : marks;
     NearLights nearLights;
-    if (!marks.empty())
-        nearLights = {equirectTexture, &marks};
+    if (equirectTexture != 0 && !planned.empty())
+        nearLights = {equirectTexture, &planned};
     passes.clampedBases(environment, out.bases, baseThresholds, nearLights);
     auto baseFor = [&](float threshold) { return threshold == mip1Threshold ? 0 : 1; };
     out.levels.resize(plan.levels.size());
@@ -573,9 +549,9 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         // A level that sums its base exactly has no samples to refine.
         if (l.exactCount == 0)
             l.refineSpread = planned.refineSpread;
-        if (planned.local.tilesPerEdge > 0) {
-            l.localLights = gl::createBufferWith<glm::vec4>(planned.local.buffer);
-            l.localTilesPerEdge = planned.local.tilesPerEdge;
+        if (planned.tiles.tilesPerEdge > 0) {
+            l.tileLights = gl::createBufferWith<glm::vec4>(planned.tiles.buffer);
+            l.tileLightsPerEdge = planned.tiles.tilesPerEdge;
         }
     }
     return out;

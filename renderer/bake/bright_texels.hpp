@@ -21,14 +21,16 @@
 // lobe's peak), and those lights are grouped again in the cells of a 32^2-per-face cube: an output
 // texel sums a cell further than 6 cells from it as one light (the far field of the lobe's
 // heavy tail), and a nearer cell light by light (bright_texels_block.hpp). brightTexelCap
-// bounds the far cells of each mip (mip 1: PrefilterSettings::brightTexels, the rougher
-// mips 8 times as many) and its lights to 8 times that. T is set per group of mips (mip 1;
-// mips 2 and up) to the lowest value, at least brightThreshold x the mean luminance, at
-// which the caps hold; a group with its own T has its own base.
+// bounds the far cells of each mip (mip 1: PrefilterSettings::brightTexels, mip 2 8 times as
+// many, each further mip 4 times the one before) and its lights to 8 times that. T is set
+// per group of mips (mip 1; mips 2 and up) to the lowest value, at least brightThreshold x
+// the mean luminance, at which the caps (and the tiles' caps) hold; a group with its own T
+// has its own base.
 //
-// Below mip 1's T, a band of the bright texels down to a lower T_local is summed by the
-// texels near them only, in per-tile lists (local_lights.hpp): lamps and thin lines that the
-// cap on far cells would leave to mip 1's samples. Mip 1's base is clamped at T_local.
+// Mips 1 and 2 also list lights per tile of output texels (tile_lights.hpp): mip 1 a band
+// below its block's T, down to a lower threshold at which its base is clamped; mip 2 all of
+// its lights, in place of a block. Lamps and thin lines that a cap on a block every texel sums
+// would leave to the samples are summed there.
 //
 // Mip 1's cap leaves most of a large bright area (a softbox, a row of lamps) in its base,
 // where its 8 samples, each reading a mip that the area's edge cuts, alias the edge (mip 2's
@@ -48,7 +50,7 @@
 
 #include "bake/baked_texture.hpp"
 #include "bake/block_luminance.hpp"
-#include "bake/local_lights.hpp"
+#include "bake/tile_lights.hpp"
 #include "bake/bake_settings.hpp"
 #include "gl/handles.hpp"
 #include "ibl/image.hpp"
@@ -123,9 +125,9 @@ struct PrefilterBrightTexels {
         // above which it takes PrefilterSettings::refineFactor times as many (refineSpread x
         // the base's RMS); < 0: never.
         float refineSpread = -1.0f;
-        // Mip 1: its local lights (local_lights.hpp's buffer); 0 tiles: none.
-        gl::Buffer localLights;
-        int localTilesPerEdge = 0;
+        // Mips 1 and 2: their lights per tile (tile_lights.hpp's buffer); 0 tiles: none.
+        gl::Buffer tileLights;
+        int tileLightsPerEdge = 0;
         // The base's mip this level sums exactly (exactSumSourceLevel), two entries per
         // texel: (direction, 0), (radiance x solid angle, solid angle); 0 texels: sampled.
         gl::Buffer exactTexels;
@@ -148,10 +150,10 @@ struct BrightSplitPlan {
         std::vector<glm::vec4> block; // bright_texels_block.hpp's layout, unpadded
         int farCells = 0;
         float refineSpread = -1.0f; // Level::refineSpread where the level samples its base
-        // Mip 1: the band between its base's threshold and its block's, as local lights.
-        LocalLights local;
+        // Mips 1 and 2: their lights per tile (tile_lights.hpp); mip 2's instead of a block.
+        TileLights tiles;
     };
-    // Mip 1's base threshold (its local lights' T_local where it has them) and its block's.
+    // Mip 1's base threshold (its band's, tile_lights.hpp, where it has one) and its block's.
     float mip1Threshold = 0.0f;
     float mip1LightsThreshold = 0.0f;
     float roughThreshold = 0.0f;
@@ -163,6 +165,11 @@ struct BrightSplitPlan {
     std::vector<std::uint32_t> edgeTexels;
     int sourceWidth = 0;
     int sourceHeight = 0;
+    // Where the plan knew the environment cube's face size: near_lights.hpp's marks on its
+    // level 0, made with the plan (on a worker thread, beside the GPU's passes) instead of in
+    // the split's GL step.
+    std::vector<std::uint8_t> nearLightsMarks;
+    int nearLightsFaceSize = 0;
 };
 // The candidates of the split from the float map (the equirect as loaded).
 BrightCandidates splitCandidates(const ImageRGB32F& equirect, const PrefilterSettings& settings);
@@ -204,6 +211,5 @@ inline constexpr int kMaxBrightLights = 2048;
 inline constexpr int kLastRefinedMip = 2;
 // The most far cells mip `level` (>= 1) sums for every texel (bright_texels_block.hpp).
 int brightTexelCap(const PrefilterSettings& settings, int level);
-
 
 } // namespace iblab::bake

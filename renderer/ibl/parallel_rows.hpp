@@ -9,10 +9,13 @@
 
 namespace iblab {
 
+// With minRowsPerThread, no more threads than give each that many rows: where a row is a few
+// microseconds of work, starting a thread per core (16 on a GPU machine's host) cost more than
+// the rows.
 template <typename Fn>
-void parallelRows(int rows, const Fn& fn)
+void parallelRows(int rows, const Fn& fn, int minRowsPerThread = 1)
 {
-    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(std::max(rows, 1))));
+    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, unsigned(std::max(rows / std::max(minRowsPerThread, 1), 1))));
     if (threads <= 1) {
         fn(0, rows);
         return;

@@ -58,24 +58,24 @@ vec3 sumBrightTexels(vec3 n)
     return sum * uBrightScale;
 }
 
-// uLocalTilesPerEdge > 0 (mip 1): the band of bright texels below the block's threshold,
-// summed by the texels near them only (renderer/bake/local_lights.hpp): per tile of 8 x 8
-// texels, a work group, (index of its first light's entry, light count, 0, 0), then the
-// lights, (direction, 0), (band flux, 0). Every lane of a group reads the same entries.
-layout(std430, binding = 3) readonly buffer LocalLights {
-    vec4 localLights[];
+// uTileLightsPerEdge > 0 (mips 1 and 2): lights listed per tile of 8 x 8 texels, a work
+// group (renderer/bake/tile_lights.hpp: mip 1's band below its block's threshold, mip 2's
+// lights): (index of its first light's entry, light count, 0, 0) per tile, then the lights,
+// (direction, 0), (flux, 0). Every lane of a group reads the same entries.
+layout(std430, binding = 3) readonly buffer TileLights {
+    vec4 tileLights[];
 };
-uniform int uLocalTilesPerEdge;
+uniform int uTileLightsPerEdge;
 
-vec3 sumLocalLights(vec3 n, ivec2 texel)
+vec3 sumTileLights(vec3 n, ivec2 texel)
 {
     const int tileTexels = 8;
     ivec2 tile = texel / tileTexels;
-    vec4 list = localLights[(outputFace() * uLocalTilesPerEdge + tile.y) * uLocalTilesPerEdge + tile.x];
+    vec4 list = tileLights[(outputFace() * uTileLightsPerEdge + tile.y) * uTileLightsPerEdge + tile.x];
     int first = int(list.x), end = first + 2 * int(list.y);
     vec3 sum = vec3(0.0);
     for (int k = first; k < end; k += 2)
-        sum += brightTerm(dot(n, localLights[k].xyz), localLights[k + 1].xyz);
+        sum += brightTerm(dot(n, tileLights[k].xyz), tileLights[k + 1].xyz);
     return sum * uBrightScale;
 }
 
@@ -161,8 +161,8 @@ void main()
     }
 #if BRIGHT_CAPACITY > 0
     radiance += sumBrightTexels(n);
-    if (uLocalTilesPerEdge > 0)
-        radiance += sumLocalLights(n, texel);
+    if (uTileLightsPerEdge > 0)
+        radiance += sumTileLights(n, texel);
 #endif
     storeOutput(texel, radiance);
 }

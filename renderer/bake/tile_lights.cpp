@@ -1,4 +1,4 @@
-#include "bake/local_lights.hpp"
+#include "bake/tile_lights.hpp"
 
 #include <algorithm>
 #include <array>
@@ -23,6 +23,10 @@ namespace {
 
 // The tree's coarsest cells: an 8 face (cells of 11 degrees), whose nodes every tile visits.
 constexpr int kCoarsestFace = 8;
+// The candidates whose tree the threshold's search builds first (then four times as many).
+constexpr std::size_t kFirstTreeCandidates = 1024;
+// A tile's walk takes a few microseconds: threads for fewer tiles than this cost more to start.
+constexpr int kTilesPerThread = 512;
 // A node is summed as one light at its flux centre where its cell's diagonal is at most this
 // share of its distance from the tile: the point's error is then about 0.4 (1/4)^2, 3% of
 // the node's contribution (the lobe's tail falls as theta^-4), and far less near the peak,
@@ -92,7 +96,7 @@ struct LightTree {
     std::vector<int> finestNode; // per candidate
 };
 
-LightTree lightTree(const BrightCandidates& candidates, int finestFace)
+LightTree lightTree(const BrightCandidates& candidates, std::size_t count, int finestFace)
 {
     LightTree tree;
     for (int size = finestFace; size >= kCoarsestFace; size /= 2)
@@ -102,11 +106,11 @@ LightTree lightTree(const BrightCandidates& candidates, int finestFace)
     const int levels = int(tree.faceSizes.size());
     std::vector<std::unordered_map<std::uint64_t, int>> byKey(static_cast<std::size_t>(levels));
     for (auto& level : byKey)
-        level.reserve(candidates.texels.size());
-    tree.nodes.reserve(candidates.texels.size());
+        level.reserve(count);
+    tree.nodes.reserve(2 * count);
     std::map<std::uint64_t, int> roots;
-    tree.finestNode.reserve(candidates.texels.size());
-    for (std::size_t i = 0; i < candidates.texels.size(); ++i) {
+    tree.finestNode.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) {
         Cell cell = cellAt(brightCellOf(candidates.texels[i].direction, finestFace), finestFace);
         int below = -1;  // the node just made one level finer
         int quarter = 0; // its quarter of this level's cell
@@ -140,6 +144,7 @@ LightTree lightTree(const BrightCandidates& candidates, int finestFace)
         tree.roots.push_back(node);
     return tree;
 }
+
 // How a tile treats the nodes of each level, by the cosine of the angle to the node's centre:
 // below skip, none of its lights comes within reach of a texel of the tile; at most whole,
 // it is far enough to be summed as one light (kMergeRatio); in between it is opened.
@@ -177,7 +182,10 @@ std::vector<glm::vec4> tileLights(const LightTree& tree, const Tile& tile, doubl
 {
     const TileReach r = tileReach(tree, tile, reach);
     std::vector<glm::vec4> lights;
-    std::vector<int> stack(tree.roots.rbegin(), tree.roots.rend());
+    std::vector<int> stack;
+    for (auto root = tree.roots.rbegin(); root != tree.roots.rend(); ++root)
+        if (nodeUse(tile, r, tree.nodes[std::size_t(*root)]) != NodeUse::Skip)
+            stack.push_back(*root);
     while (!stack.empty()) {
         const LightTree::Node& node = tree.nodes[std::size_t(stack.back())];
         stack.pop_back();
@@ -204,8 +212,8 @@ std::vector<glm::vec4> tileLights(const LightTree& tree, const Tile& tile, doubl
 // lit, and the least of those. The nodes are visited smallest firstCandidate first (a node's
 // children have at least its own), so the nodes a tile sums come in that order too: its walk
 // stops at the cap, or once past the least limit found so far (it cannot lower it), and
-// every walk stops once that is below floorPrefix (the candidates above the block's
-// threshold: there is no band then, whatever the least is).
+// every walk stops once that is below floorPrefix (the candidates above the upper threshold:
+// there is no band then, whatever the least is).
 std::size_t longestFittingPrefix(const LightTree& tree, const std::vector<Tile>& tiles, double reach, int cap, std::size_t candidates,
                                  std::size_t floorPrefix)
 {
@@ -216,7 +224,10 @@ std::size_t longestFittingPrefix(const LightTree& tree, const std::vector<Tile>&
         for (int t = first; t < end && least.load(std::memory_order_relaxed) >= floorPrefix; ++t) {
             const Tile& tile = tiles[std::size_t(t)];
             const TileReach r = tileReach(tree, tile, reach);
-            queue.assign(tree.roots.begin(), tree.roots.end());
+            queue.clear();
+            for (int root : tree.roots)
+                if (nodeUse(tile, r, tree.nodes[std::size_t(root)]) != NodeUse::Skip)
+                    queue.push_back(root);
             std::make_heap(queue.begin(), queue.end(), later);
             int summed = 0;
             while (!queue.empty()) {
@@ -240,40 +251,52 @@ std::size_t longestFittingPrefix(const LightTree& tree, const std::vector<Tile>&
                         }
             }
         }
-    });
+    }, kTilesPerThread);
     return least;
 }
 
 } // namespace
 
-double localLightRadius(double roughness)
+double bandReach(double roughness)
 {
     // GGX's half vectors: the share of D(h) n.h beyond theta_h is alpha^2 / (alpha^2 +
     // tan^2 theta_h), and l is at twice theta_h; weighting by n.l instead only lowers the tail.
     const double alpha = std::max(roughness * roughness, 1e-6);
-    return 2.0 * std::atan(alpha * std::sqrt((1.0 - kLocalTailWeight) / kLocalTailWeight));
+    return 2.0 * std::atan(alpha * std::sqrt((1.0 - kBandTailWeight) / kBandTailWeight));
 }
 
-LocalLights planLocalLights(const BrightCandidates& candidates, float upperThreshold, double roughness, int faceSize, int capPerTile)
+TileLights planTileLights(const BrightCandidates& candidates, float upperThreshold, double roughness, int faceSize, int capPerTile,
+                          double reach, float lowestThreshold)
 {
-    LocalLights out;
+    TileLights out;
     out.threshold = upperThreshold;
     const std::size_t n = candidates.texels.size();
-    if (capPerTile <= 0 || faceSize <= 0 || n == 0 || !(candidates.floorThreshold < upperThreshold))
+    if (capPerTile <= 0 || faceSize <= 0 || n == 0 || !(std::max(candidates.floorThreshold, lowestThreshold) < upperThreshold))
         return out;
-    const int tilesPerEdge = std::max(1, faceSize / kLocalLightTile);
-    const double reach = localLightRadius(roughness);
+    const int tilesPerEdge = std::max(1, faceSize / kTileLightsTile);
     const std::vector<Tile> tiles = outputTiles(tilesPerEdge);
-    LightTree tree = lightTree(candidates, brightCellFaceSize(roughness));
 
-    // T_local: the luminance of the first candidate past the longest prefix that fits (the
-    // floor where all do); the lights are the candidates strictly above it. Only below the
-    // block's threshold is there a band.
-    const std::size_t aboveBlock = std::size_t(std::partition_point(candidates.texels.begin(), candidates.texels.end(),
+    // The threshold: the luminance of the first candidate past the longest prefix that fits
+    // (the floor where all do), or lowestThreshold where that is higher; the lights are the
+    // candidates strictly above it. Only below upperThreshold is there a band.
+    const std::size_t aboveUpper = std::size_t(std::partition_point(candidates.texels.begin(), candidates.texels.end(),
                                                                     [&](const BrightTexel& t) { return t.luminance > upperThreshold; }) -
                                                candidates.texels.begin());
-    const std::size_t prefix = longestFittingPrefix(tree, tiles, reach, capPerTile, n, aboveBlock);
-    out.threshold = std::min(prefix < n ? candidates.texels[prefix].luminance : candidates.floorThreshold, upperThreshold);
+    // The tree of the first `built` candidates holds every node of a longer prefix whose
+    // firstCandidate is below `built`, so a prefix it finds shorter than that is the prefix
+    // of all of them: on a map with large bright areas the tiles fill within the first
+    // thousand candidates of 16384, and building the tree of all of them took 20 ms.
+    std::size_t built = std::min(n, std::max<std::size_t>(kFirstTreeCandidates, 2 * aboveUpper));
+    LightTree tree;
+    std::size_t prefix = 0;
+    for (;;) {
+        tree = lightTree(candidates, built, brightCellFaceSize(roughness));
+        prefix = longestFittingPrefix(tree, tiles, reach, capPerTile, built, aboveUpper);
+        if (prefix < built || built == n)
+            break;
+        built = std::min(n, 4 * built);
+    }
+    out.threshold = std::min(std::max(prefix < n ? candidates.texels[prefix].luminance : candidates.floorThreshold, lowestThreshold), upperThreshold);
     if (!(out.threshold < upperThreshold))
         return out;
 
@@ -294,7 +317,7 @@ LocalLights planLocalLights(const BrightCandidates& candidates, float upperThres
     parallelRows(int(tiles.size()), [&](int first, int end) {
         for (int t = first; t < end; ++t)
             lists[std::size_t(t)] = tileLights(tree, tiles[std::size_t(t)], reach, lit);
-    });
+    }, kTilesPerThread);
     out.tilesPerEdge = tilesPerEdge;
     std::size_t next = tiles.size();
     out.buffer.reserve(tiles.size());
