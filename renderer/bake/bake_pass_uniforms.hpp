@@ -92,7 +92,7 @@ struct PrefilterUniforms {
     gl::Uniform<int> refineCount; // the table's second set (after uSampleCount entries); 0: none
     gl::Uniform<float> refineSpread;
     gl::Uniform<float> refineWeightSum;
-    gl::Uniform<int> tileLightsPerEdge; // mip 1's local lights' tiles (binding 3); 0: none
+    gl::Uniform<int> tileLightsPerEdge; // mips 1 and 2: tiles per face edge of their lights' lists (binding 3); 0: none
 };
 
 struct SamplePrefilteredUniforms {
