@@ -250,7 +250,7 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineSpread; }), {0, 1e9}, "--prefilter-refine-spread", value},
         {"prefilter.tile_lights", "Lights per tile",
          "With the bright split: the lights of mips 1 and 2 listed per tile of 8 x 8 texels, at most this many per tile (mip 1: below its block's threshold, within 18 degrees; 0: none)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.tileLights; }), {0, 4096}, "--prefilter-tile-lights", value},
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.tileLights; }), {0, 1024}, "--prefilter-tile-lights", value},
         {"prefilter.shading_lights", "Shading lights",
          "The map's brightest texel groups the fitted lobe shades exactly, as lights, reading the prefiltered cube without them (0: none)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.shadingLights; }), {0, kMaxShadingLights}, "--prefilter-shading-lights", value},

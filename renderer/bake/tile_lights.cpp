@@ -79,7 +79,7 @@ std::uint64_t cellKey(Cell c, int size) { return (std::uint64_t(c.face) * std::u
 // each next level a face half as large. A node's firstCandidate is the brightest candidate in
 // it (the smallest index), so the lights of a threshold that keeps the first p candidates are
 // the nodes with firstCandidate < p. How a tile sums a node depends only on where the node
-// is (tileCut), so the search for the threshold and the lists share one tree.
+// is (nodeUse), so the search for the threshold and the lists share one tree.
 struct LightTree {
     struct Node {
         glm::dvec3 centre{0.0}; // the cell's
