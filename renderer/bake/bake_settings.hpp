@@ -126,9 +126,10 @@ struct PrefilterSettings {
     // The bright-texel split (bright_texels.hpp; docs/bake.md, "The prefilter's estimator"):
     // the environment's brightest texels (from the float map) summed exactly by every output
     // texel, near ones light by light and far ones merged, the rest sampled. Each texel of
-    // mip 1 sums at most this many far cells, of the rougher mips 8 times as many; 16 is what
-    // the 1.25x time budget allowed on llvmpipe (docs/bake.md). 0: every texel is sampled
-    // (the anchors).
+    // mip 1 sums at most this many far cells in its block (mip 2's 8 times as many where it has
+    // a block, each further mip's 4 times the one before's, brightTexelCap); 16 is what the
+    // 1.25x time budget allowed on llvmpipe (docs/bake.md). 0: every texel is sampled (the
+    // anchors).
     int brightTexels = 16;
     // Texels above this multiple of the map's mean luminance are bright (fewer when the caps
     // above are reached): the sampled rest then has at most this dynamic range.
