@@ -7,7 +7,7 @@
 # `accuracy_study eval --bench-scenes`, which agrees with it within 3% on the spheres), each
 # leave-one-out table on the map it left out, and the full fit on maps no fit has seen: the
 # unseen pmndrs maps (../shared/assets/hdri/pmndrs) and the synthetic ones of
-# scripts/heldout-maps.py. The committed table (what the build shades with) is measured beside
+# scripts/heldout-maps.py (texel noise too). The committed table (what the build shades with) is measured beside
 # each. Prints Markdown tables, worst case first: per map and scene the split sum's relative RMSE, each table's,
 # its ratio to the split sum's, then the worst and median ratio of (i) the leave-one-out tables
 # on their left-out maps and (ii) the full fit on the unseen maps.
@@ -43,7 +43,7 @@ log() { echo "[$(($(date +%s) - start)) s] $*" >&2; }
 # The default bake of every map the study reads, and the synthetic maps.
 scripts/accuracy-bakes.sh "$bakes" >/dev/null
 missing=()
-for n in twosuns strip corner edge1e6 pole lamps tubes neon frames arcs citylights; do [ -f "$out/synthetic/$n.hdr" ] || missing+=("$n"); done
+for n in twosuns strip corner edge1e6 pole lamps tubes neon frames arcs citylights noise sparks; do [ -f "$out/synthetic/$n.hdr" ] || missing+=("$n"); done
 if [ ${#missing[@]} -gt 0 ]; then python3 scripts/heldout-maps.py "$out/synthetic" "${missing[@]}" >/dev/null; fi
 synthetic=()
 for f in "$out"/synthetic/*.hdr; do
