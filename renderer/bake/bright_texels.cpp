@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
-#include <limits>
 #include <cstddef>
 #include <cstdint>
+#include <future>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -15,7 +15,6 @@
 
 #include "bake/bake_passes.hpp"
 #include "bake/near_lights.hpp"
-#include "bake/source_samples.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/luminance.hpp"
@@ -399,8 +398,8 @@ int brightTexelCap(const PrefilterSettings& settings, int level)
     // to mip 2's samples, 0.12-0.15 relative RMSE from the exact prefilter; eight times sums
     // them (bake_bright_gltest's ADozenLampsMeetThePerMipBoundAtEveryMip). Each further mip
     // has a quarter of the texels again, so four times the cells cost it what mip 2's cost
-    // it: 8N at mip 2 left 400 small lamps to mips 3-5 (their far cells capped the rough
-    // mips' threshold), 32N at mip 3 sums them.
+    // it. With 8N at every rough mip, mip 3's far cells capped the rough threshold and left
+    // 400 small lamps in the rough mips' base; 32N at mip 3 sums them.
     if (level <= 1)
         return settings.brightTexels;
     const int shift = std::min(2 * (level - 2), 16);

@@ -9,9 +9,9 @@
 
 namespace iblab {
 
-// With minRowsPerThread, no more threads than give each that many rows: where a row is a few
-// microseconds of work, starting a thread per core (16 on a GPU machine's host) cost more than
-// the rows.
+// With minRowsPerThread, no more threads than give each that many rows, so that a loop of a
+// few milliseconds does not start a thread per core (16 on the GPU machine's host) for rows of
+// a few microseconds each.
 template <typename Fn>
 void parallelRows(int rows, const Fn& fn, int minRowsPerThread = 1)
 {

@@ -94,6 +94,53 @@ double relativeDifference(const bake::BakeResult& a, const bake::BakeResult& b, 
     return std::sqrt(diff / norm);
 }
 
+// `count` one-texel lamps at random places of rows [firstRow, firstRow + rows), each of
+// minRadiance + [0, radianceRange) in red and greenBlue times that in green and blue, from a
+// seeded linear congruential generator: the same map every run.
+void scatterLamps(ImageRGB32F& map, int count, int firstRow, int rows, float minRadiance, std::uint32_t radianceRange, float greenBlue,
+                  std::uint32_t seed)
+{
+    std::uint32_t state = seed;
+    auto next = [&state] { return (state = state * 1664525u + 1013904223u) >> 8; };
+    for (int lamp = 0; lamp < count; ++lamp) {
+        const int x = int(next() % std::uint32_t(map.width)), y = firstRow + int(next() % std::uint32_t(rows));
+        const float radiance = minRadiance + float(next() % radianceRange);
+        for (int c = 0; c < 3; ++c)
+            map.texels[map.offset(x, y) + std::size_t(c)] = radiance * (c == 0 ? 1.0f : greenBlue);
+    }
+}
+
+// The band flux (luminance above threshold, up to upper, times solid angle) of the candidates
+// within reach radians of direction, or of all of them with reach pi.
+double bandFlux(const bake::BrightCandidates& candidates, float threshold, float upper, const glm::dvec3& direction, double reach)
+{
+    double flux = 0.0;
+    for (const bake::BrightTexel& t : candidates.texels)
+        if (t.luminance > threshold && std::acos(std::clamp(glm::dot(direction, t.direction), -1.0, 1.0)) <= reach)
+            flux += (std::min(double(t.luminance), double(upper)) - double(threshold)) * t.solidAngle;
+    return flux;
+}
+
+// Every tile's list holds at least the band flux within reach of its centre (a node summed
+// whole holds all of its lights' flux) and at most the whole band's.
+void expectTilesHoldTheFluxNearThem(const bake::TileLights& lights, const bake::BrightCandidates& candidates, float upper, double reach)
+{
+    const double total = bandFlux(candidates, lights.threshold, upper, glm::dvec3(0.0, 1.0, 0.0), kPi);
+    const int tiles = lights.tilesPerEdge;
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < tiles; ++row)
+            for (int column = 0; column < tiles; ++column) {
+                const glm::vec4 entry = lights.buffer[std::size_t((face * tiles + row) * tiles + column)];
+                const glm::dvec3 centre = glm::normalize(
+                    glm::dvec3(cubeFaceUvToDirection(face, glm::vec2((column + 0.5f) / float(tiles), (row + 0.5f) / float(tiles)))));
+                double listed = 0.0;
+                for (int k = 0; k < int(entry.y); ++k)
+                    listed += double(luminance(glm::vec3(lights.buffer[std::size_t(entry.x) + 2 * std::size_t(k) + 1])));
+                EXPECT_GE(listed, bandFlux(candidates, lights.threshold, upper, centre, reach) * (1.0 - 1e-4)) << "tile " << face << " " << row << " " << column;
+                EXPECT_LE(listed, total * (1.0 + 1e-4));
+            }
+}
+
 TEST_F(GlTest, BrightSunMeetsThePerMipBoundAtEveryMip)
 {
     auto shaders = testing::bakeShaderLibrary();
@@ -445,14 +492,7 @@ TEST_F(GlTest, ManySmallLampsAreNotCountedTwice)
         for (int x = 0; x < environment.image.width; ++x)
             for (int c = 0; c < 3; ++c)
                 environment.image.texels[environment.image.offset(x, y) + std::size_t(c)] = y < 256 ? 0.05f : 0.02f;
-    std::uint32_t state = 29;
-    auto next = [&state] { return (state = state * 1664525u + 1013904223u) >> 8; };
-    for (int lamp = 0; lamp < 300; ++lamp) {
-        const int x = int(next() % 1024u), y = 262 + int(next() % 70u);
-        const float radiance = 200.0f + float(next() % 1800u);
-        for (int c = 0; c < 3; ++c)
-            environment.image.texels[environment.image.offset(x, y) + std::size_t(c)] = radiance;
-    }
+    scatterLamps(environment.image, 300, 262, 70, 200.0f, 1800u, 1.0f, 29);
     environment.contentHash = 0x29;
     const std::vector<double> errors = perMipErrors(shaders, environment, brightTexelsSplit());
     ASSERT_EQ(errors.size(), 5u);
@@ -477,52 +517,38 @@ TEST_F(GlTest, ManySmallLampsMeetThePerMipBoundAtMipOne)
     EXPECT_GT(perMipErrors(shaders, spec, withoutTileLights).front(), kPerMipBound) << spec << ", mip 1 without lights per tile";
 }
 
-// Mip 1's lights per tile on lamps at random places: no tile lists more than the cap, the
-// band below the block's threshold is all that the lights hold, and every tile's list holds
-// at least the band flux of the lights within reach of its centre (a node summed whole holds
-// all of its lights' flux), and at most the whole band's.
+// Lights per tile on lamps at random places. Mip 1's kind, a band below a block's threshold
+// within bandReach: no tile lists more than the cap, the threshold is as low as the cap
+// allows, and every tile's list holds the band's flux within reach of its centre. Mip 2's kind,
+// every light within the hemisphere and a threshold no lower than the one given: the same.
 TEST(BrightTexelSplit, TileLightsHoldTheBandNearEveryTile)
 {
     ImageRGB32F map(512, 256);
     std::fill(map.texels.begin(), map.texels.end(), 0.05f);
-    std::uint32_t state = 7;
-    auto next = [&state] { return (state = state * 1664525u + 1013904223u) >> 8; };
-    for (int lamp = 0; lamp < 200; ++lamp) {
-        const int x = int(next() % 512u), y = 40 + int(next() % 176u);
-        const float radiance = 50.0f + float(next() % 500u);
-        for (int c = 0; c < 3; ++c)
-            map.texels[map.offset(x, y) + std::size_t(c)] = radiance * (c == 0 ? 1.0f : 0.8f);
-    }
+    scatterLamps(map, 200, 40, 176, 50.0f, 500u, 0.8f, 7);
     const bake::BrightCandidates candidates = bake::brightCandidates(map, 4.0f, bake::kMaxBrightCandidates);
+    const int cap = 24;
+
     const double roughness = 0.1;
     const float upper = 400.0f;
-    const int faceSize = 64, cap = 24;
     const double reach = bake::bandReach(roughness);
-    const bake::TileLights band = bake::planTileLights(candidates, upper, roughness, faceSize, cap, reach);
-    ASSERT_EQ(band.tilesPerEdge, faceSize / bake::kTileLightsTile);
+    const bake::TileLights band = bake::planTileLights(candidates, upper, roughness, 64, cap, reach);
+    ASSERT_EQ(band.tilesPerEdge, 64 / bake::kTileLightsTile);
     EXPECT_LT(band.threshold, upper);
     EXPECT_GE(band.threshold, candidates.floorThreshold);
     EXPECT_LE(band.longestList, cap);
     EXPECT_GT(band.longestList, cap / 2); // the threshold is as low as the cap allows
-    double totalBand = 0.0;
-    for (const bake::BrightTexel& t : candidates.texels)
-        if (t.luminance > band.threshold)
-            totalBand += (std::min(double(t.luminance), double(upper)) - double(band.threshold)) * t.solidAngle;
-    const int tiles = band.tilesPerEdge;
-    for (int face = 0; face < 6; ++face)
-        for (int row = 0; row < tiles; ++row)
-            for (int column = 0; column < tiles; ++column) {
-                const glm::vec4 entry = band.buffer[std::size_t((face * tiles + row) * tiles + column)];
-                const glm::dvec3 centre = glm::normalize(glm::dvec3(cubeFaceUvToDirection(face, glm::vec2((column + 0.5f) / float(tiles), (row + 0.5f) / float(tiles)))));
-                double near = 0.0, listed = 0.0;
-                for (const bake::BrightTexel& t : candidates.texels)
-                    if (t.luminance > band.threshold && std::acos(std::clamp(glm::dot(centre, t.direction), -1.0, 1.0)) < reach)
-                        near += (std::min(double(t.luminance), double(upper)) - double(band.threshold)) * t.solidAngle;
-                for (int k = 0; k < int(entry.y); ++k)
-                    listed += double(luminance(glm::vec3(band.buffer[std::size_t(entry.x) + 2 * std::size_t(k) + 1])));
-                EXPECT_GE(listed, near * (1.0 - 1e-4)) << "tile " << face << " " << row << " " << column;
-                EXPECT_LE(listed, totalBand * (1.0 + 1e-4));
-            }
+    expectTilesHoldTheFluxNearThem(band, candidates, upper, reach);
+
+    const float infinite = std::numeric_limits<float>::infinity(), lowest = 450.0f;
+    // The tiles alone would take a lower threshold than `lowest`, which then sets it.
+    EXPECT_LT(bake::planTileLights(candidates, infinite, 0.23, 32, cap, 0.5 * kPi).threshold, lowest);
+    const bake::TileLights hemisphere = bake::planTileLights(candidates, infinite, 0.23, 32, cap, 0.5 * kPi, lowest);
+    ASSERT_EQ(hemisphere.tilesPerEdge, 32 / bake::kTileLightsTile);
+    EXPECT_GE(hemisphere.threshold, lowest);
+    EXPECT_GT(hemisphere.lights, 0);
+    EXPECT_LE(hemisphere.longestList, cap);
+    expectTilesHoldTheFluxNearThem(hemisphere, candidates, infinite, 0.5 * kPi);
 }
 
 } // namespace

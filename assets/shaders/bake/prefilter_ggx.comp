@@ -69,7 +69,7 @@ uniform int uTileLightsPerEdge;
 
 vec3 sumTileLights(vec3 n, ivec2 texel)
 {
-    const int tileTexels = 8;
+    const int tileTexels = 8; // cube_texel.glsl's work group, tile_lights.hpp's kTileLightsTile
     ivec2 tile = texel / tileTexels;
     vec4 list = tileLights[(outputFace() * uTileLightsPerEdge + tile.y) * uTileLightsPerEdge + tile.x];
     int first = int(list.x), end = first + 2 * int(list.y);
