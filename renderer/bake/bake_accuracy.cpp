@@ -76,6 +76,8 @@ public:
     {
         const std::size_t first = requests_.size();
         for (const glm::dvec3& d : directions) requests_.push_back({wide ? Kind::WidePrefilter : Kind::SharpPrefilter, d, roughness, {}});
+        if (!wide && roughness > 0.0 && !directions.empty())
+            smallestSharpRoughness_ = std::min(smallestSharpRoughness_, roughness);
         return first;
     }
     std::size_t irradiance(const std::vector<glm::dvec3>& normals)
@@ -101,8 +103,10 @@ public:
         return bytes;
     }
     std::size_t size() const { return requests_.size(); }
+    // The narrowest lobe summed over the full map: the resolution that map must have.
+    double smallestSharpRoughness() const { return smallestSharpRoughness_; }
 
-    std::vector<glm::dvec3> evaluate(const ImageRGB32F& environment, const ImageRGB32F& reduced, std::uint32_t lutSamples) const
+    std::vector<glm::dvec3> evaluate(const ImageRGB32F& sharp, const ImageRGB32F& reduced, std::uint32_t lutSamples) const
     {
         std::vector<glm::dvec3> values(requests_.size());
         auto batch = [&](Kind kind, const ImageRGB32F& map) {
@@ -121,7 +125,7 @@ public:
             const std::vector<glm::dvec3> results = kind == Kind::Irradiance ? sums.irradiance(normals) : sums.prefilteredRadiance(queries);
             for (std::size_t k = 0; k < slots.size(); ++k) values[slots[k]] = results[k];
         };
-        batch(Kind::SharpPrefilter, environment);
+        batch(Kind::SharpPrefilter, sharp);
         batch(Kind::WidePrefilter, reduced);
         batch(Kind::Irradiance, reduced);
         // The LUT's points are independent integrals: spread over threads.
@@ -150,6 +154,7 @@ private:
         GeometryTerm term;
     };
     std::vector<Request> requests_;
+    double smallestSharpRoughness_ = 1.0;
 };
 
 // <dir>/<key>.bin: "iblabref", the value count (uint64), then the values as 3 doubles each,
@@ -261,6 +266,9 @@ namespace {
 // Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
 bool isWide(float roughness) { return roughness >= 0.5f; }
 
+// Up to 16: a 64-wide map is summed 1024 wide, which resolves roughness 0.096.
+constexpr int kMaxReferenceUpsample = 16;
+
 // What one bake's errors measure, and where: every reference value is requested from one
 // list, each group of points keeping the first of its slots.
 struct MeasurePlan {
@@ -355,6 +363,10 @@ MeasurePlan planMeasurements(const BakeResult& result, const ImageRGB32F& enviro
                 plan.lutPoints.push_back({term, x, row, references.lut((x + 0.5) / lut.size, (row + 0.5) / lut.size, term)});
             }
     }
+    // A map too coarse for the narrowest lobe is summed as its bilinear upsample, the map the
+    // bake and the sky read: its texel centres alone would leave a lobe narrower than a texel
+    // between them (builtin:sun 160 wide read 0.116 at mip 1 against them).
+    plan.fullWidth = environment.width * referenceUpsampleFactor(environment.width, references.smallestSharpRoughness(), kMaxReferenceUpsample);
     return plan;
 }
 
@@ -365,8 +377,8 @@ std::vector<glm::dvec3> referenceValues(const MeasurePlan& plan, const BakeResul
 {
     std::filesystem::path cached;
     if (!options.referenceCacheDirectory.empty()) {
-        const std::string key = hex16(fnv1a(plan.references.digest(), fnv1a("iblab-reference-1|" + std::to_string(result.contentHash) + "|" +
-                                                                             std::to_string(plan.wideWidth) + "|" +
+        const std::string key = hex16(fnv1a(plan.references.digest(), fnv1a("iblab-reference-2|" + std::to_string(result.contentHash) + "|" +
+                                                                             std::to_string(plan.fullWidth) + "|" + std::to_string(plan.wideWidth) + "|" +
                                                                              std::to_string(options.lutReferenceSamples))));
         cached = options.referenceCacheDirectory / (key + ".bin");
         if (auto loaded = loadReferenceValues(cached, plan.references.size(), errors.notes)) {
@@ -374,8 +386,9 @@ std::vector<glm::dvec3> referenceValues(const MeasurePlan& plan, const BakeResul
             return std::move(*loaded);
         }
     }
+    const int upsample = plan.fullWidth / environment.width;
     std::vector<glm::dvec3> values = plan.references.evaluate(
-        environment, downsampleEquirectToWidth(environment, options.maxReferenceWidthForWideLobes), options.lutReferenceSamples);
+        upsample > 1 ? upsampleEquirectBilinear(environment, upsample) : environment, downsampleEquirectToWidth(environment, options.maxReferenceWidthForWideLobes), options.lutReferenceSamples);
     if (!cached.empty()) storeReferenceValues(cached, values, errors.notes);
     return values;
 }

@@ -246,7 +246,7 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
     const BakeSettings& s = result.settings;
     const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
 
-    const int face = environmentFaceSize(s.cube, result.sourceWidth, result.sourceHeight);
+    const int face = bakeEnvironmentFaceSize(s, result.sourceWidth, result.sourceHeight);
     const int levels = std::bit_width(unsigned(face));
     result.environmentCube = createCubeTexture(format, face, levels);
     uploadStoredCubeLevel(result.environmentCube, 0, readStoredCubeExr(directory / "environment.exr", face, format));

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "bake/near_lights.hpp"
+#include "ibl/reference.hpp"
 #include "gl/pass_timer.hpp"
 #include "io/error.hpp"
 
@@ -99,6 +100,10 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const Bake
     result_.contentHash = environment.contentHash;
     result_.sourceWidth = image_.width;
     result_.sourceHeight = image_.height;
+    // The job reads a map too coarse for mip 1's lobe as its bilinear upsample; the result
+    // still names the map's own size, from which the cache's record plans the same job.
+    if (const int factor = imported_ ? 1 : bakeSourceUpsampleFactor(result_.settings.prefilter, image_.width); factor > 1)
+        image_ = upsampleEquirectBilinear(image_, factor);
     plan();
 }
 
@@ -243,13 +248,15 @@ void BakeJob::plan()
     }
     const BakeSettings& s = result_.settings;
     const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
-    const double sourceTexels = double(result_.sourceWidth) * double(result_.sourceHeight);
-    const int envFace = environmentFaceSize(s.cube, result_.sourceWidth, result_.sourceHeight);
+    const int upsample = bakeSourceUpsampleFactor(s.prefilter, result_.sourceWidth);
+    const int sourceWidth = result_.sourceWidth * upsample, sourceHeight = result_.sourceHeight * upsample;
+    const double sourceTexels = double(sourceWidth) * double(sourceHeight);
+    const int envFace = bakeEnvironmentFaceSize(s, result_.sourceWidth, result_.sourceHeight);
     const int envLevels = std::bit_width(unsigned(envFace)); // full chain down to 1x1
     // No pixels: a job from the cache's record of the file (the constructor's second form).
     const bool cacheOnly = image_.empty();
 
-    const int equirectLevels = BakePasses::equirectLevelsForCube(result_.sourceWidth, result_.sourceHeight, envFace);
+    const int equirectLevels = BakePasses::equirectLevelsForCube(sourceWidth, sourceHeight, envFace);
     steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost, [this, equirectLevels] {
                           passes_.compileFor(result_.settings, equirectLevels, compilesLut(result_.settings, cache_));
                       }});

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ibl/prefilter_lod.hpp"
+#include "ibl/reference.hpp"
 #include "io/error.hpp"
 
 namespace iblab::bake {
@@ -160,6 +161,15 @@ int irradianceFaceSize(const BakeSettings& s)
     return 0;
 }
 
+int bakeSourceUpsampleFactor(const PrefilterSettings& settings, int width)
+{
+    if (settings.levels < 2 || width <= 0)
+        return 1;
+    const float roughness = prefilterMipRoughness(settings, 1);
+    // Up to 16: a 64-wide map baked as a 1024-wide one.
+    return roughness > 0.0f ? referenceUpsampleFactor(width, roughness, 16) : 1;
+}
+
 int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int height)
 {
     if (settings.faceSize > 0)
@@ -170,6 +180,12 @@ int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int 
     while (2.0 * f <= limit && 2 * f <= settings.maxFaceSize)
         f *= 2;
     return f;
+}
+
+int bakeEnvironmentFaceSize(const BakeSettings& settings, int width, int height)
+{
+    const int factor = bakeSourceUpsampleFactor(settings.prefilter, width);
+    return environmentFaceSize(settings.cube, width * factor, height * factor);
 }
 
 const FieldTable<BakeSettings>& bakeSettingsFields()

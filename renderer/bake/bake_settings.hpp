@@ -229,6 +229,10 @@ void validate(const BakeSettings& settings);
 
 // The face size the environment cube gets for a width x height equirect.
 int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int height);
+// The face size a bake with these settings gives it: as for the map upsampled by
+// bakeSourceUpsampleFactor, so that a coarse map's cube is as fine as mip 1's lobe needs (the
+// cube's texels are the map's bilinear reads either way).
+int bakeEnvironmentFaceSize(const BakeSettings& settings, int width, int height);
 // The face size of the irradiance cube settings.irradiance bakes (0 for None).
 int irradianceFaceSize(const BakeSettings& settings);
 
@@ -242,6 +246,18 @@ std::string lutJsonText(int size, int samples, GeometryTerm term, bool multiscat
 
 // The roughness prefiltered mip `level` holds, and its inverse, for these settings.
 float prefilterMipRoughness(const PrefilterSettings& settings, int level);
+
+// How many times finer than a map of this width the bake reads it
+// (upsampleEquirectBilinear, the map as the sky and the GPU's sampler read it): enough
+// for a sum over its texels to resolve mip 1's lobe, as the reference's sums do
+// (referenceUpsampleFactor). The job bakes from that upsample (its cube, SH, lights and
+// bases alike); from the map's own texels a coarse map's cube is coarser than that lobe and
+// each bright texel a point light wider than it: builtin:sun 160 wide read 0.116 at mip 1
+// (0.215 against the upsampled reference). The lights alone from the upsample, with a finer
+// cube but the rest from the map's texels, read 0.34 (not looked into: the bases near the
+// lights are resampled from the map as uploaded). 1 where the map is fine enough or the
+// prefilter has no rough mip.
+int bakeSourceUpsampleFactor(const PrefilterSettings& settings, int width);
 
 } // namespace iblab::bake
 

@@ -111,4 +111,15 @@ ImageRGB32F downsampleEquirectToWidth(const ImageRGB32F& env, int maxWidth);
 // texel wide and 100x their surroundings (tests/cpu/reference_test.cpp).
 double referenceMinResolvedRoughness(int width);
 
+// env with every texel split into factor x factor, each the bilinear interpolation of env at
+// its centre, wrapping in longitude and clamped at the poles as the GPU's sampler reads it
+// (GL_REPEAT / GL_CLAMP_TO_EDGE, bake_passes.cpp). A reference over a map too coarse for a
+// lobe (referenceMinResolvedRoughness) sums this instead: the continuous map that the sky and
+// the bake's environment cube show, resolved finely enough for the midpoint rule.
+ImageRGB32F upsampleEquirectBilinear(const ImageRGB32F& env, int factor);
+
+// The smallest power-of-two factor that upsampleEquirectBilinear needs for a reference over
+// env to resolve roughness (referenceMinResolvedRoughness), at most maxFactor.
+int referenceUpsampleFactor(int width, double roughness, int maxFactor);
+
 } // namespace iblab

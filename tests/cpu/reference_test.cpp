@@ -214,6 +214,29 @@ TEST(Reference, MinResolvedRoughnessIsResolvedByTheCoarseMap)
     EXPECT_GT(wellBelow, 3.0 * atBound);
 }
 
+// The upsample is the GPU sampler's bilinear read (wrapping in longitude, clamped at the
+// poles) at each finer texel's centre, on a map whose every texel differs, seam and poles
+// included; and a reference over it still integrates the map's power.
+TEST(Reference, UpsampleIsTheBilinearReadOfTheMap)
+{
+    const auto coarse = iblab::paintEquirect(12, 6, [](glm::dvec3 w) { return glm::vec3(1.0 + w.x + 2.0 * w.z * w.z, 2.0 + w.y, 3.0 - w.x * w.y); });
+    for (int factor : {2, 4}) {
+        const auto fine = iblab::upsampleEquirectBilinear(coarse, factor);
+        ASSERT_EQ(fine.width, 12 * factor);
+        ASSERT_EQ(fine.height, 6 * factor);
+        for (int y = 0; y < fine.height; ++y)
+            for (int x = 0; x < fine.width; ++x) {
+                const glm::vec3 expected = iblab::sampleEquirectBilinear(coarse, iblab::equirectTexelDirection(x, y, fine.width, fine.height));
+                const glm::vec3 got = fine.at(x, y);
+                for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], expected[c], 1e-5f) << factor << " " << x << "," << y;
+            }
+    }
+    EXPECT_THROW(iblab::upsampleEquirectBilinear(coarse, 0), std::invalid_argument);
+    EXPECT_EQ(iblab::referenceUpsampleFactor(1024, 0.1, 16), 1);
+    EXPECT_EQ(iblab::referenceUpsampleFactor(512, 0.1, 16), 2);
+    EXPECT_EQ(iblab::referenceUpsampleFactor(64, 0.01, 16), 16);
+}
+
 } // namespace
 
 namespace {

@@ -3,6 +3,7 @@
 // double), the CPU SH projection and the CPU BRDF LUT. Small inputs so that every test runs
 // in well under a second on llvmpipe.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include <glm/glm.hpp>
@@ -99,9 +100,13 @@ TEST_F(GlTest, PrefilteredMipsMatchTheExactReference)
     const bake::BakeResult result = runBake(shaders, env, settings);
     ASSERT_EQ(result.prefiltered.levels, 5);
 
-    // The mirror level is the environment cube's mip with the same texel size, copied.
+    // The mirror level is the environment cube's mip with the same texel size, copied. The
+    // cube is as fine as mip 1's lobe needs (bakeEnvironmentFaceSize), finer than this
+    // 128-wide map's own 32^2.
     const bake::CubeImage mirror = bake::readCubeLevel(result.prefiltered, 0);
-    const bake::CubeImage source = bake::readCubeLevel(result.environmentCube, 1);
+    const int mirrorLevel = std::countr_zero(unsigned(result.environmentCube.size / mirror.size));
+    ASSERT_GT(mirrorLevel, 0);
+    const bake::CubeImage source = bake::readCubeLevel(result.environmentCube, mirrorLevel);
     ASSERT_EQ(mirror.size, source.size);
     // Equal but for the rounding of the trilinear fetch at integral lod and texel centres
     // (llvmpipe's fixed-point filter weights): a couple of half-float ulps, 2^-10 relative.
@@ -109,30 +114,35 @@ TEST_F(GlTest, PrefilteredMipsMatchTheExactReference)
         for (int c = 0; c < 3; ++c)
             ASSERT_NEAR(mirror.texels[i][c], source.texels[i][c], 2e-3 * std::abs(source.texels[i][c])) << "texel " << i;
 
-    // Filament's layout as well, from mip 2 (roughness 0.23): mip 1's lobe (roughness 0.11,
-    // about 1.3 degrees) is narrower than a texel of this small environment's 32^2 cube (2.8
-    // degrees), so there the comparison would measure the test map's resolution, not the
-    // sampling. docs/bake.md measures it on the full-size maps.
+    // Filament's layout as well, mip 1 (roughness 0.11, a lobe of about 1.3 degrees, narrower
+    // than this map's 2.8-degree texels) included: against the map as the bake and the sky
+    // read it, its bilinear upsample, as fine as the lobe needs (referenceUpsampleFactor).
     bake::BakeSettings quadraticSettings = settings;
     quadraticSettings.prefilter.layout = bake::RoughnessLayout::Quadratic;
     quadraticSettings.prefilter.faceSize = 32;
     quadraticSettings.prefilter.levels = 6;
     const bake::BakeResult quadratic = runBake(shaders, env, quadraticSettings);
     for (const bake::BakeResult* checked : {&result, &quadratic}) {
-    const int firstLevel = checked == &quadratic ? 2 : 1;
-    for (int level = firstLevel; level < checked->prefiltered.levels; ++level) {
+    for (int level = 1; level < checked->prefiltered.levels; ++level) {
         const bake::CubeImage image = bake::readCubeLevel(checked->prefiltered, level);
         const double roughness = bake::prefilterMipRoughness(checked->settings.prefilter, level);
-        double err2 = 0.0;
-        double ref2 = 0.0;
+        const int upsample = referenceUpsampleFactor(env.image.width, roughness, 16);
+        const ZonalReference exact(upsample > 1 ? upsampleEquirectBilinear(env.image, upsample) : env.image);
+        std::vector<ZonalReference::PrefilterQuery> queries;
         for (int face = 0; face < 6; ++face)
             for (int row = 0; row < image.size; ++row)
-                for (int x = 0; x < image.size; ++x) {
-                    const glm::dvec3 n = glm::normalize(glm::dvec3(image.texelDirection(face, x, row)));
-                    const glm::dvec3 ref = referencePrefilteredRadiance(env.image, n, roughness);
-                    const glm::dvec3 d = glm::dvec3(image.rgb(face, x, row)) - ref;
+                for (int x = 0; x < image.size; ++x)
+                    queries.push_back({glm::normalize(glm::dvec3(image.texelDirection(face, x, row))), roughness});
+        const std::vector<glm::dvec3> refs = exact.prefilteredRadiance(queries);
+        double err2 = 0.0;
+        double ref2 = 0.0;
+        std::size_t i = 0;
+        for (int face = 0; face < 6; ++face)
+            for (int row = 0; row < image.size; ++row)
+                for (int x = 0; x < image.size; ++x, ++i) {
+                    const glm::dvec3 d = glm::dvec3(image.rgb(face, x, row)) - refs[i];
                     err2 += glm::dot(d, d);
-                    ref2 += glm::dot(ref, ref);
+                    ref2 += glm::dot(refs[i], refs[i]);
                 }
         // Relative RMSE over every texel of the mip. What remains with 64..512 filtered
         // samples is the filtered-importance-sampling bias (each sample reads a box-filtered
@@ -378,7 +388,9 @@ TEST_F(GlTest, ShIrradianceOfASmallLightIsWithinTheSh9TruncationError)
     bake::BakeSettings settings = smallBakeSettings();
     settings.sh.device = bake::ShDevice::Gpu; // the other device than the default, through the job
     const bake::BakeResult result = runBake(shaders, env, settings);
-    const SH9Color cpu = convolveWithCosineLobe(projectEquirect(env.image));
+    // The map the job reads: this 128-wide one upsampled for mip 1 (bakeSourceUpsampleFactor).
+    const int upsample = bake::bakeSourceUpsampleFactor(settings.prefilter, env.image.width);
+    const SH9Color cpu = convolveWithCosineLobe(projectEquirect(upsample > 1 ? upsampleEquirectBilinear(env.image, upsample) : env.image));
     double worstAgainstCpu = 0.0;
     double worstAgainstExact = 0.0;
     double peak = 0.0;

@@ -154,6 +154,20 @@ TEST_F(GlTest, BrightSunMeetsThePerMipBoundAtEveryMip)
     }
 }
 
+// A map coarser than mip 1's lobe (about 1.3 degrees; a texel of a 160-wide map is 2.25):
+// the sun is one texel, which the bake and the reference both read as the map's bilinear
+// upsample (bakeSourceUpsampleFactor, referenceUpsampleFactor). Baked from the map's own
+// texels, its cube 32 wide and each bright texel a point light, mip 1 read 0.145 and 0.215
+// against the upsampled reference (0.081 and 0.116 against the texel centres).
+TEST_F(GlTest, BrightSunOnACoarseMapMeetsThePerMipBoundAtEveryMip)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    for (int width : {128, 160}) {
+        const std::string spec = "builtin:sun?width=" + std::to_string(width) + "&size=0.5&intensity=1e4";
+        expectWithinPerMipBound(perMipErrors(shaders, spec, brightTexelsSplit()), spec);
+    }
+}
+
 TEST_F(GlTest, BrightSunDoesNotDependOnTheSampleSetsRotation)
 {
     // The sample table is one set for every texel; turned about the normal, the sampled base
