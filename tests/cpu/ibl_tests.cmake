@@ -11,3 +11,7 @@ iblab_add_cpu_test(error_metrics_test ${CMAKE_CURRENT_SOURCE_DIR}/error_metrics_
 iblab_add_cpu_test(lobe_table_smoothness_test ${CMAKE_CURRENT_SOURCE_DIR}/lobe_table_smoothness_test.cpp)
 # The fitted lobe's shading lights: which groups, their flux, the residual chain, bake.json's form.
 iblab_add_cpu_test(shading_lights_test ${CMAKE_CURRENT_SOURCE_DIR}/shading_lights_test.cpp)
+# The fitted lobe's read floor (accuracy_study's read_floor.cpp, compiled in).
+iblab_add_cpu_test(lobe_read_floor_test ${CMAKE_CURRENT_SOURCE_DIR}/lobe_read_floor_test.cpp
+                   ${PROJECT_SOURCE_DIR}/renderer/lab/accuracy_study/read_floor.cpp)
+target_include_directories(lobe_read_floor_test PRIVATE ${PROJECT_SOURCE_DIR}/renderer/lab/accuracy_study)

@@ -90,6 +90,9 @@ struct StudyOptions {
     // units. 0: cells fitted alone, as before.
     double smooth = 0.0;
     int smoothPasses = 4;
+    // No read sharper than the lobe it stands for (read_floor.hpp): each cell's reads kept at
+    // or above readRoughnessFloor's roughness.
+    bool readFloor = false;
     // Leave-one-out (scripts/fit-lobe-loo.sh): fit on the bundled maps but this one (its
     // study name, e.g. city), to measure the table on a map it has not seen.
     std::string leaveOut;

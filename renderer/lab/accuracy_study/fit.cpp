@@ -22,6 +22,7 @@
 #include <stdexcept>
 
 #include "ibl/brdf_lut.hpp"
+#include "read_floor.hpp"
 
 namespace iblab::accuracy {
 namespace {
@@ -140,6 +141,7 @@ public:
         : col(cellCol), row(cellRow), NdotV((cellCol + 0.5) / a.size), roughness((cellRow + 0.5) / a.size), options_(&a), maps_(envs.size())
     {
         lut_ = lut().sample(NdotV, roughness);
+        if (a.readFloor) floor_ = readRoughnessFloor(NdotV, roughness, kTerm);
         // The compensation (--no-multiscatter: none) is a constant of the cell for each F0.
         compensationCopper_ = a.multiscatter ? specularEnergyCompensation(kCopper, lut_.z) : glm::dvec3(1.0);
         compensationDielectric_ = a.multiscatter ? specularEnergyCompensation(glm::dvec3(kDielectricF0), lut_.z) : glm::dvec3(1.0);
@@ -184,6 +186,17 @@ public:
         }
         for (std::size_t m = 0; m < perMap.size(); ++m) e += perMap[m] / std::max(splitSumPerMap_[m], 1e-12);
         return e / double(perMap.size());
+    }
+
+    // A candidate's parameters as a cell, its reads no sharper than --read-floor allows.
+    Cell cellFrom(int taps, const std::vector<double>& x) const
+    {
+        Cell c = cellFromParameters(taps, x);
+        if (taps < 3) return c; // the floors are per term of the Fresnel split
+        c[0].y = std::max(c[0].y, float(floor_.a));
+        c[0].w = std::max(c[0].w, float(floor_.b));
+        if (taps == 4) c[1].y = std::max(c[1].y, float(floor_.a));
+        return c;
     }
 
     int col, row;
@@ -239,20 +252,21 @@ private:
     glm::dvec3 lut_;                     // the split-sum LUT's (A, B, A + B) at the cell
     glm::dvec3 compensationCopper_{1.0}, compensationDielectric_{1.0};
     std::vector<double> splitSumPerMap_; // --per-map-ratio's denominators
+    ReadRoughnessFloor floor_;           // --read-floor's; zero without it
 };
 
 // The cell fitted alone, from where --init (or, without one, the split sum) puts it; `value`
 // is its objective.
 Cell fitAlone(const CellProblem& cell, const LobeFitTable& initTable, int taps, const Cell& splitSum, double& value)
 {
-    auto f = [&](const std::vector<double>& x) { return cell.objective(cellFromParameters(taps, x)); };
+    auto f = [&](const std::vector<double>& x) { return cell.objective(cell.cellFrom(taps, x)); };
     const double roughness = cell.roughness;
     Cell best = splitSum;
     value = cell.objective(splitSum);
     auto tryFrom = [&](const std::vector<double>& x0, const std::vector<double>& step, int iterations) {
         const std::vector<double> x = nelderMead(f, x0, step, iterations);
         const double v = f(x);
-        if (v < value) value = v, best = cellFromParameters(taps, x);
+        if (v < value) value = v, best = cell.cellFrom(taps, x);
     };
     if (taps == 4) {
         // From --init's Fresnel split (its A read kept, the second A read at weight 1/4):
@@ -334,21 +348,21 @@ public:
     Cell refit(const CellProblem& cell, const Cell& current, const std::vector<std::vector<double>>& lines) const
     {
         auto f = [&](const std::vector<double>& x) {
-            const Cell c = cellFromParameters(taps_, x);
+            const Cell c = cell.cellFrom(taps_, x);
             return cell.objective(c) + penalty(c, lines);
         };
         std::vector<std::vector<double>> starts{parametersOf(taps_, current)};
         if (!lines.empty()) {
             std::vector<double> mean(starts[0].size(), 0.0);
             for (const std::vector<double>& line : lines) mean = combination(mean, 1.0, line, 1.0 / double(lines.size()));
-            starts.push_back(parametersOf(taps_, cellFromParameters(taps_, mean)));
+            starts.push_back(parametersOf(taps_, cell.cellFrom(taps_, mean)));
         }
         Cell best = current;
         double bestValue = f(starts[0]);
         for (const std::vector<double>& x0 : starts) {
             const std::vector<double> x = nelderMead(f, x0, std::vector<double>(x0.size(), 0.08), 150);
             const double v = f(x);
-            if (v < bestValue) bestValue = v, best = cellFromParameters(taps_, x);
+            if (v < bestValue) bestValue = v, best = cell.cellFrom(taps_, x);
         }
         return best;
     }

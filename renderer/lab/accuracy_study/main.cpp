@@ -21,7 +21,7 @@ const char* const kUsage =
     "                           [--bench-scenes] [--bakes DIR] [--lights]\n"
     "       accuracy_study fit  [--width 256] [--taps 1|2|3|4] [--frames 96] [--size 16] [--out FILE.inc]\n"
     "                           [--min-roughness 0.15] [--mixed-objective] [--init TABLE.inc] [--seed 14] [--bakes DIR]\n"
-    "                           [--per-map-ratio] [--smooth 0] [--smooth-passes 4] [--leave-out MAP] [--lights]\n"
+    "                           [--per-map-ratio] [--smooth 0] [--smooth-passes 4] [--leave-out MAP] [--lights] [--read-floor]\n"
     "                           [--env PATH|builtin:SPEC ...]\n"
     "eval measures every method against the full integral on the bench's scenes (markdown on stdout);\n"
     "fit refits the lobe table on the 8 bundled maps (renderer/ibl/specular_lobe_fit.inc by default).\n"
@@ -32,6 +32,7 @@ const char* const kUsage =
     "--lights: with --bakes, each bake's shading lights (bake.json) and its mips less them, as the renderer shades\n"
     "the fitted lobe; eval adds <method>+lights, fit fits the table that way.\n"
     "--leave-out MAP: fit on the bundled maps but MAP (leave-one-out; scripts/fit-lobe-loo.sh).\n"
+    "--read-floor: fit reads no sharper than the lobe each stands for (read_floor.hpp: equal effective solid angle).\n"
     "fit --env: fit on these maps instead of the bundled ones (a diagnostic: the best the layout does on them).\n"
     "See docs/accuracy-study.md. Caches: <build>/accuracy_cache (delete it to recompute).\n";
 
@@ -93,6 +94,7 @@ int main(int argc, char** argv)
             else if (k == "--smooth") a.smooth = std::stod(next());
             else if (k == "--smooth-passes") a.smoothPasses = std::stoi(next());
             else if (k == "--leave-out") a.leaveOut = next();
+            else if (k == "--read-floor") a.readFloor = true;
             else {
                 std::fprintf(stderr, "unknown option %s\n%s", k.c_str(), kUsage);
                 return 2;

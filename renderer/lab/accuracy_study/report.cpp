@@ -98,6 +98,7 @@ std::string lobeTableInclude(const LobeFitTable& table, const StudyOptions& a)
     if (a.smooth > 0.0) o << " --smooth " << a.smooth << " --smooth-passes " << a.smoothPasses;
     if (!a.leaveOut.empty()) o << " --leave-out " << a.leaveOut;
     if (a.lights) o << " --lights";
+    if (a.readFloor) o << " --read-floor";
     o << "` on the " << (a.leaveOut.empty() ? "8 bundled maps" : "bundled maps but " + a.leaveOut) << "\n"
       << "// (assets/environments), " << a.frames << " random (n, v) per map and cell; objective: the mean squared per-pixel\n"
       << "// relative error (common/error_metrics.glsl) of copper's specular plus that of a dielectric's specular + diffuse\n"
