@@ -172,6 +172,7 @@ ordered_json bakeReportJson(const bake::BakeSettings& settings, const MapBake& m
     ordered_json j;
     j["source"] = result.source;
     j["source_size"] = {result.sourceWidth, result.sourceHeight};
+    j["source_upsample"] = result.sourceUpsample;
     j["renderer"] = gl::describeCurrentContext();
     j["malloc_huge_pages"] = mallocHugePages();
     j["preset"] = settings.preset;

@@ -119,6 +119,9 @@ std::optional<StatusReport> LabSession::finishBake()
     char gpuMemory[48];
     std::snprintf(gpuMemory, sizeof gpuMemory, ", %.1f MiB of GPU memory", double(result->gpuBytes()) / (1024.0 * 1024.0));
     std::string text = "baked in " + std::to_string(int(result->totalMilliseconds + 0.5)) + " ms" + (result->fromCache ? " (from cache)" : "") + gpuMemory;
+    if (result->sourceUpsample > 1)
+        text += "; from its " + std::to_string(result->sourceWidth * result->sourceUpsample) + "x" +
+                std::to_string(result->sourceHeight * result->sourceUpsample) + " bilinear upsample, as fine as mip 1 needs";
     for (const auto& note : result->notes) text += "; " + note;
     bake_ = result;
     renderer_.setBake(bake_);

@@ -102,8 +102,9 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const Bake
     result_.sourceHeight = image_.height;
     // The job reads a map too coarse for mip 1's lobe as its bilinear upsample; the result
     // still names the map's own size, from which the cache's record plans the same job.
-    if (const int factor = imported_ ? 1 : bakeSourceUpsampleFactor(result_.settings.prefilter, image_.width); factor > 1)
-        image_ = upsampleEquirectBilinear(image_, factor);
+    result_.sourceUpsample = imported_ ? 1 : bakeSourceUpsampleFactor(result_.settings.prefilter, image_.width);
+    if (result_.sourceUpsample > 1)
+        image_ = upsampleEquirectBilinear(image_, result_.sourceUpsample);
     plan();
 }
 
@@ -119,6 +120,7 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, const std::string& source, const Ba
     result_.contentHash = record.contentHash;
     result_.sourceWidth = record.width;
     result_.sourceHeight = record.height;
+    result_.sourceUpsample = bakeSourceUpsampleFactor(settings.prefilter, record.width);
     plan();
 }
 
@@ -248,8 +250,7 @@ void BakeJob::plan()
     }
     const BakeSettings& s = result_.settings;
     const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
-    const int upsample = bakeSourceUpsampleFactor(s.prefilter, result_.sourceWidth);
-    const int sourceWidth = result_.sourceWidth * upsample, sourceHeight = result_.sourceHeight * upsample;
+    const int sourceWidth = result_.sourceWidth * result_.sourceUpsample, sourceHeight = result_.sourceHeight * result_.sourceUpsample;
     const double sourceTexels = double(sourceWidth) * double(sourceHeight);
     const int envFace = bakeEnvironmentFaceSize(s, result_.sourceWidth, result_.sourceHeight);
     const int envLevels = std::bit_width(unsigned(envFace)); // full chain down to 1x1

@@ -68,6 +68,9 @@ struct BakeResult {
     std::uint64_t contentHash = 0;  // Environment::contentHash of the input pixels
     int sourceWidth = 0;
     int sourceHeight = 0;
+    // The map was baked from its bilinear upsample by this factor (bakeSourceUpsampleFactor;
+    // 1: from its own texels, as every imported bake).
+    int sourceUpsample = 1;
 
     BakedTexture environmentCube;      // radiance, full mip chain (box-filtered per face)
     BakedTexture irradianceCube; // E, 1 level, baked by settings.irradiance; empty for IrradianceMethod::None
