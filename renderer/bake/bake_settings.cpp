@@ -161,13 +161,23 @@ int irradianceFaceSize(const BakeSettings& s)
     return 0;
 }
 
+namespace {
+constexpr int kMaxUpsampledBakeWidth = 1024;
+} // namespace
+
 int bakeSourceUpsampleFactor(const PrefilterSettings& settings, int width)
 {
     if (settings.levels < 2 || width <= 0)
         return 1;
     const float roughness = prefilterMipRoughness(settings, 1);
-    // Up to 16: a 64-wide map baked as a 1024-wide one.
-    return roughness > 0.0f ? referenceUpsampleFactor(width, roughness, 16) : 1;
+    if (!(roughness > 0.0f))
+        return 1;
+    // Never past the first power of two at or above 1024 wide: the default's mip 1 (roughness
+    // 0.106) needs 845, and a preset with a sharper mip 1 would otherwise bake a 1024-wide map
+    // at 4096 (roughness 0.05), its cube 1024 wide, several times the bake's time and memory.
+    int factor = referenceUpsampleFactor(width, roughness, 16);
+    while (factor > 1 && width * (factor / 2) >= kMaxUpsampledBakeWidth) factor /= 2;
+    return factor;
 }
 
 int environmentFaceSize(const EnvironmentCubeSettings& settings, int width, int height)

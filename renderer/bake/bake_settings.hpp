@@ -256,7 +256,7 @@ float prefilterMipRoughness(const PrefilterSettings& settings, int level);
 // (0.215 against the upsampled reference). The lights alone from the upsample, with a finer
 // cube but the rest from the map's texels, read 0.34 (not looked into: the bases near the
 // lights are resampled from the map as uploaded). 1 where the map is fine enough or the
-// prefilter has no rough mip.
+// prefilter has no rough mip; never more than it takes to reach 1024 wide.
 int bakeSourceUpsampleFactor(const PrefilterSettings& settings, int width);
 
 } // namespace iblab::bake

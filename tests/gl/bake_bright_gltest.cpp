@@ -168,6 +168,29 @@ TEST_F(GlTest, BrightSunOnACoarseMapMeetsThePerMipBoundAtEveryMip)
     }
 }
 
+// Which maps are upsampled, and how far: as far as a sum over the texels resolves mip 1's
+// lobe (845 wide for the default's 0.106), in powers of two, never past 1024 wide once the map
+// is that wide, whatever a preset's mip 1 asks.
+TEST(BakeSource, UpsampledAsFarAsMipOneNeedsUpToAThousandWide)
+{
+    const bake::PrefilterSettings settings = bake::defaultPreset().prefilter;
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(settings, 1024), 1);
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(settings, 900), 1);
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(settings, 800), 2); // 845 needed
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(settings, 512), 2);
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(settings, 160), 8);
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(settings, 32), 16);
+    bake::PrefilterSettings sharp = settings;
+    sharp.levels = 9; // mip 1 at roughness 0.065: a sum over 2258 texels resolves it
+    ASSERT_LT(bake::prefilterMipRoughness(sharp, 1), 0.07f);
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(sharp, 1024), 1);
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(sharp, 512), 2);
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(sharp, 300), 4);
+    bake::PrefilterSettings mirrorOnly = settings;
+    mirrorOnly.levels = 1;
+    EXPECT_EQ(bake::bakeSourceUpsampleFactor(mirrorOnly, 64), 1);
+}
+
 TEST_F(GlTest, BrightSunDoesNotDependOnTheSampleSetsRotation)
 {
     // The sample table is one set for every texel; turned about the normal, the sampled base
