@@ -519,10 +519,10 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
     std::vector<std::uint8_t> marks;
     if (equirectTexture != 0 && plan.nearLightsFaceSize != environment.size)
         marks = nearLightsMarks(plan, environment.size);
-    const std::vector<std::uint8_t>& planned = plan.nearLightsFaceSize == environment.size ? plan.nearLightsMarks : marks;
+    const std::vector<std::uint8_t>& nearMarks = plan.nearLightsFaceSize == environment.size ? plan.nearLightsMarks : marks;
     NearLights nearLights;
-    if (equirectTexture != 0 && !planned.empty())
-        nearLights = {equirectTexture, &planned};
+    if (equirectTexture != 0 && !nearMarks.empty())
+        nearLights = {equirectTexture, &nearMarks};
     passes.clampedBases(environment, out.bases, baseThresholds, nearLights);
     auto baseFor = [&](float threshold) { return threshold == mip1Threshold ? 0 : 1; };
     out.levels.resize(plan.levels.size());
