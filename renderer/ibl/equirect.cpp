@@ -21,12 +21,8 @@ glm::dvec3 equirectTexelDirection(int x, int y, int width, int height)
     return glm::normalize(glm::dvec3(equirectUvToDirection(uv)));
 }
 
-glm::vec3 sampleEquirectBilinear(const ImageRGB32F& image, glm::dvec3 dir)
+glm::vec3 equirectBilinearAt(const ImageRGB32F& image, double fx, double fy)
 {
-    const glm::vec2 uv = directionToEquirectUv(glm::vec3(glm::normalize(dir)));
-    // Continuous texel coordinates whose integer values land on texel centres.
-    const double fx = double(uv.x) * image.width - 0.5;
-    const double fy = double(uv.y) * image.height - 0.5;
     const double x0f = std::floor(fx);
     const double y0f = std::floor(fy);
     const double tx = fx - x0f;
@@ -42,6 +38,13 @@ glm::vec3 sampleEquirectBilinear(const ImageRGB32F& image, glm::dvec3 dir)
     const glm::dvec3 top = glm::dvec3(image.at(xa, ya)) * (1.0 - tx) + glm::dvec3(image.at(xb, ya)) * tx;
     const glm::dvec3 bottom = glm::dvec3(image.at(xa, yb)) * (1.0 - tx) + glm::dvec3(image.at(xb, yb)) * tx;
     return glm::vec3(top * (1.0 - ty) + bottom * ty);
+}
+
+glm::vec3 sampleEquirectBilinear(const ImageRGB32F& image, glm::dvec3 dir)
+{
+    const glm::vec2 uv = directionToEquirectUv(glm::vec3(glm::normalize(dir)));
+    // Continuous texel coordinates whose integer values land on texel centres.
+    return equirectBilinearAt(image, double(uv.x) * image.width - 0.5, double(uv.y) * image.height - 0.5);
 }
 
 ImageRGB32F paintEquirect(int width, int height, const std::function<glm::vec3(glm::dvec3)>& radiance)

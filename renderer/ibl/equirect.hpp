@@ -44,6 +44,9 @@ void forEachEquirectTexel(int width, int height, Fn&& fn)
 // continuous), v clamps at the poles (no filtering across the pole). Matches a GL sampler
 // with GL_REPEAT in s and GL_CLAMP_TO_EDGE in t at mip 0.
 glm::vec3 sampleEquirectBilinear(const ImageRGB32F& image, glm::dvec3 dir);
+// The same read at continuous texel coordinates (texel centres at integers): wrapping in x,
+// clamped in y, as the GPU's sampler reads the map (GL_REPEAT / GL_CLAMP_TO_EDGE).
+glm::vec3 equirectBilinearAt(const ImageRGB32F& image, double fx, double fy);
 
 // An equirect image whose every texel holds radiance(direction of its centre): analytic
 // test environments and the procedural builtins are made this way.

@@ -436,23 +436,8 @@ ImageRGB32F upsampleEquirectBilinear(const ImageRGB32F& env, int factor)
     ImageRGB32F out(env.width * factor, env.height * factor);
     // Output texel i's centre in the source's continuous texel coordinates (centres at integers).
     auto source = [factor](int i) { return (double(i) + 0.5) / double(factor) - 0.5; };
-    for (int y = 0; y < out.height; ++y) {
-        const double fy = source(y);
-        const double y0f = std::floor(fy);
-        const double ty = fy - y0f;
-        const int ya = std::clamp(int(y0f), 0, env.height - 1);
-        const int yb = std::clamp(int(y0f) + 1, 0, env.height - 1);
-        for (int x = 0; x < out.width; ++x) {
-            const double fx = source(x);
-            const double x0f = std::floor(fx);
-            const double tx = fx - x0f;
-            const int xa = (int(x0f) % env.width + env.width) % env.width;
-            const int xb = (xa + 1) % env.width;
-            const glm::dvec3 top = glm::dvec3(env.at(xa, ya)) * (1.0 - tx) + glm::dvec3(env.at(xb, ya)) * tx;
-            const glm::dvec3 bottom = glm::dvec3(env.at(xa, yb)) * (1.0 - tx) + glm::dvec3(env.at(xb, yb)) * tx;
-            out.set(x, y, glm::vec3(top * (1.0 - ty) + bottom * ty));
-        }
-    }
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) out.set(x, y, equirectBilinearAt(env, source(x), source(y)));
     return out;
 }
 
