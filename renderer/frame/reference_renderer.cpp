@@ -40,7 +40,13 @@ const ImageRGB32F& ReferenceRenderer::environmentOfWidth(int width)
 {
     const std::pair<int, int> wanted{sourceGeneration_, width};
     if (environmentFor_ != wanted) {
-        environment_ = downsampleEquirectToWidth(source_, std::max(width, 2));
+        // A map narrower than the width asked for is summed as its bilinear upsample, at most
+        // that wide: the map as the sky shows it and as the bake reads a map too coarse for
+        // its mip 1 (bake_settings.hpp, bakeSourceUpsampleFactor), finely enough for the
+        // lobes the width resolves.
+        int upsample = 1;
+        while (upsample < 16 && source_.width * upsample * 2 <= width) upsample *= 2;
+        environment_ = upsample > 1 ? upsampleEquirectBilinear(source_, upsample) : downsampleEquirectToWidth(source_, std::max(width, 2));
         environmentFor_ = wanted;
     }
     return environment_;

@@ -140,7 +140,7 @@ FieldTable<FrameSettings> makeFrameFields()
          fieldRef<S>([](S& s) -> auto& { return s.view.errorScale; }),
          {.min = 1e-6, .max = 1e6, .ui = {.format = "%.3f", .min = 0.01, .max = 4, .logarithmic = true}}, "--error-scale", value},
         {"view.reference_width", "Reference map",
-         "Width of the environment the reference sums over, halved from the loaded map until it fits (height = width / 2)",
+         "Width of the environment the reference sums over: the loaded map halved until it fits, or a narrower map bilinearly upsampled up to it (height = width / 2)",
          fieldRef<S>([](S& s) -> auto& { return s.view.referenceWidth; }), {2, 4096}, "--reference-width", value},
         {"view.split", "Split view A | B", "Show settings B right of a divider", fieldRef<S>([](S& s) -> auto& { return s.view.split; })},
         // --split POSITION turns the split on and places the divider (app/cli.cpp).
