@@ -6,15 +6,16 @@
 // detail finer than every lobe (a texel-noise map, `noise` and `sparks` of
 // scripts/heldout-maps.py), the error of standing one lobe in for another is the L2 norm of
 // their difference, and a read much sharper than the lobe it stands for passes noise the true
-// lobe averages away: the table fitted without a floor read a roughness-0.28 cell at 0.12-0.14
-// and was 1.96 times the split sum's error on texel noise (docs/accuracy-study.md). The
+// lobe averages away: the committed table (fitted without a floor) reads a roughness-0.28
+// cell's F0 A term at 0.45-0.70 of that roughness (n.v 0.1-0.6), and is 1.96 times the split
+// sum's error on texel noise (docs/accuracy-study.md, where the floor is measured). The
 // measure of peakedness used here is a lobe's effective solid angle,
 //   Omega = (integral k)^2 / integral k^2,
 // the solid angle of a flat lobe that passes as much white noise. The floor of a read is the
-// roughness whose prefilter lobe has the Omega of the term it stands for (the LUT's F0 A term
-// for the A reads, its B term for the B read), at most the cell's own roughness: the table may
-// read as wide as it likes, and never sharper than the true lobe is, where the true lobe is
-// itself squeezed (grazing n.v) it may read sharper than the cell's roughness. Derived from
+// roughness whose read has the Omega of the term it stands for (the LUT's F0 A term for the A
+// reads, its B term for the B read), at most the cell's own roughness: the table may read as
+// wide as it likes and never sharper than the true lobe is; where the true lobe is itself
+// squeezed (grazing n.v), that is sharper than the cell's roughness. Derived from
 // the BRDF and the chain's mips alone: no map decides it. Not modelled: the bilinear read
 // within a mip (a texel's blur) and the bake's own error, which is larger at the sharp mips.
 #include "ibl/brdf.hpp"
