@@ -264,7 +264,8 @@ std::vector<glm::dvec3> fibonacciSphere(int n)
 namespace {
 
 // Wide lobes against the reduced map (AccuracyOptions::maxReferenceWidthForWideLobes).
-bool isWide(float roughness) { return roughness >= 0.5f; }
+constexpr float kNarrowestWideLobe = 0.5f;
+bool isWide(float roughness) { return roughness >= kNarrowestWideLobe; }
 
 // Up to 16: a 64-wide map is summed 1024 wide, which resolves roughness 0.096.
 constexpr int kMaxReferenceUpsample = 16;
@@ -315,7 +316,11 @@ MeasurePlan planMeasurements(const BakeResult& result, const ImageRGB32F& enviro
     ReferenceList& references = plan.references;
     const BakedTexture& pre = result.prefiltered;
     plan.fullWidth = environment.width;
-    plan.wideWidth = reducedWidth(environment.width, environment.height, options.maxReferenceWidthForWideLobes);
+    // The wide lobes' map: halved down to the option's width, or, a map too coarse for the
+    // narrowest wide lobe (roughness 0.5: 38 texels), its bilinear upsample as below.
+    const int wideUpsample = referenceUpsampleFactor(environment.width, kNarrowestWideLobe, kMaxReferenceUpsample);
+    plan.wideWidth = wideUpsample > 1 ? environment.width * wideUpsample
+                                      : reducedWidth(environment.width, environment.height, options.maxReferenceWidthForWideLobes);
     for (int level = 0; level < pre.levels; ++level) {
         MeasurePlan::Level l;
         const CubeImage geometry(std::max(pre.size >> level, 1));
@@ -386,9 +391,11 @@ std::vector<glm::dvec3> referenceValues(const MeasurePlan& plan, const BakeResul
             return std::move(*loaded);
         }
     }
-    const int upsample = plan.fullWidth / environment.width;
+    const int upsample = plan.fullWidth / environment.width, wideUpsample = plan.wideWidth / environment.width;
     std::vector<glm::dvec3> values = plan.references.evaluate(
-        upsample > 1 ? upsampleEquirectBilinear(environment, upsample) : environment, downsampleEquirectToWidth(environment, options.maxReferenceWidthForWideLobes), options.lutReferenceSamples);
+        upsample > 1 ? upsampleEquirectBilinear(environment, upsample) : environment,
+        wideUpsample > 1 ? upsampleEquirectBilinear(environment, wideUpsample) : downsampleEquirectToWidth(environment, options.maxReferenceWidthForWideLobes),
+        options.lutReferenceSamples);
     if (!cached.empty()) storeReferenceValues(cached, values, errors.notes);
     return values;
 }

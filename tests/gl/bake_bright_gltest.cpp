@@ -168,6 +168,16 @@ TEST_F(GlTest, BrightSunOnACoarseMapMeetsThePerMipBoundAtEveryMip)
     }
 }
 
+// A map too coarse even for the wide lobes (8 x 4; roughness 0.5 needs 38 texels): the bake
+// reads its upsample, and so do the wide lobes' references. Against its texel centres mips 4
+// and 5 read 0.085 and 0.051.
+TEST_F(GlTest, ATinyMapMeetsThePerMipBoundAtEveryMip)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const std::string spec = "builtin:sky?width=8";
+    expectWithinPerMipBound(perMipErrors(shaders, spec, brightTexelsSplit()), spec);
+}
+
 // Which maps are upsampled, and how far: as far as a sum over the texels resolves mip 1's
 // lobe (845 wide for the default's 0.106), in powers of two, never past 1024 wide once the map
 // is that wide, whatever a preset's mip 1 asks.
