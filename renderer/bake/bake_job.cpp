@@ -252,7 +252,7 @@ void BakeJob::plan()
     const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
     const int sourceWidth = result_.sourceWidth * result_.sourceUpsample, sourceHeight = result_.sourceHeight * result_.sourceUpsample;
     const double sourceTexels = double(sourceWidth) * double(sourceHeight);
-    const int envFace = bakeEnvironmentFaceSize(s, result_.sourceWidth, result_.sourceHeight);
+    const int envFace = environmentFaceSize(s.cube, sourceWidth, sourceHeight); // bakeEnvironmentFaceSize's
     const int envLevels = std::bit_width(unsigned(envFace)); // full chain down to 1x1
     // No pixels: a job from the cache's record of the file (the constructor's second form).
     const bool cacheOnly = image_.empty();

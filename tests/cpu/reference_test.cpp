@@ -216,7 +216,7 @@ TEST(Reference, MinResolvedRoughnessIsResolvedByTheCoarseMap)
 
 // The upsample is the GPU sampler's bilinear read (wrapping in longitude, clamped at the
 // poles) at each finer texel's centre, on a map whose every texel differs, seam and poles
-// included; and a reference over it still integrates the map's power.
+// included: against the direction-based read, and at the seam and pole by hand.
 TEST(Reference, UpsampleIsTheBilinearReadOfTheMap)
 {
     const auto coarse = iblab::paintEquirect(12, 6, [](glm::dvec3 w) { return glm::vec3(1.0 + w.x + 2.0 * w.z * w.z, 2.0 + w.y, 3.0 - w.x * w.y); });
@@ -230,6 +230,14 @@ TEST(Reference, UpsampleIsTheBilinearReadOfTheMap)
                 const glm::vec3 got = fine.at(x, y);
                 for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], expected[c], 1e-5f) << factor << " " << x << "," << y;
             }
+    }
+    // Factor 2: the first finer texel's centre is a quarter texel left of and above the first
+    // coarse one's, so it weighs the last column (the seam) by 1/4 and clamps to row 0.
+    const auto twice = iblab::upsampleEquirectBilinear(coarse, 2);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(twice.at(0, 0)[c], 0.75f * coarse.at(0, 0)[c] + 0.25f * coarse.at(11, 0)[c], 1e-5f);
+        EXPECT_NEAR(twice.at(3, 2)[c], 0.75f * (0.75f * coarse.at(1, 1)[c] + 0.25f * coarse.at(2, 1)[c]) +
+                                           0.25f * (0.75f * coarse.at(1, 0)[c] + 0.25f * coarse.at(2, 0)[c]), 1e-5f);
     }
     EXPECT_THROW(iblab::upsampleEquirectBilinear(coarse, 0), std::invalid_argument);
     EXPECT_EQ(iblab::referenceUpsampleFactor(1024, 0.1, 16), 1);
