@@ -107,8 +107,9 @@ namespace {
 // 6: the bases near the bright texels resampled from the map clamped (near_lights.hpp).
 // 7: mip 1's band of lights per tile. 8: mip 2's lights per tile, the rougher mips' caps
 // four times the mip before's (tile_lights.hpp). 9: a map too coarse for mip 1's lobe baked
-// from its bilinear upsample (bakeSourceUpsampleFactor).
-constexpr int kBakeOutputRevision = 9;
+// from its bilinear upsample (bakeSourceUpsampleFactor). 10: mips 1 and 2 refined where
+// their samples' standard error is large too (PrefilterSettings::refineError).
+constexpr int kBakeOutputRevision = 10;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

@@ -76,7 +76,7 @@ struct PrefilterUniforms {
     explicit PrefilterUniforms(const gl::ShaderProgram& p)
         : roughness(p, "uRoughness"), weightSum(p, "uWeightSum"), mirrorCopy(p, "uMirrorCopy"), copyLod(p, "uCopyLod"),
           brightCount(p, "uBrightCount"), alpha2(p, "uAlpha2"), brightScale(p, "uBrightScale"), nearCos(p, "uNearCos"), exactCount(p, "uExactCount"),
-          refineCount(p, "uRefineCount"), refineSpread(p, "uRefineSpread"), refineWeightSum(p, "uRefineWeightSum"),
+          refineCount(p, "uRefineCount"), refineSpread(p, "uRefineSpread"), refineWeightSum(p, "uRefineWeightSum"), refineError(p, "uRefineError"),
           tileLightsPerEdge(p, "uTileLightsPerEdge")
     {
     }
@@ -92,6 +92,7 @@ struct PrefilterUniforms {
     gl::Uniform<int> refineCount; // the table's second set (after uSampleCount entries); 0: none
     gl::Uniform<float> refineSpread;
     gl::Uniform<float> refineWeightSum;
+    gl::Uniform<float> refineError;
     gl::Uniform<int> tileLightsPerEdge; // mips 1 and 2: tiles per face edge of their lights' lists (binding 3); 0: none
 };
 

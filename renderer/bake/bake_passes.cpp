@@ -483,8 +483,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     // The mirror level has no lobe to weight lights by: it reads the environment itself.
     const bool split = bright && roughness > 0.0f && std::size_t(slice.level) < bright->levels.size() && bright->levels[std::size_t(slice.level)].base >= 0;
     const PrefilterBrightTexels::Level* lights = split ? &bright->levels[std::size_t(slice.level)] : nullptr;
-    // A level the split refines (mips 1 and 2, bright_texels.hpp) takes a second, larger set where
-    // its first samples disagree.
+    // A level the split refines (mips 1 and 2, bright_texels.hpp) takes a second, larger set where its first is unsure.
     const int refineCount = lights && lights->refineSpread >= 0.0f ? sampleCount * settings.refineFactor : 0;
     const int capacity = sampleTableCapacity(sampleCount + refineCount);
     const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0);
@@ -505,6 +504,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     uniforms.refineCount.set(refineCount);
     uniforms.refineWeightSum.set(refineWeightSum);
     uniforms.refineSpread.set(lights ? lights->refineSpread : 0.0f);
+    uniforms.refineError.set(lights ? lights->refineError : 0.0f);
     uniforms.roughness.set(roughness);
     uniforms.weightSum.set(weightSum);
     uniforms.mirrorCopy.set(settings.mirrorCopy ? 1 : 0);

@@ -147,8 +147,15 @@ struct PrefilterSettings {
     // the sphere) is sampled again with refineFactor times as many: near the edge of a
     // large bright area that the caps leave in the base, a few samples that each read a mip
     // the edge cuts alias it (docs/bake.md, "The prefilter's estimator"). 1: never.
+    // A texel is refined too where its samples' own standard error (the weighted spread of
+    // their luminances over the square root of their count) exceeds refineError x that RMS:
+    // texel noise, whose every texel differs from the next, reads spreads below the RMS
+    // from 8 box-filtered samples and still errs by a twentieth of it. 0.035 is the per-mip
+    // bound of 0.05 over sqrt(2): the texels left unrefined then hold at most half of the
+    // bound's squared error. Set from the bound, not fitted to a map (docs/bake.md).
     int refineFactor = 8;
     float refineSpread = 1.0f;
+    float refineError = 0.035f;
     // With the split, the lights of mips 1 and 2 listed per tile of 8 x 8 output texels
     // (tile_lights.hpp), merged where far from it, at most this many per tile: mip 1's below
     // the threshold of the block every texel sums, within 18 degrees, mip 2's all of them

@@ -459,8 +459,11 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
         // Mips 1 and 2 (kLastRefinedMip). Mip 3's 144 samples meet the bound without it; under
         // an earlier rule (a spread against T) refining it took every texel, and it has not
         // been tried under this one.
-        if (level <= kLastRefinedMip && settings.refineFactor > 1)
-            l.refineSpread = float(double(settings.refineSpread) * clampedLuminanceRms(candidates, l.threshold, level));
+        if (level <= kLastRefinedMip && settings.refineFactor > 1) {
+            const double baseRms = clampedLuminanceRms(candidates, l.threshold, level);
+            l.refineSpread = float(double(settings.refineSpread) * baseRms);
+            l.refineError = float(double(settings.refineError) * baseRms);
+        }
     }
     plan.meanLuminance = candidates.meanLuminance;
     if (candidates.sourceWidth > 0) {
@@ -546,8 +549,10 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
         }
         // A level that sums its base exactly has no samples to refine.
-        if (l.exactCount == 0)
+        if (l.exactCount == 0) {
             l.refineSpread = planned.refineSpread;
+            l.refineError = planned.refineError;
+        }
         if (planned.tiles.tilesPerEdge > 0) {
             l.tileLights = gl::createBufferWith<glm::vec4>(planned.tiles.buffer);
             l.tileLightsPerEdge = planned.tiles.tilesPerEdge;

@@ -123,8 +123,10 @@ struct PrefilterBrightTexels {
         float threshold = 0.0f;
         // Mips 1 and 2 (kLastRefinedMip): the luminance spread among a sampled texel's samples
         // above which it takes PrefilterSettings::refineFactor times as many (refineSpread x
-        // the base's RMS); < 0: never.
+        // the base's RMS); < 0: never. Or the standard error of their mean above refineError
+        // (PrefilterSettings::refineError x the same RMS).
         float refineSpread = -1.0f;
+        float refineError = 0.0f;
         // Mips 1 and 2: their lights per tile (tile_lights.hpp's buffer); 0 tiles: none.
         gl::Buffer tileLights;
         int tileLightsPerEdge = 0;
@@ -150,6 +152,7 @@ struct BrightSplitPlan {
         std::vector<glm::vec4> block; // bright_texels_block.hpp's layout, unpadded
         int farCells = 0;
         float refineSpread = -1.0f; // Level::refineSpread where the level samples its base
+        float refineError = 0.0f;   // Level::refineError likewise
         // Mips 1 and 2: their lights per tile (tile_lights.hpp); mip 2's instead of a block.
         TileLights tiles;
     };

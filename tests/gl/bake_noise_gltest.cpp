@@ -1,0 +1,80 @@
+// The default prefilter on texel noise: every texel of the map its own random value, so that
+// no threshold leaves mip 1's samples a smooth base and the lights' caps fill within a few
+// degrees. Its samples' luminances then spread by less than the base's RMS (each sample reads a
+// box-filtered mip), so the spread alone refines few texels, and the mean of 8 samples is off
+// by a twentieth of the map; the samples' own standard error (PrefilterSettings::refineError)
+// finds them (docs/bake.md, "The prefilter's estimator").
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bake/bake_accuracy.hpp"
+#include "bake_test_support.hpp"
+#include "gl_test_fixture.hpp"
+#include "ibl/image.hpp"
+
+namespace iblab {
+namespace {
+
+using testing::GlTest;
+using testing::runBake;
+
+constexpr double kPerMipBound = 0.05; // the bound on every mip with roughness > 0
+
+// A width x width/2 map whose every texel is u^power x scale in luminance, u uniform in [0, 1)
+// from a seeded linear congruential generator (the same map every run), tinted per texel.
+Environment texelNoise(int width, int power, float scale, std::uint32_t seed)
+{
+    Environment environment;
+    environment.source = "texel noise u^" + std::to_string(power) + " x " + std::to_string(int(scale));
+    environment.image = ImageRGB32F(width, width / 2);
+    std::uint32_t state = seed;
+    auto uniform = [&state] { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1u << 24); };
+    for (int y = 0; y < environment.image.height; ++y)
+        for (int x = 0; x < environment.image.width; ++x) {
+            float value = scale;
+            const float u = uniform();
+            for (int i = 0; i < power; ++i)
+                value *= u;
+            const float tint = uniform();
+            const std::size_t at = environment.image.offset(x, y);
+            environment.image.texels[at] = value * (0.6f + 0.8f * tint);
+            environment.image.texels[at + 1] = value;
+            environment.image.texels[at + 2] = value * (1.4f - 0.8f * tint);
+        }
+    environment.contentHash = 0x2900u + seed;
+    return environment;
+}
+
+std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const Environment& environment, const bake::BakeSettings& settings)
+{
+    const bake::BakeResult result = runBake(shaders, environment, settings);
+    std::vector<double> errors;
+    for (const bake::PrefilterLevelError& e : bake::measureBakeErrors(result, environment.image, shaders, {}).prefilter)
+        if (e.roughness > 0.0f)
+            errors.push_back(e.relativeRmse);
+    return errors;
+}
+
+// Sparse, very bright noise (a fifteenth of the texels above 4 times the mean): refined only
+// where the samples' spread says so, mip 1 is over the bound (0.081); refined where their
+// standard error is above the default's too, every mip is within it (mip 1 0.041).
+TEST_F(GlTest, TexelNoiseMeetsThePerMipBoundAtEveryMip)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const Environment environment = texelNoise(1024, 30, 2e4f, 17);
+    const bake::BakeSettings settings = bake::defaultPreset();
+    ASSERT_GT(settings.prefilter.brightTexels, 0);
+    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+    ASSERT_EQ(errors.size(), 5u);
+    for (std::size_t m = 0; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
+    bake::BakeSettings spreadOnly = settings;
+    spreadOnly.prefilter.refineError = 1e9f;
+    EXPECT_GT(perMipErrors(shaders, environment, spreadOnly).front(), kPerMipBound) << environment.source << ", mip 1 refined by spread only";
+}
+
+} // namespace
+} // namespace iblab
