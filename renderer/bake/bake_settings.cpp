@@ -198,11 +198,55 @@ int bakeEnvironmentFaceSize(const BakeSettings& settings, int width, int height)
     return environmentFaceSize(settings.cube, width * factor, height * factor);
 }
 
+namespace {
+
+// The bright split's fields (docs/bake.md, "The prefilter's estimator"), in the order the
+// table lists them after prefilter.mirror_copy.
+FieldTable<BakeSettings> brightSplitFields()
+{
+    using S = BakeSettings;
+    constexpr CliForm value = CliForm::Value;
+    return {
+        {"prefilter.bright_texels", "Bright texels summed exactly",
+         "Far cells of bright texels each mip-1 texel sums exactly (8x at the rougher mips; near cells light by light); the rest is sampled (0: samples all)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.brightTexels; }), {0, 1024}, "--prefilter-bright-texels", value},
+        {"prefilter.bright_threshold", "Bright texel threshold",
+         "Texels above this multiple of the mean luminance are summed exactly (at most --prefilter-bright-texels of them)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.brightThreshold; }), {0, 1e9}, "--prefilter-bright-threshold", value},
+        {"prefilter.exact_sum_texels", "Exact-sum source texels",
+         "With the bright split: a mip whose base fits an exact sum over a source mip of at most this many texels (texels <= alpha / 2 across, a face of 8 or more) is summed, not sampled (0: never)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.exactSumTexels; }), {0, 1 << 16}, "--prefilter-exact-sum-texels", value},
+        {"prefilter.refine_factor", "Refined sample factor",
+         "With the bright split: a texel of mips 1 and 2 whose samples' luminances spread by more than --prefilter-refine-spread x its base's RMS luminance is sampled again with this many times the samples (1: never)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineFactor; }), {1, 64}, "--prefilter-refine-factor", value},
+        {"prefilter.refine_spread", "Refine spread",
+         "The spread of the sample luminances of a texel of mips 1 and 2, in units of its base's RMS luminance (the map clamped at its mip's bright threshold, averaged in blocks as wide as the samples' median footprint), above which it is sampled again (--prefilter-refine-factor)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineSpread; }), {0, 1e9}, "--prefilter-refine-spread", value},
+        {"prefilter.refine_error", "Refine error",
+         "The standard error of the mean of a texel's samples (mips 1 and 2), in units of its base's RMS luminance, above which it is sampled again (--prefilter-refine-factor)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineError; }), {0, 1e9}, "--prefilter-refine-error", value},
+        {"prefilter.tile_lights", "Lights per tile",
+         "With the bright split: the lights of mips 1 and 2 listed per tile of 8 x 8 texels, at most this many per tile (mip 1: below its block's threshold, within 18 degrees; 0: none)",
+         fieldRef<S>([](S& s) -> auto& { return s.prefilter.tileLights; }), {0, 1024}, "--prefilter-tile-lights", value},
+    };
+}
+
+// The table with the split's fields placed after prefilter.mirror_copy.
+FieldTable<BakeSettings> withBrightSplitFields(FieldTable<BakeSettings> fields)
+{
+    const auto mirrorCopy = std::find_if(fields.begin(), fields.end(), [](const auto& f) { return f.key == "prefilter.mirror_copy"; });
+    const FieldTable<BakeSettings> split = brightSplitFields();
+    fields.insert(mirrorCopy == fields.end() ? fields.end() : mirrorCopy + 1, split.begin(), split.end());
+    return fields;
+}
+
+} // namespace
+
 const FieldTable<BakeSettings>& bakeSettingsFields()
 {
     using S = BakeSettings;
     constexpr CliForm value = CliForm::Value;
-    static const FieldTable<S> fields{
+    static const FieldTable<S> fields = withBrightSplitFields({
         {"preset", "Preset", "Where the values started (informational)", fieldRef<S>([](S& s) -> auto& { return s.preset; })},
         {"precision", "Precision", "Storage of the baked cubes: half (RGBA16F) or float (RGBA32F)", fieldRef<S>([](S& s) -> auto& { return s.precision; }), {},
          "--precision", value},
@@ -259,27 +303,6 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
         {"prefilter.mirror_copy", "Mirror mip as a copy",
          "Mip 0 as a copy of the matching source mip (on), or sampled like the other mips as LearnOpenGL does (off)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.mirrorCopy; }), {}, "--prefilter-mirror-copy", value},
-        {"prefilter.bright_texels", "Bright texels summed exactly",
-         "Far cells of bright texels each mip-1 texel sums exactly (8x at the rougher mips; near cells light by light); the rest is sampled (0: samples all)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.brightTexels; }), {0, 1024}, "--prefilter-bright-texels", value},
-        {"prefilter.bright_threshold", "Bright texel threshold",
-         "Texels above this multiple of the mean luminance are summed exactly (at most --prefilter-bright-texels of them)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.brightThreshold; }), {0, 1e9}, "--prefilter-bright-threshold", value},
-        {"prefilter.exact_sum_texels", "Exact-sum source texels",
-         "With the bright split: a mip whose base fits an exact sum over a source mip of at most this many texels (texels <= alpha / 2 across, a face of 8 or more) is summed, not sampled (0: never)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.exactSumTexels; }), {0, 1 << 16}, "--prefilter-exact-sum-texels", value},
-        {"prefilter.refine_factor", "Refined sample factor",
-         "With the bright split: a texel of mips 1 and 2 whose samples' luminances spread by more than --prefilter-refine-spread x its base's RMS luminance is sampled again with this many times the samples (1: never)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineFactor; }), {1, 64}, "--prefilter-refine-factor", value},
-        {"prefilter.refine_spread", "Refine spread",
-         "The spread of the sample luminances of a texel of mips 1 and 2, in units of its base's RMS luminance (the map clamped at its mip's bright threshold, averaged in blocks as wide as the samples' median footprint), above which it is sampled again (--prefilter-refine-factor)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineSpread; }), {0, 1e9}, "--prefilter-refine-spread", value},
-        {"prefilter.refine_error", "Refine error",
-         "The standard error of the mean of a texel's samples (mips 1 and 2), in units of its base's RMS luminance, above which it is sampled again (--prefilter-refine-factor)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.refineError; }), {0, 1e9}, "--prefilter-refine-error", value},
-        {"prefilter.tile_lights", "Lights per tile",
-         "With the bright split: the lights of mips 1 and 2 listed per tile of 8 x 8 texels, at most this many per tile (mip 1: below its block's threshold, within 18 degrees; 0: none)",
-         fieldRef<S>([](S& s) -> auto& { return s.prefilter.tileLights; }), {0, 1024}, "--prefilter-tile-lights", value},
         {"prefilter.shading_lights", "Shading lights",
          "The map's brightest texel groups the fitted lobe shades exactly, as lights, reading the prefiltered cube without them (0: none)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.shadingLights; }), {0, kMaxShadingLights}, "--prefilter-shading-lights", value},
@@ -298,7 +321,7 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
         {"samples_per_step", "Samples per step",
          "Work per bake step in texture samples, as the GUI slices a bake (the largest value is one step per pass and mip)",
          fieldRef<S>([](S& s) -> auto& { return s.samplesPerStep; }), {1024, double(kUnslicedBake)}, "--step-samples", value},
-    };
+    });
     return fields;
 }
 
