@@ -406,6 +406,12 @@ int brightTexelCap(const PrefilterSettings& settings, int level)
     return int(std::min<std::int64_t>(std::int64_t(8 * settings.brightTexels) << shift, kMaxBrightLights));
 }
 
+bool spikyBase(const BrightCandidates& candidates, float threshold, int mip)
+{
+    const double overFootprint = clampedLuminanceRms(candidates, threshold, mip);
+    return overFootprint > 0.0 && clampedLuminanceRms(candidates, threshold) > kSpikyBaseRatio * overFootprint;
+}
+
 BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings)
 {
     BrightSplitPlan plan;
@@ -441,6 +447,13 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
     }
     if (mip2Planned.valid()) {
         mip2Tiles = mip2Planned.get();
+        // Lists four times as long where the cap left mip 2's base spiky and the rougher mips'
+        // blocks would allow a lower threshold: a few hundred one-texel stars fill the hemisphere's
+        // lists just past the cap, the threshold rises into them, and mips 2 and 3 sample them
+        // (docs/bake.md, "Star fields"). Maps of large areas never pay for it.
+        if (mip2Tiles.threshold > plan.roughThreshold && spikyBase(candidates, mip2Tiles.threshold, 2))
+            mip2Tiles = planTileLights(candidates, std::numeric_limits<float>::infinity(), roughnessOf(2), faceOf(2),
+                                       kSpikyBaseCapFactor * settings.tileLights, 0.5 * kPi, plan.roughThreshold);
         plan.roughThreshold = mip2Tiles.threshold;
     }
     for (int level = 1; level < settings.levels; ++level) {

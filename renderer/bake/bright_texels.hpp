@@ -86,6 +86,17 @@ struct BrightCandidates {
 // among the candidates', of the base averaged over those blocks (as the mip's samples see it).
 double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, int mip = 0);
 
+// Whether the map clamped at threshold is spiky at a refined mip's scale: its RMS luminance at
+// full resolution above kSpikyBaseRatio times its RMS over that mip's samples' footprint
+// (clampedLuminanceRms with and without mip). Isolated texels far brighter than their
+// neighbourhood (one-texel lights) read about the footprint's width in texels, since a block
+// dilutes them; skies and large bright areas read about 1 (1.0-1.25 on the bundled maps).
+// false where the mip has no blocks.
+inline constexpr double kSpikyBaseRatio = 2.0;
+bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
+// Mip 2's lists are this many times the cap where its base is spiky (planBrightSplit).
+inline constexpr int kSpikyBaseCapFactor = 4;
+
 // Every texel of the equirect (exact row solid angles) or of a cube level above
 // thresholdOverMean x the mean luminance, at most maxCandidates of them (the brightest;
 // the floor threshold then rises to the first one left out).

@@ -3,7 +3,9 @@
 // degrees. Its samples' luminances then spread by less than the base's RMS (each sample reads a
 // box-filtered mip), so the spread alone refines few texels, and the mean of 8 samples is off
 // by a twentieth of the map; the samples' own standard error (PrefilterSettings::refineError)
-// finds them (docs/bake.md, "The prefilter's estimator").
+// finds them (docs/bake.md, "The prefilter's estimator"). And on a field of one-texel stars,
+// which fill mip 2's lists of the hemisphere just past their cap: where the base the cap
+// leaves is spiky, mip 2 lists four times as many (bright_texels.hpp's spikyBase).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,9 +13,11 @@
 #include <gtest/gtest.h>
 
 #include "bake/bake_accuracy.hpp"
+#include "bake/bright_texels.hpp"
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
 #include "ibl/image.hpp"
+#include "io/environment.hpp"
 
 namespace iblab {
 namespace {
@@ -74,6 +78,52 @@ TEST_F(GlTest, TexelNoiseMeetsThePerMipBoundAtEveryMip)
     bake::BakeSettings spreadOnly = settings;
     spreadOnly.prefilter.refineError = 1e9f;
     EXPECT_GT(perMipErrors(shaders, environment, spreadOnly).front(), kPerMipBound) << environment.source << ", mip 1 refined by spread only";
+}
+
+// A sky gradient with `stars` one-texel stars of 3000 at seeded random places: 524 is a tenth
+// of a percent of a 1024 x 512 map's texels.
+Environment starField(int stars, std::uint32_t seed)
+{
+    Environment environment;
+    environment.source = std::to_string(stars) + " one-texel stars of 3000";
+    environment.image = ImageRGB32F(1024, 512);
+    for (int y = 0; y < environment.image.height; ++y)
+        for (int x = 0; x < environment.image.width; ++x) {
+            const float sky = 0.05f + 0.5f * (1.0f - float(y) / float(environment.image.height));
+            const std::size_t at = environment.image.offset(x, y);
+            environment.image.texels[at] = 0.7f * sky;
+            environment.image.texels[at + 1] = 0.85f * sky;
+            environment.image.texels[at + 2] = sky;
+        }
+    std::uint32_t state = seed;
+    auto next = [&state] { return (state = state * 1664525u + 1013904223u) >> 8; };
+    for (int star = 0; star < stars; ++star) {
+        const std::size_t at = environment.image.offset(int(next() % 1024u), int(next() % 512u));
+        for (int c = 0; c < 3; ++c)
+            environment.image.texels[at + std::size_t(c)] += 3000.0f;
+    }
+    environment.contentHash = 0x2950u + seed;
+    return environment;
+}
+
+// 524 stars: mip 2's lists at the cap (256) hold about half of them, its threshold rises into
+// them and mips 2 and 3 sampled them (0.083 and 0.051 on such a map). The base the cap leaves is
+// spiky, a sky and large areas are not, and with the longer lists every mip meets the bound.
+TEST_F(GlTest, AFewHundredStarsMeetThePerMipBoundAtEveryMip)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const Environment environment = starField(524, 5);
+    const bake::BakeSettings settings = bake::defaultPreset();
+    const bake::BrightCandidates candidates = bake::splitCandidates(environment.image, settings.prefilter);
+    EXPECT_TRUE(bake::spikyBase(candidates, 2000.0f, 2)) << environment.source << " clamped below its stars";
+    const Environment areas = loadEnvironment("builtin:studio?width=1024");
+    const bake::BrightCandidates areaCandidates = bake::splitCandidates(areas.image, settings.prefilter);
+    const bake::BrightSplitPlan areaPlan = bake::planBrightSplit(areaCandidates, settings.prefilter);
+    EXPECT_FALSE(bake::spikyBase(areaCandidates, areaPlan.levels.at(2).threshold, 2)) << "builtin:studio's softboxes";
+    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+    ASSERT_EQ(errors.size(), 5u);
+    for (std::size_t m = 0; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
 }
 
 } // namespace

@@ -1,11 +1,16 @@
 #!/usr/bin/env bash
-# Runs a command with DISPLAY on a private Xvfb server (a free display number chosen by
-# Xvfb itself), and stops the server however the command ends. The GUI tests use it to drive
-# a real GLFW window (GLX on Mesa) on machines with no display.
+# Runs a command with DISPLAY on a private Xvfb server, and stops the server however the
+# command ends. The GUI tests use it to drive a real GLFW window (GLX on Mesa) on machines
+# with no display.
+# The display number is random (100-29999), not the lowest free one (-displayfd alone): two
+# window tests of a fresh-root run, run in parallel, failed with "Failed to open display :0"
+# after their server had accepted a client, most likely because a server stopping beside them
+# had freed :0 and then removed the socket path of the server that took it. A random number is
+# not one another test has just freed. A number in use makes Xvfb exit, and another is tried.
 #   tests/gui/with-xvfb.sh [--size WxHxD] COMMAND [ARGS...]
 # The command runs only once a client has connected to the server: a CI run in a fresh root
 # once saw the first window test fail with "Failed to open display" right after Xvfb had
-# reported its display. A server no client can reach is stopped and another started (three
+# reported its display. A server no client can reach is stopped and another started (five
 # tries); its log is shown if all fail.
 set -euo pipefail
 size=1920x1080x24
@@ -31,9 +36,10 @@ reachable() {
   done
   return 1
 }
-for attempt in 1 2 3; do
+for attempt in 1 2 3 4 5; do
   mkfifo "$work/displayfd"
-  Xvfb -displayfd 3 -screen 0 "$size" -nolisten tcp 3>"$work/displayfd" 2>"$work/xvfb.log" &
+  # With a display given, -displayfd reports it once the server accepts clients.
+  Xvfb ":$((100 + (RANDOM * 32768 + RANDOM) % 29900))" -displayfd 3 -screen 0 "$size" -nolisten tcp 3>"$work/displayfd" 2>"$work/xvfb.log" &
   server=$!
   display=
   read -r -t 30 display <"$work/displayfd" || true
