@@ -28,6 +28,7 @@ namespace iblab {
 namespace {
 
 using testing::GlTest;
+using testing::perMipErrors;
 using testing::runBake;
 
 constexpr double kPerMipBound = 0.05; // the bound on every mip with roughness > 0
@@ -40,16 +41,6 @@ std::string sunSpec(double elevation, double azimuth)
     return "builtin:sun?width=1024&size=0.5&intensity=1e4&elevation=" + std::to_string(elevation) + "&azimuth=" + std::to_string(azimuth);
 }
 
-// Per-mip relative RMSE of the prefilter at the texel centres (mips with roughness > 0).
-std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const Environment& environment, const bake::BakeSettings& settings)
-{
-    const bake::BakeResult result = runBake(shaders, environment, settings);
-    std::vector<double> errors;
-    for (const bake::PrefilterLevelError& e : bake::measureBakeErrors(result, environment.image, shaders, {}).prefilter)
-        if (e.roughness > 0.0f)
-            errors.push_back(e.relativeRmse);
-    return errors;
-}
 
 std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const std::string& spec, const bake::BakeSettings& settings)
 {

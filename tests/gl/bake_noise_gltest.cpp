@@ -23,7 +23,7 @@ namespace iblab {
 namespace {
 
 using testing::GlTest;
-using testing::runBake;
+using testing::perMipErrors;
 
 constexpr double kPerMipBound = 0.05; // the bound on every mip with roughness > 0
 
@@ -52,15 +52,6 @@ Environment texelNoise(int width, int power, float scale, std::uint32_t seed)
     return environment;
 }
 
-std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const Environment& environment, const bake::BakeSettings& settings)
-{
-    const bake::BakeResult result = runBake(shaders, environment, settings);
-    std::vector<double> errors;
-    for (const bake::PrefilterLevelError& e : bake::measureBakeErrors(result, environment.image, shaders, {}).prefilter)
-        if (e.roughness > 0.0f)
-            errors.push_back(e.relativeRmse);
-    return errors;
-}
 
 // Sparse, very bright noise (a fifteenth of the texels above 4 times the mean): refined only
 // where the samples' spread says so, mip 1 is over the bound (0.081); refined where their

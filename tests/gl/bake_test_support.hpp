@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <unistd.h>
 #include <string>
+#include <vector>
 
+#include "bake/bake_accuracy.hpp"
 #include "bake/bake_job.hpp"
 #include "bake/bake_settings.hpp"
 #include "io/environment.hpp"
@@ -56,6 +58,17 @@ inline bake::BakeResult runBake(gl::ShaderLibrary& shaders, const Environment& e
                                 bake::BakeCache* cache = nullptr)
 {
     return bake::BakeJob(shaders, environment, settings, cache).runToCompletion();
+}
+
+// Per-mip relative RMSE of a bake's prefilter at the texel centres (mips with roughness > 0).
+inline std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const Environment& environment, const bake::BakeSettings& settings)
+{
+    const bake::BakeResult result = runBake(shaders, environment, settings);
+    std::vector<double> errors;
+    for (const bake::PrefilterLevelError& e : bake::measureBakeErrors(result, environment.image, shaders, {}).prefilter)
+        if (e.roughness > 0.0f)
+            errors.push_back(e.relativeRmse);
+    return errors;
 }
 
 // A fresh empty directory under the system temp dir, removed by the destructor.
