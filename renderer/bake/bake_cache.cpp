@@ -109,8 +109,8 @@ namespace {
 // four times the mip before's (tile_lights.hpp). 9: a map too coarse for mip 1's lobe baked
 // from its bilinear upsample (bakeSourceUpsampleFactor). 10: mips 1 and 2 refined where
 // their samples' standard error is large too (PrefilterSettings::refineError). 11: mip 2's
-// lists four times as long where the base they leave is spiky (spikyBase).
-constexpr int kBakeOutputRevision = 11;
+// lists four times as long where the base they leave is spiky (spikyBase). 12: mip 1's too.
+constexpr int kBakeOutputRevision = 12;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

@@ -443,6 +443,11 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
     plan.mip1Threshold = plan.mip1LightsThreshold;
     if (tiled && roughnessOf(1) > 0.0) {
         mip1Tiles = planTileLights(candidates, plan.mip1LightsThreshold, roughnessOf(1), faceOf(1), settings.tileLights, bandReach(roughnessOf(1)));
+        // Mip 1's band the same where its cap leaves the base spiky: thousands of one-texel
+        // stars (or a few hundred packed near a pole) fill its lists past the cap.
+        if (mip1Tiles.threshold > candidates.floorThreshold && spikyBase(candidates, mip1Tiles.threshold, 1))
+            mip1Tiles = planTileLights(candidates, plan.mip1LightsThreshold, roughnessOf(1), faceOf(1), kSpikyBaseCapFactor * settings.tileLights,
+                                       bandReach(roughnessOf(1)));
         plan.mip1Threshold = std::min(mip1Tiles.threshold, plan.mip1LightsThreshold);
     }
     if (mip2Planned.valid()) {

@@ -94,7 +94,7 @@ double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, 
 // false where the mip has no blocks.
 inline constexpr double kSpikyBaseRatio = 2.0;
 bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
-// Mip 2's lists are this many times the cap where its base is spiky (planBrightSplit).
+// Mips 1 and 2 list this many times the cap where the base it leaves is spiky (planBrightSplit).
 inline constexpr int kSpikyBaseCapFactor = 4;
 
 // Every texel of the equirect (exact row solid angles) or of a cube level above
