@@ -160,7 +160,8 @@ struct PrefilterSettings {
     // (tile_lights.hpp), merged where far from it, at most this many per tile: mip 1's below
     // the threshold of the block every texel sums, within 18 degrees, mip 2's all of them
     // (docs/bake.md, "Lights per tile"). 128 left thin lines (tubes, arcs) to mip 1's samples
-    // that 256 sums. 0: none, mip 2 sums a block as the rougher mips do.
+    // that 256 sums. Four times as many where the base the cap leaves is spiky (bright_texels.hpp's
+    // spikyBase). 0: none, mip 2 sums a block as the rougher mips do.
     int tileLights = 256;
     // Degrees the sample set is turned about each texel's normal (0: as generated).
     float sampleRotation = 0.0f;
