@@ -455,7 +455,7 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
         // Lists four times as long where the cap left mip 2's base spiky and the rougher mips'
         // blocks would allow a lower threshold: a few hundred one-texel stars fill the hemisphere's
         // lists just past the cap, the threshold rises into them, and mips 2 and 3 sample them
-        // (docs/bake.md, "Star fields"). Maps of large areas never pay for it.
+        // (docs/bake.md, "Dense star fields"). Maps of large areas never pay for it.
         if (mip2Tiles.threshold > plan.roughThreshold && spikyBase(candidates, mip2Tiles.threshold, 2))
             mip2Tiles = planTileLights(candidates, std::numeric_limits<float>::infinity(), roughnessOf(2), faceOf(2),
                                        kSpikyBaseCapFactor * settings.tileLights, 0.5 * kPi, plan.roughThreshold);

@@ -4,8 +4,8 @@
 // box-filtered mip), so the spread alone refines few texels, and the mean of 8 samples is off
 // by a twentieth of the map; the samples' own standard error (PrefilterSettings::refineError)
 // finds them (docs/bake.md, "The prefilter's estimator"). And on a field of one-texel stars,
-// which fill mip 2's lists of the hemisphere just past their cap: where the base the cap
-// leaves is spiky, mip 2 lists four times as many (bright_texels.hpp's spikyBase).
+// which fill the lists of mips 1 and 2 past their cap: where the base the cap leaves is spiky,
+// those mips list four times as many (bright_texels.hpp's spikyBase).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -52,10 +52,10 @@ Environment texelNoise(int width, int power, float scale, std::uint32_t seed)
     return environment;
 }
 
-
 // Sparse, very bright noise (a fifteenth of the texels above 4 times the mean): refined only
-// where the samples' spread says so, mip 1 is over the bound (0.081); refined where their
-// standard error is above the default's too, every mip is within it (mip 1 0.041).
+// where the samples' spread says so, mip 1 is over the bound (0.069); refined where their
+// standard error is above the default's too, every mip is within it (mip 1 0.034). Its base is
+// spiky at mip 1, so both bakes list mip 1's lights four times as long.
 TEST_F(GlTest, TexelNoiseMeetsThePerMipBoundAtEveryMip)
 {
     auto shaders = testing::bakeShaderLibrary();
@@ -121,7 +121,7 @@ TEST_F(GlTest, AFewHundredStarsMeetThePerMipBoundAtEveryMip)
 // degrees) fills past its cap there, its threshold rises into the stars and they were left to
 // its samples (0.119); with its lists four times as long too, it reads 0.003. Mips 2-5
 // of so dense a field are left out (mip 2 0.051): the rougher mips' blocks cannot hold them
-// (docs/bake.md, "Star fields").
+// (docs/bake.md, "Dense star fields").
 TEST_F(GlTest, ThousandsOfStarsMeetThePerMipBoundAtMipOne)
 {
     auto shaders = testing::bakeShaderLibrary();
