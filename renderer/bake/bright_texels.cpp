@@ -432,6 +432,14 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             blockCaps.push_back(brightTexelCap(settings, level));
         }
     plan.roughThreshold = brightThresholdFor(candidates, blockRoughness, blockCaps);
+    // Four times the caps where the base they leave is spiky at mip 2's footprint: a thousand
+    // one-texel stars fill mip 3's 512 far cells, and mip 2, which shares the base, cannot go
+    // below that threshold; mips 2 and 3 sampled them (docs/bake.md, "Dense star fields").
+    if (plan.roughThreshold > candidates.floorThreshold && spikyBase(candidates, plan.roughThreshold, 2)) {
+        for (int& cap : blockCaps)
+            cap = std::min(kSpikyBaseCapFactor * cap, kMaxBrightLights);
+        plan.roughThreshold = brightThresholdFor(candidates, blockRoughness, blockCaps);
+    }
     // Mip 2's tiles on a thread of their own beside mip 1's (each a few milliseconds).
     std::future<TileLights> mip2Planned;
     if (tiled && roughnessOf(2) > 0.0)

@@ -94,7 +94,8 @@ double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, 
 // false where the mip has no blocks.
 inline constexpr double kSpikyBaseRatio = 2.0;
 bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
-// Mips 1 and 2 list this many times the cap where the base it leaves is spiky (planBrightSplit).
+// Mips 1 and 2 list this many times the cap, and the rough mips' blocks allow this many times
+// their far cells, where the base the cap leaves is spiky (planBrightSplit).
 inline constexpr int kSpikyBaseCapFactor = 4;
 
 // Every texel of the equirect (exact row solid angles) or of a cube level above

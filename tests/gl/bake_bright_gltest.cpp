@@ -508,8 +508,10 @@ TEST_F(GlTest, ThinBrightLinesMeetThePerMipBoundFromMipTwo)
 // threshold, the clamp in the cube left it in the base too, and mips 2-5 were about a quarter
 // too bright (0.26-0.29 on the held-out citylights map). Resampled from the map clamped near
 // the lamps (near_lights.hpp), mips 4-5 (exact sums of the base) are within 0.02. With mips 1
-// and 2 listing their lights per tile (tile_lights.hpp) every mip meets the bound; with a
-// block at mip 2, capped, the lamps it leaves to its samples put it over (0.053).
+// and 2 listing their lights per tile (tile_lights.hpp) every mip meets the bound. With a
+// block at mip 2 instead, capped at 128 far cells, the lamps it left to its samples put it over
+// (0.053); the base that cap leaves is spiky, so the rough blocks' caps are four times as large
+// (planBrightSplit) and it reads 0.0005 (mip 1, without its band per tile, 0.119).
 TEST_F(GlTest, ManySmallLampsAreNotCountedTwice)
 {
     auto shaders = testing::bakeShaderLibrary();
@@ -529,7 +531,7 @@ TEST_F(GlTest, ManySmallLampsAreNotCountedTwice)
     expectWithinPerMipBound(errors, environment.source);
     bake::BakeSettings blocks = brightTexelsSplit();
     blocks.prefilter.tileLights = 0;
-    EXPECT_GT(perMipErrors(shaders, environment, blocks).at(1), kPerMipBound) << environment.source << ", mip 2 from a block";
+    EXPECT_LE(perMipErrors(shaders, environment, blocks).at(1), kPerMipBound) << environment.source << ", mip 2 from a block";
 }
 
 // 32 lamps of 0.3 degrees at 1000 below the horizon, on black: far more lights than mip 1's

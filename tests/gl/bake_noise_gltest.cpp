@@ -4,10 +4,11 @@
 // box-filtered mip), so the spread alone refines few texels, and the mean of 8 samples is off
 // by a twentieth of the map; the samples' own standard error (PrefilterSettings::refineError)
 // finds them (docs/bake.md, "The prefilter's estimator"). And on a field of one-texel stars,
-// which fill the lists of mips 1 and 2 past their cap: where the base the cap leaves is spiky,
-// those mips list four times as many (bright_texels.hpp's spikyBase).
+// which fill the lists of mips 1 and 2 and the rough mips' far cells past their caps: where
+// the base a cap leaves is spiky, the cap is four times as large (bright_texels.hpp's spikyBase).
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -119,16 +120,24 @@ TEST_F(GlTest, AFewHundredStarsMeetThePerMipBoundAtEveryMip)
 
 // 2100 stars, packed near the poles as a map's rows pack them: mip 1's band (within 18
 // degrees) fills past its cap there, its threshold rises into the stars and they were left to
-// its samples (0.119); with its lists four times as long too, it reads 0.003. Mips 2-5
-// of so dense a field are left out (mip 2 0.051): the rougher mips' blocks cannot hold them
-// (docs/bake.md, "Dense star fields").
-TEST_F(GlTest, ThousandsOfStarsMeetThePerMipBoundAtMipOne)
+// its samples (0.119); with its lists four times as long too, it reads 0.003. Such a field, and
+// one of 1050 stars, also fills mip 3's 512 far cells, which set the threshold of the base that
+// mips 2-5 share: they sampled the stars (mip 2 0.05-0.07 on such fields) until the rough blocks' caps
+// were four times as large where that base is spiky too (docs/bake.md, "Dense star fields").
+TEST_F(GlTest, ThousandsOfStarsMeetThePerMipBoundAtEveryMip)
 {
     auto shaders = testing::bakeShaderLibrary();
-    const Environment environment = starField(2100, 11);
-    const std::vector<double> errors = perMipErrors(shaders, environment, bake::defaultPreset());
-    ASSERT_EQ(errors.size(), 5u);
-    EXPECT_LE(errors[0], kPerMipBound) << environment.source << " mip 1";
+    const bake::BakeSettings settings = bake::defaultPreset();
+    for (const auto& [stars, seed] : {std::pair{2100, 11u}, std::pair{1050, 13u}}) {
+        const Environment environment = starField(stars, seed);
+        const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+        ASSERT_EQ(errors.size(), 5u);
+        for (std::size_t m = 0; m < errors.size(); ++m)
+            EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
+        // The rough mips' base keeps no star: its threshold is below 3000 over the sky.
+        const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
+        EXPECT_LT(plan.roughThreshold, 3000.0f) << environment.source;
+    }
 }
 
 } // namespace
