@@ -110,8 +110,9 @@ namespace {
 // from its bilinear upsample (bakeSourceUpsampleFactor). 10: mips 1 and 2 refined where
 // their samples' standard error is large too (PrefilterSettings::refineError). 11: mip 2's
 // lists four times as long where the base they leave is spiky (spikyBase). 12: mip 1's too.
-// 13: the rough blocks' caps four times as large where their base is spiky at mip 2.
-constexpr int kBakeOutputRevision = 13;
+// 13: the rough blocks' caps four times as large where their base is spiky at mip 2. 14: every
+// cube in floats where the map is brighter than a half float holds (BakeJob::cubeFormat).
+constexpr int kBakeOutputRevision = 14;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

@@ -145,6 +145,18 @@ std::string prefilterFile(int level) { return "prefiltered_mip" + std::to_string
 
 constexpr const char* kMirrorOfEnvironmentLevel = "mirror_of_environment_level";
 
+// The format bake.json records for a cube (textureJson's), or the settings' where it records
+// none: a half-precision bake of a map brighter than a half float is stored in floats.
+GLenum storedFormat(const nlohmann::json& meta, const std::string& cube, GLenum settingsFormat, const fs::path& metaPath)
+{
+    if (!meta.contains(cube) || !meta[cube].is_object() || !meta[cube].contains("format"))
+        return settingsFormat;
+    const nlohmann::json& named = meta[cube]["format"];
+    if (named != "rgba16f" && named != "rgba32f")
+        throw BakeFileError(metaPath, cube + ".format is neither rgba16f nor rgba32f");
+    return named == "rgba32f" ? GL_RGBA32F : GL_RGBA16F;
+}
+
 } // namespace
 
 std::string shJsonText(const ShResult& sh, int indent)
@@ -248,16 +260,20 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
 
     const int face = bakeEnvironmentFaceSize(s, result.sourceWidth, result.sourceHeight);
     const int levels = std::bit_width(unsigned(face));
-    result.environmentCube = createCubeTexture(format, face, levels);
-    uploadStoredCubeLevel(result.environmentCube, 0, readStoredCubeExr(directory / "environment.exr", face, format));
+    const GLenum environmentFormat = storedFormat(meta, "environment_cube", format, metaPath);
+    result.environmentCube = createCubeTexture(environmentFormat, face, levels);
+    uploadStoredCubeLevel(result.environmentCube, 0, readStoredCubeExr(directory / "environment.exr", face, environmentFormat));
     buildMips(result.environmentCube);
 
     if (s.irradiance != IrradianceMethod::None) {
         const int irradianceFace = irradianceFaceSize(s);
-        result.irradianceCube = createCubeTexture(format, irradianceFace, 1);
-        uploadStoredCubeLevel(result.irradianceCube, 0, readStoredCubeExr(directory / irradianceFileName(s.irradiance), irradianceFace, format));
+        const GLenum irradianceFormat = storedFormat(meta, "irradiance_" + std::string(enumName(s.irradiance)), format, metaPath);
+        result.irradianceCube = createCubeTexture(irradianceFormat, irradianceFace, 1);
+        uploadStoredCubeLevel(result.irradianceCube, 0,
+                              readStoredCubeExr(directory / irradianceFileName(s.irradiance), irradianceFace, irradianceFormat));
     }
-    result.prefiltered = createCubeTexture(format, s.prefilter.faceSize, s.prefilter.levels);
+    const GLenum prefilteredFormat = storedFormat(meta, "prefiltered", format, metaPath);
+    result.prefiltered = createCubeTexture(prefilteredFormat, s.prefilter.faceSize, s.prefilter.levels);
     int mirrorSource = -1;
     if (meta.contains("prefiltered") && meta["prefiltered"].is_object() && meta["prefiltered"].contains(kMirrorOfEnvironmentLevel)) {
         const nlohmann::json& level = meta["prefiltered"][kMirrorOfEnvironmentLevel];
@@ -272,7 +288,7 @@ void readBakeDirectory(const fs::path& directory, BakeResult& result, const MipB
             copyCubeRows(result.environmentCube, mirrorSource, result.prefiltered, level, 0, 6, 0, result.prefiltered.levelSize(level));
             continue;
         }
-        uploadStoredCubeLevel(result.prefiltered, level, readStoredCubeExr(directory / prefilterFile(level), result.prefiltered.levelSize(level), format));
+        uploadStoredCubeLevel(result.prefiltered, level, readStoredCubeExr(directory / prefilterFile(level), result.prefiltered.levelSize(level), prefilteredFormat));
     }
 
     if (s.prefilter.shadingLights > 0) {

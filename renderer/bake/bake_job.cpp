@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -125,6 +126,23 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, const std::string& source, const Ba
 }
 
 BakeJob::~BakeJob() = default;
+
+GLenum BakeJob::cubeFormat()
+{
+    if (result_.settings.precision == Precision::Float)
+        return GL_RGBA32F;
+    // A half float holds at most 65504. A map brighter than that in any channel (an unclipped
+    // sun, a sky in absolute units) is baked in floats: in halves the environment cube would
+    // clip it, and with it the bases, every prefiltered mip and the irradiance (a 2 degree sun
+    // of 1e6 read 0.59 at mip 1; docs/bake.md, "Brighter than a half float").
+    const float brightest = image_.empty() ? 0.0f : *std::ranges::max_element(image_.texels);
+    if (!(brightest > storeMax(GL_RGBA16F)))
+        return GL_RGBA16F;
+    char value[32];
+    std::snprintf(value, sizeof value, "%.3g", double(brightest));
+    result_.notes.push_back(std::string("baked in 32-bit floats: the map's brightest channel, ") + value + ", is over a half float's 65504");
+    return GL_RGBA32F;
+}
 
 bool BakeJob::compilesLut(const BakeSettings& settings, const BakeCache* cache)
 {
@@ -249,7 +267,7 @@ void BakeJob::plan()
         return;
     }
     const BakeSettings& s = result_.settings;
-    const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
+    const GLenum format = cubeFormat();
     const int sourceWidth = result_.sourceWidth * result_.sourceUpsample, sourceHeight = result_.sourceHeight * result_.sourceUpsample;
     const double sourceTexels = double(sourceWidth) * double(sourceHeight);
     const int envFace = environmentFaceSize(s.cube, sourceWidth, sourceHeight); // bakeEnvironmentFaceSize's
@@ -258,8 +276,8 @@ void BakeJob::plan()
     const bool cacheOnly = image_.empty();
 
     const int equirectLevels = BakePasses::equirectLevelsForCube(sourceWidth, sourceHeight, envFace);
-    steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost, [this, equirectLevels] {
-                          passes_.compileFor(result_.settings, equirectLevels, compilesLut(result_.settings, cache_));
+    steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost, [this, equirectLevels, format] {
+                          passes_.compileFor(result_.settings, equirectLevels, compilesLut(result_.settings, cache_), format);
                       }});
     if (diskCache())
         steps_.push_back({BakePhase::CacheLookup, StepGroup::None, sourceTexels, [this] {

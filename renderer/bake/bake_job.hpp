@@ -106,6 +106,9 @@ private:
         std::string part;
     };
     void plan();
+    // The cubes' format: the settings' precision, or floats where the map is brighter than a
+    // half float holds (with a note saying so).
+    GLenum cubeFormat();
     // An imported bake (Environment::imported): its cubes are uploaded, not baked.
     void planImported();
     void planIrradiance(int envFace);

@@ -98,9 +98,9 @@ int BakePasses::riemannThetaSteps(float sampleDelta)
     return std::max(1, int(std::lround(0.5 * kPi / double(sampleDelta))));
 }
 
-void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bool lut)
+void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bool lut, GLenum cubeFormat)
 {
-    const GLenum format = settings.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
+    const GLenum format = cubeFormat != 0 ? cubeFormat : settings.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
     shaders_.program({kEquirectToCube});
     if (equirectLevels > 1)
         shaders_.program({kDownsample}, {{"CUBE", "0"}, {"FORMAT", imageFormatName(GL_RGBA32F)}});

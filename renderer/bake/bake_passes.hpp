@@ -64,8 +64,9 @@ public:
     // disk: the first run on a machine is cold, later ones warm), the BRDF LUT's only with
     // `lut` (a bake compiles it when it misses the LUT cache), the 2D downsample only for an
     // equirect of more than one level. Each program compiled costs a few milliseconds even
-    // when cached, so a bake compiles no program it does not run.
-    void compileFor(const BakeSettings& settings, int equirectLevels, bool lut);
+    // when cached, so a bake compiles no program it does not run. cubeFormat: the cubes' format
+    // where it is not the settings' precision (BakeJob::cubeFormat); 0: the settings'.
+    void compileFor(const BakeSettings& settings, int equirectLevels, bool lut, GLenum cubeFormat = 0);
 
     // The equirect levels equirectToCube reads for a cube of faceSize texels per edge: its
     // footprint's minor axis is at most a face-centre texel, 2/f rad, against an equirect
