@@ -25,6 +25,7 @@
 // the zonal coefficients of max(0, cos) scaled by sqrt(4 pi / (2l + 1)) (Funk-Hecke).
 // Lambertian outgoing radiance is then albedo / pi * E(n).
 #include <array>
+#include <limits>
 
 #include <glm/vec3.hpp>
 
@@ -94,7 +95,9 @@ struct ShMinimum {
     glm::dvec3 value{0.0};
     std::array<glm::dvec3, 3> direction{}; // where each channel's minimum lies
 };
-ShMinimum findMinimum(const SH9Color& coeffs);
+// With stopBelow, a channel's search stops at the first value found below it, which it
+// reports (the window search only asks whether a minimum is negative).
+ShMinimum findMinimum(const SH9Color& coeffs, double stopBelow = -std::numeric_limits<double>::infinity());
 
 // The largest window width (bisection within [minWidth, maxWidth]) for which every channel of
 // the windowed coefficients' minimum is >= 0, i.e. the gentlest window that removes negative

@@ -171,6 +171,25 @@ TEST(Sh, PointLightRingsAndFindMinimumFindsIt)
     EXPECT_NEAR(glm::dot(m.direction[0], d), -8.0 / 15.0, 1e-3);
 }
 
+// The window search only asks whether a minimum is negative: with a stop, each channel's
+// search ends at its first value below it (a bright sun's took half a second to the minimum),
+// a value that is still an upper bound of the true minimum.
+TEST(Sh, FindMinimumStopsBelowItsStop)
+{
+    iblab::ImageRGB32F img(64, 32);
+    img.set(40, 9, glm::vec3(1000.0f, 500.0f, 250.0f));
+    const iblab::SH9Color E = iblab::convolveWithCosineLobe(iblab::projectEquirect(img));
+    const iblab::ShMinimum full = iblab::findMinimum(E);
+    const iblab::ShMinimum stopped = iblab::findMinimum(E, 0.0);
+    for (int ch = 0; ch < 3; ++ch) {
+        EXPECT_LT(stopped.value[ch], 0.0) << ch;
+        EXPECT_GE(stopped.value[ch], full.value[ch]) << ch;
+    }
+    // A stop below the minimum changes nothing.
+    const iblab::ShMinimum below = iblab::findMinimum(E, 2.0 * full.value.x);
+    EXPECT_EQ(below.value.x, full.value.x);
+}
+
 TEST(Sh, WindowFactors)
 {
     using iblab::ShWindow;
