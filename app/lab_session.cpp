@@ -23,6 +23,16 @@ std::string environmentLine(const Environment& env)
     return displayName(env.source) + ": " + size;
 }
 
+// A bake's notes (floats for a map brighter than a half float, cache repairs) after its
+// status line, each after "; ": the same on the line of a bake kept from earlier.
+std::string bakeNotes(const bake::BakeResult& result)
+{
+    std::string text;
+    for (const std::string& note : result.notes)
+        text += "; " + note;
+    return text;
+}
+
 } // namespace
 
 std::string defaultEnvironmentSpec() { return defaultEnvironmentPath(assetDirectory().string()); }
@@ -122,7 +132,7 @@ std::optional<StatusReport> LabSession::finishBake()
     if (result->sourceUpsample > 1)
         text += "; from its " + std::to_string(result->sourceWidth * result->sourceUpsample) + "x" +
                 std::to_string(result->sourceHeight * result->sourceUpsample) + " bilinear upsample, as fine as mip 1 needs";
-    for (const auto& note : result->notes) text += "; " + note;
+    text += bakeNotes(*result);
     bake_ = result;
     renderer_.setBake(bake_);
     if (early) {
@@ -174,7 +184,7 @@ LabSession::Finished LabSession::showRecent(const RecentEnvironment& recent)
     Finished shown;
     shown.environment = StatusReport{environmentLine(env) + ", kept from earlier with its bake", false, env.warnings};
     shown.bake = StatusReport{"kept from earlier (baked in " + std::to_string(int(recent.bake->totalMilliseconds + 0.5)) + " ms" +
-                                  (recent.bake->fromCache ? ", from cache)" : ")"),
+                                  (recent.bake->fromCache ? ", from cache)" : ")") + bakeNotes(*recent.bake),
                               false};
     shown.environmentShown = recent.spec;
     rememberCurrent();

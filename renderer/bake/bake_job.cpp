@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -127,7 +126,7 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, const std::string& source, const Ba
 
 BakeJob::~BakeJob() = default;
 
-GLenum BakeJob::cubeFormat()
+GLenum BakeJob::cubeFormat() const
 {
     if (result_.settings.precision == Precision::Float)
         return GL_RGBA32F;
@@ -135,13 +134,8 @@ GLenum BakeJob::cubeFormat()
     // sun, a sky in absolute units) is baked in floats: in halves the environment cube would
     // clip it, and with it the bases, every prefiltered mip and the irradiance (a 2 degree sun
     // of 1e6 read 0.59 at mip 1; docs/bake.md, "Brighter than a half float").
-    const float brightest = image_.empty() ? 0.0f : *std::ranges::max_element(image_.texels);
-    if (!(brightest > storeMax(GL_RGBA16F)))
-        return GL_RGBA16F;
-    char value[32];
-    std::snprintf(value, sizeof value, "%.3g", double(brightest));
-    result_.notes.push_back(std::string("baked in 32-bit floats: the map's brightest channel, ") + value + ", is over a half float's 65504");
-    return GL_RGBA32F;
+    const bool brighter = !image_.empty() && *std::ranges::max_element(image_.texels) > storeMax(GL_RGBA16F);
+    return brighter ? GL_RGBA32F : GL_RGBA16F;
 }
 
 bool BakeJob::compilesLut(const BakeSettings& settings, const BakeCache* cache)
@@ -547,6 +541,9 @@ BakeResult BakeJob::takeResult()
         throw std::logic_error("BakeJob::takeResult: the bake failed");
     if (!steps_.empty())
         throw std::logic_error("BakeJob::takeResult: the bake has " + std::to_string(steps_.size()) + " steps left");
+    // Said here, whether the cubes were baked (cubeFormat) or read from the cache's record.
+    if (result_.settings.precision == Precision::Half && result_.environmentCube.internalFormat == GL_RGBA32F)
+        result_.notes.push_back("baked in 32-bit floats: the map is brighter than a half float holds (65504)");
     return std::move(result_);
 }
 

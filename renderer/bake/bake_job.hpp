@@ -107,8 +107,8 @@ private:
     };
     void plan();
     // The cubes' format: the settings' precision, or floats where the map is brighter than a
-    // half float holds (with a note saying so).
-    GLenum cubeFormat();
+    // half float holds (takeResult adds a note saying so).
+    GLenum cubeFormat() const;
     // An imported bake (Environment::imported): its cubes are uploaded, not baked.
     void planImported();
     void planIrradiance(int envFace);
