@@ -28,7 +28,13 @@ nlohmann::ordered_json writeEngineExport(gl::ShaderLibrary& shaders, const Envir
     if (!json && report.reprefiltered)
         std::printf("(prefiltered again in %s's layout: %d mips)\n", format.c_str(),
                     bake::engineBakeSettings(*engine, result.settings).prefilter.levels);
-    return {{"format", format}, {"files", files}, {"reprefiltered", report.reprefiltered}, {"ms", report.milliseconds}};
+    if (!json && report.clippedToHalf)
+        std::printf("(clipped at 65504, the most %s's half-float files hold: the map is brighter)\n", format.c_str());
+    return {{"format", format},
+            {"files", files},
+            {"reprefiltered", report.reprefiltered},
+            {"clipped_to_half", report.clippedToHalf},
+            {"ms", report.milliseconds}};
 }
 
 ui::StatusLine exportCurrentBake(const LabSession& session, gl::ShaderLibrary& shaders, const std::string& format,
@@ -40,6 +46,7 @@ ui::StatusLine exportCurrentBake(const LabSession& session, gl::ShaderLibrary& s
         const nlohmann::ordered_json report = writeEngineExport(shaders, *session.environment(), *session.bake(), format, directory, true);
         ui::StatusLine line{"exported " + std::to_string(report["files"].size()) + " " + format + " files to " + directory, false};
         if (report["reprefiltered"].get<bool>()) line.notes.push_back("prefiltered again in " + format + "'s mip layout");
+        if (report["clipped_to_half"].get<bool>()) line.notes.push_back("clipped at 65504, the most " + format + "'s half-float files hold");
         return line;
     } catch (const std::exception& e) {
         return {oneLine(e.what()), true};

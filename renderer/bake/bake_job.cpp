@@ -134,8 +134,16 @@ GLenum BakeJob::cubeFormat() const
     // sun, a sky in absolute units) is baked in floats: in halves the environment cube would
     // clip it, and with it the bases, every prefiltered mip and the irradiance (a 2 degree sun
     // of 1e6 read 0.59 at mip 1; docs/bake.md, "Brighter than a half float").
-    const bool brighter = !image_.empty() && *std::ranges::max_element(image_.texels) > storeMax(GL_RGBA16F);
-    return brighter ? GL_RGBA32F : GL_RGBA16F;
+    // Another tool's bake in floats can be as bright: its cubes are uploaded as they are.
+    auto brightest = [](const ImageRGB32F& image) { return image.empty() ? 0.0f : *std::ranges::max_element(image.texels); };
+    float peak = brightest(image_);
+    if (imported_) {
+        peak = std::max(peak, brightest(imported_->sky));
+        if (imported_->irradiance) peak = std::max(peak, brightest(*imported_->irradiance));
+        for (const ImageRGB32F& level : imported_->prefiltered)
+            peak = std::max(peak, brightest(level));
+    }
+    return peak > storeMax(GL_RGBA16F) ? GL_RGBA32F : GL_RGBA16F;
 }
 
 bool BakeJob::compilesLut(const BakeSettings& settings, const BakeCache* cache)
@@ -176,9 +184,9 @@ void BakeJob::planCubeSlices(BakePhase phase, StepGroup group, int faceSize, int
 void BakeJob::planImported()
 {
     const BakeSettings& s = result_.settings;
-    const GLenum format = s.precision == Precision::Half ? GL_RGBA16F : GL_RGBA32F;
+    const GLenum format = cubeFormat();
     steps_.push_back({BakePhase::Shaders, StepGroup::None, kCompileCost,
-                      [this] { passes_.compileFor(result_.settings, 1, compilesLut(result_.settings, cache_)); }});
+                      [this, format] { passes_.compileFor(result_.settings, 1, compilesLut(result_.settings, cache_), format); }});
     const double texels = 6.0 * s.prefilter.faceSize * s.prefilter.faceSize;
     steps_.push_back({BakePhase::Upload, StepGroup::Environment, texels, [this, format] {
                           const ImportedBake& in = *imported_;

@@ -163,12 +163,14 @@ ExportReport exportForEngine(gl::ShaderLibrary& shaders, const Environment& envi
     }
     const EngineLayout layout = engineLayout(format, wanted.prefilter.faceSize);
     const auto write1 = [&](const std::filesystem::path& p, const ktx::KtxTexture& t) {
+        report.clippedToHalf = report.clippedToHalf || t.clipsToHalf();
         ktx::writeKtx1(p.string(), t);
         report.files.push_back(p);
     };
     const auto write2 = [&](const std::filesystem::path& p, const ktx::KtxTexture& t) {
         std::filesystem::create_directories(p.parent_path(), ec);
         if (ec) throw Error(p.parent_path().string(), "cannot create the directory: " + ec.message());
+        report.clippedToHalf = report.clippedToHalf || t.clipsToHalf();
         ktx::writeKtx2(p.string(), t);
         report.files.push_back(p);
     };

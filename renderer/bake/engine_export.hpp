@@ -55,6 +55,9 @@ ktx::KtxTexture cubeToKtx(const BakedTexture& cube, int levels, const glm::dmat3
 struct ExportReport {
     std::vector<std::filesystem::path> files; // in the order written
     bool reprefiltered = false;                // the bake's layout was not the engine's
+    // A file clipped texels above a half float's 65504 (a float bake of a map brighter than
+    // that: the engines' layouts are half floats).
+    bool clippedToHalf = false;
     double milliseconds = 0.0;
 };
 

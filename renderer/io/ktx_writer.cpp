@@ -4,6 +4,7 @@
 #include "io/ktx_writer.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -48,8 +49,11 @@ void putTexels(std::string& out, const std::vector<float>& texels, PixelType typ
         std::memcpy(out.data() + at, texels.data(), texels.size() * sizeof(float));
         return;
     }
+    // Past 65504 a half is +Inf, which an engine's filtering spreads as NaN: a bake of a map
+    // brighter than that (in floats, BakeJob::cubeFormat) is clipped there, as a half-float
+    // bake of it would be (the exporter says so: ExportReport::clippedToHalf).
     for (float v : texels) {
-        const std::uint16_t bits = Imath::half(v).bits();
+        const std::uint16_t bits = Imath::half(std::clamp(v, -kHalfMax, kHalfMax)).bits();
         out.push_back(char(bits & 0xFFu));
         out.push_back(char(bits >> 8));
     }
@@ -104,6 +108,17 @@ std::string dataFormatDescriptor(PixelType type)
 }
 
 } // namespace
+
+bool KtxTexture::clipsToHalf() const
+{
+    if (pixelType != PixelType::Half)
+        return false;
+    for (const std::vector<float>& level : levels)
+        for (float v : level)
+            if (std::abs(v) > kHalfMax)
+                return true;
+    return false;
+}
 
 void KtxTexture::validate() const
 {

@@ -2,7 +2,9 @@
 // than mip 1's lobe prefilters to about its own radiance there (a 2 degree sun of 1e6 read
 // 0.59 at mip 1, clipped). BakeJob::cubeFormat bakes such a map in floats, says so in a note,
 // and bake.json records each cube's format, so that the cache gives the same floats back.
+// An engine export, in half floats, clips at 65504 (it wrote +Inf).
 #include <algorithm>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -10,9 +12,11 @@
 
 #include "bake/bake_accuracy.hpp"
 #include "bake/bake_cache.hpp"
+#include "bake/engine_export.hpp"
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
 #include "io/environment.hpp"
+#include "io/ktx_cube.hpp"
 
 namespace iblab {
 namespace {
@@ -62,6 +66,19 @@ TEST_F(GlTest, AMapBrighterThanAHalfFloatIsBakedInFloats)
         EXPECT_EQ(result->prefiltered.internalFormat, GLenum(GL_RGBA32F));
     }
     EXPECT_EQ(finePerMipErrors(loaded, environment, shaders), errors);
+    // The engines' layouts are half floats: a file clips at 65504 and says so; past it a half
+    // is +Inf, which the exporter wrote before (every texel of the sun, repaired on reading).
+    const bake::ExportReport report = bake::exportForEngine(shaders, environment, baked, bake::EngineFormat::Filament, dir.path() / "filament");
+    EXPECT_TRUE(report.clippedToHalf);
+    for (const std::filesystem::path& file : report.files) {
+        if (file.extension() != ".ktx") continue;
+        const KtxCube cube = readKtxCube(file.string());
+        EXPECT_EQ(cube.repairedComponents, 0u) << file;
+        float peak = 0.0f;
+        for (const ImageRGB32F& level : cube.levels)
+            peak = std::max(peak, *std::ranges::max_element(level.texels));
+        EXPECT_EQ(peak, 65504.0f) << file;
+    }
 }
 
 // At most 65504 in every channel, a map stays in half floats: the same sun at 6e4.
