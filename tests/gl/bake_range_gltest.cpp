@@ -17,6 +17,7 @@
 #include "gl_test_fixture.hpp"
 #include "io/environment.hpp"
 #include "io/ktx_cube.hpp"
+#include "io/ktx_writer.hpp"
 
 namespace iblab {
 namespace {
@@ -90,6 +91,37 @@ TEST_F(GlTest, AMapWithinAHalfFloatStaysInHalfFloats)
     EXPECT_EQ(result.environmentCube.internalFormat, GLenum(GL_RGBA16F));
     EXPECT_EQ(result.prefiltered.internalFormat, GLenum(GL_RGBA16F));
     EXPECT_FALSE(notes(result, "32-bit floats"));
+}
+
+// Another tool's bake in 32-bit floats can be as bright, and its cubes are uploaded as they
+// are: in floats too (a half-float upload clipped them, and past 65504 is +Inf).
+TEST_F(GlTest, AnImportedBakeBrighterThanAHalfFloatIsUploadedInFloats)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    testing::TempDirectory dir("bake-range-import");
+    auto cube = [](int size, int levels, float value) {
+        ktx::KtxTexture t;
+        t.size = size;
+        t.faces = 6;
+        t.pixelType = ktx::PixelType::Float;
+        for (int level = 0; level < levels; ++level)
+            t.levels.emplace_back(std::size_t(6) * std::size_t(t.levelSize(level)) * std::size_t(t.levelSize(level)) * 4, value);
+        return t;
+    };
+    ktx::KtxTexture specular = cube(16, 5, 1.0f);
+    specular.levels[0][0] = specular.levels[0][1] = specular.levels[0][2] = 1e5f; // one bright texel of mip 0
+    ktx::writeKtx2((dir.path() / "specular.ktx2").string(), specular);
+    ktx::writeKtx2((dir.path() / "diffuse.ktx2").string(), cube(8, 1, 3.14159f));
+    const Environment environment = loadEnvironment(dir.path().string());
+    ASSERT_TRUE(environment.imported);
+    const bake::BakeResult result = testing::runBake(shaders, environment, bake::defaultPreset());
+    EXPECT_EQ(result.prefiltered.internalFormat, GLenum(GL_RGBA32F));
+    EXPECT_EQ(result.environmentCube.internalFormat, GLenum(GL_RGBA32F));
+    float peak = 0.0f;
+    for (const glm::vec4& t : bake::readCubeLevel(result.prefiltered, 0).texels)
+        peak = std::max({peak, t.r, t.g, t.b});
+    EXPECT_EQ(peak, 1e5f);
+    EXPECT_TRUE(notes(result, "32-bit floats"));
 }
 
 } // namespace
