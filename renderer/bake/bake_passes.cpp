@@ -484,7 +484,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     const bool split = bright && roughness > 0.0f && std::size_t(slice.level) < bright->levels.size() && bright->levels[std::size_t(slice.level)].base >= 0;
     const PrefilterBrightTexels::Level* lights = split ? &bright->levels[std::size_t(slice.level)] : nullptr;
     // A level the split refines (mips 1 and 2, bright_texels.hpp) takes a second, larger set where its first is unsure.
-    const int refineCount = lights && lights->refineSpread >= 0.0f ? sampleCount * settings.refineFactor : 0;
+    const int refineCount = lights && lights->refineSpread >= 0.0f ? sampleCount * lights->refineFactor : 0;
     const int capacity = sampleTableCapacity(sampleCount + refineCount);
     const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0);
     std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias, settings.sampleRotation);

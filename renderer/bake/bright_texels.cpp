@@ -349,6 +349,11 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             const double baseRms = clampedLuminanceRms(candidates, l.threshold, level);
             l.refineSpread = float(double(settings.refineSpread) * baseRms);
             l.refineError = float(double(settings.refineError) * baseRms);
+            // Mip 2 refines four times as many where its base keeps one-texel lights: star fields
+            // past what even the larger caps hold sampled them at 0.043-0.050. (Mip 1 gained
+            // nothing on them, at twice mip 2's cost.)
+            const bool spiky = level == 2 && spikyBase(candidates, l.threshold, level);
+            l.refineFactor = spiky ? kSpikyBaseCapFactor * settings.refineFactor : settings.refineFactor;
         }
     }
     plan.meanLuminance = candidates.meanLuminance;
@@ -419,6 +424,7 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         if (l.exactCount == 0) {
             l.refineSpread = planned.refineSpread;
             l.refineError = planned.refineError;
+            l.refineFactor = planned.refineFactor;
         }
         if (planned.tiles.tilesPerEdge > 0) {
             l.tileLights = gl::createBufferWith<glm::vec4>(planned.tiles.buffer);

@@ -94,8 +94,9 @@ double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, 
 // false where the mip has no blocks.
 inline constexpr double kSpikyBaseRatio = 2.0;
 bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
-// Mips 1 and 2 list this many times the cap, and the rough mips' blocks allow this many times
-// their far cells, where the base the cap leaves is spiky (planBrightSplit).
+// Mips 1 and 2 list this many times the cap, the rough mips' blocks allow this many times
+// their far cells, and mip 2 refines this many times the samples, where the base the cap
+// leaves is spiky (planBrightSplit).
 inline constexpr int kSpikyBaseCapFactor = 4;
 
 // Every texel of the equirect (exact row solid angles) or of a cube level above
@@ -139,6 +140,9 @@ struct PrefilterBrightTexels {
         // (PrefilterSettings::refineError x the same RMS).
         float refineSpread = -1.0f;
         float refineError = 0.0f;
+        // The refined set's multiple of the first: PrefilterSettings::refineFactor, or at mip 2
+        // kSpikyBaseCapFactor times it where its base is spiky (planBrightSplit).
+        int refineFactor = 1;
         // Mips 1 and 2: their lights per tile (tile_lights.hpp's buffer); 0 tiles: none.
         gl::Buffer tileLights;
         int tileLightsPerEdge = 0;
@@ -165,6 +169,7 @@ struct BrightSplitPlan {
         int farCells = 0;
         float refineSpread = -1.0f; // Level::refineSpread where the level samples its base
         float refineError = 0.0f;   // Level::refineError likewise
+        int refineFactor = 1;       // Level::refineFactor likewise
         // Mips 1 and 2: their lights per tile (tile_lights.hpp); mip 2's instead of a block.
         TileLights tiles;
     };

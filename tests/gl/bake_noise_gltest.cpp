@@ -5,7 +5,8 @@
 // by a twentieth of the map; the samples' own standard error (PrefilterSettings::refineError)
 // finds them (docs/bake.md, "The prefilter's estimator"). And on a field of one-texel stars,
 // which fill the lists of mips 1 and 2 and the rough mips' far cells past their caps: where
-// the base a cap leaves is spiky, the cap is four times as large (bright_texels.hpp's spikyBase).
+// the base a cap leaves is spiky, the cap is four times as large, and so is mip 2's refined set
+// (bright_texels.hpp's spikyBase).
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -138,6 +139,26 @@ TEST_F(GlTest, ThousandsOfStarsMeetThePerMipBoundAtEveryMip)
         const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
         EXPECT_LT(plan.roughThreshold, 3000.0f) << environment.source;
     }
+}
+
+// 2400 stars: past what even the larger caps hold (the rough blocks' 2048 far cells), so mips
+// 2 and 3 sample them, and mip 2 read 0.047 (0.045-0.050 on such fields) with the default's
+// refined set. Its base is spiky at mip 2, so its refined set there is four times as large:
+// 0.026.
+TEST_F(GlTest, StarsPastTheCapsAreRefinedFourTimesAtMipTwo)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = bake::defaultPreset();
+    const Environment environment = starField(2400, 19);
+    const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
+    EXPECT_GT(plan.roughThreshold, 3000.0f) << environment.source << ": the caps hold the stars";
+    EXPECT_EQ(plan.levels.at(2).refineFactor, bake::kSpikyBaseCapFactor * settings.prefilter.refineFactor);
+    EXPECT_EQ(plan.levels.at(1).refineFactor, settings.prefilter.refineFactor);
+    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+    ASSERT_EQ(errors.size(), 5u);
+    EXPECT_LE(errors[1], 0.04) << environment.source << " mip 2";
+    for (std::size_t m = 0; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
 }
 
 } // namespace
