@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <span>
 #include <string>
 #include <vector>
+
+#include <Imath/half.h>
 
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
@@ -85,7 +88,7 @@ int fullMipLevels(int width, int height) { return std::bit_width(unsigned(std::m
 
 float storeMax(GLenum internalFormat)
 {
-    return internalFormat == GL_RGBA16F ? 65504.0f : 3.4028234e38f;
+    return internalFormat == GL_RGBA16F ? float(HALF_MAX) : std::numeric_limits<float>::max();
 }
 
 int BakePasses::riemannPhiSteps(float sampleDelta)

@@ -18,7 +18,6 @@
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
 #include "ibl/luminance.hpp"
-#include "ibl/equirect.hpp"
 #include "ibl/parallel_rows.hpp"
 #include "io/error.hpp"
 

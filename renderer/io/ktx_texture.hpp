@@ -10,9 +10,6 @@
 
 namespace iblab::ktx {
 
-// The largest finite half float: a half-float file clips there (ktx_writer.cpp).
-inline constexpr float kHalfMax = 65504.0f;
-
 struct KtxTexture {
     int size = 0;  // edge of level 0 (square faces only: cube maps and the square LUT)
     int faces = 1; // 1 (2D) or 6 (cube map, faces in GL order +X, -X, +Y, -Y, +Z, -Z)
@@ -25,7 +22,8 @@ struct KtxTexture {
 
     int levelSize(int level) const { return size >> level > 0 ? size >> level : 1; }
     std::size_t bytesPerTexel() const { return pixelType == PixelType::Half ? 8 : 16; }
-    // Whether a half-float file of it clips a texel (any value above kHalfMax).
+    // Whether a half-float file of it clips a texel (any value above the largest finite half,
+    // 65504, where ktx_writer.cpp clips).
     bool clipsToHalf() const;
     // Throws std::invalid_argument naming the problem for sizes, faces or data that disagree.
     void validate() const;

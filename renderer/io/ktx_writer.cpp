@@ -53,7 +53,7 @@ void putTexels(std::string& out, const std::vector<float>& texels, PixelType typ
     // brighter than that (in floats, BakeJob::cubeFormat) is clipped there, as a half-float
     // bake of it would be (the exporter says so: ExportReport::clippedToHalf).
     for (float v : texels) {
-        const std::uint16_t bits = Imath::half(std::clamp(v, -kHalfMax, kHalfMax)).bits();
+        const std::uint16_t bits = Imath::half(std::clamp(v, -float(HALF_MAX), float(HALF_MAX))).bits();
         out.push_back(char(bits & 0xFFu));
         out.push_back(char(bits >> 8));
     }
@@ -115,7 +115,7 @@ bool KtxTexture::clipsToHalf() const
         return false;
     for (const std::vector<float>& level : levels)
         for (float v : level)
-            if (std::abs(v) > kHalfMax)
+            if (std::abs(v) > float(HALF_MAX))
                 return true;
     return false;
 }

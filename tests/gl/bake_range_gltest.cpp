@@ -1,7 +1,8 @@
 // A map brighter than a half float: a half-float cube stores at most 65504, and a sun wider
 // than mip 1's lobe prefilters to about its own radiance there (a 2 degree sun of 1e6 read
-// 0.59 at mip 1, clipped). BakeJob::cubeFormat bakes such a map in floats, says so in a note,
-// and bake.json records each cube's format, so that the cache gives the same floats back.
+// 0.59 at mip 1, clipped). BakeJob::cubeFormat bakes such a map in floats, its result says so
+// in a note, and bake.json records each cube's format, so that the cache gives the same floats
+// back.
 // An engine export, in half floats, clips at 65504 (it wrote +Inf).
 #include <algorithm>
 #include <filesystem>
