@@ -3,14 +3,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <span>
 #include <string>
 #include <vector>
 
 #include <Imath/half.h>
-
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
@@ -86,10 +84,7 @@ int fullMipLevels(int width, int height) { return std::bit_width(unsigned(std::m
 
 } // namespace
 
-float storeMax(GLenum internalFormat)
-{
-    return internalFormat == GL_RGBA16F ? float(HALF_MAX) : std::numeric_limits<float>::max();
-}
+float storeMax(GLenum internalFormat) { return internalFormat == GL_RGBA16F ? float(HALF_MAX) : 3.4028234e38f; }
 
 int BakePasses::riemannPhiSteps(float sampleDelta)
 {
