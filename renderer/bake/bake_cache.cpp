@@ -112,8 +112,10 @@ namespace {
 // lists four times as long where the base they leave is spiky (spikyBase). 12: mip 1's too.
 // 13: the rough blocks' caps four times as large where their base is spiky at mip 2. 14: every
 // cube in floats where the map is brighter than a half float holds (BakeJob::cubeFormat).
-// 15: mip 2's refined set four times as large where its base is spiky.
-constexpr int kBakeOutputRevision = 15;
+// 15: mip 2's refined set four times as large where its base is spiky. 16: a spiky base's
+// lists merged coarser where a tile cannot hold them, and one-texel lines spiky at mip 1
+// (spikyBaseRatio).
+constexpr int kBakeOutputRevision = 16;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

@@ -267,10 +267,16 @@ int brightTexelCap(const PrefilterSettings& settings, int level)
     return int(std::min<std::int64_t>(std::int64_t(8 * settings.brightTexels) << shift, kMaxBrightLights));
 }
 
+double spikyBaseRatio(int scale) { return std::exp2(0.25 * double(scale)); }
+
 bool spikyBase(const BrightCandidates& candidates, float threshold, int mip)
 {
+    const auto blocks = std::find_if(candidates.refinedMipBlocks.begin(), candidates.refinedMipBlocks.end(),
+                                     [&](const BlockLuminance& b) { return b.mip == mip; });
+    if (blocks == candidates.refinedMipBlocks.end())
+        return false;
     const double overFootprint = clampedLuminanceRms(candidates, threshold, mip);
-    return overFootprint > 0.0 && clampedLuminanceRms(candidates, threshold) > kSpikyBaseRatio * overFootprint;
+    return overFootprint > 0.0 && clampedLuminanceRms(candidates, threshold) > spikyBaseRatio(blocks->scale) * overFootprint;
 }
 
 BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings)
@@ -315,7 +321,7 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
         // stars (or a few hundred packed near a pole) fill its lists past the cap.
         if (mip1Tiles.threshold > candidates.floorThreshold && spikyBase(candidates, mip1Tiles.threshold, 1))
             mip1Tiles = planTileLights(candidates, plan.mip1LightsThreshold, roughnessOf(1), faceOf(1), kSpikyBaseCapFactor * settings.tileLights,
-                                       bandReach(roughnessOf(1)));
+                                       bandReach(roughnessOf(1)), 0.0f, true);
         plan.mip1Threshold = std::min(mip1Tiles.threshold, plan.mip1LightsThreshold);
     }
     if (mip2Planned.valid()) {
@@ -325,7 +331,7 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
         // past the cap (docs/bake.md, "Dense star fields"). Maps of large areas never pay for it.
         if (mip2Tiles.threshold > plan.roughThreshold && spikyBase(candidates, mip2Tiles.threshold, 2))
             mip2Tiles = planTileLights(candidates, std::numeric_limits<float>::infinity(), roughnessOf(2), faceOf(2),
-                                       kSpikyBaseCapFactor * settings.tileLights, 0.5 * kPi, plan.roughThreshold);
+                                       kSpikyBaseCapFactor * settings.tileLights, 0.5 * kPi, plan.roughThreshold, true);
         plan.roughThreshold = mip2Tiles.threshold;
     }
     for (int level = 1; level < settings.levels; ++level) {
@@ -349,8 +355,9 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             l.refineSpread = float(double(settings.refineSpread) * baseRms);
             l.refineError = float(double(settings.refineError) * baseRms);
             // Mip 2 refines four times as many where its base keeps one-texel lights: star fields
-            // past what even the larger caps hold sampled them at 0.043-0.050. (Mip 1 gained
-            // nothing on them, at twice mip 2's cost.)
+            // past what even the larger caps hold (before their tiles merged coarser, 2400 stars;
+            // now 1% of the texels) sampled them at 0.043-0.050. (Mip 1 gained nothing on them,
+            // at twice mip 2's cost.)
             const bool spiky = level == 2 && spikyBase(candidates, l.threshold, level);
             l.refineFactor = spiky ? kSpikyBaseCapFactor * settings.refineFactor : settings.refineFactor;
         }

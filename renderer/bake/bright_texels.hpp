@@ -43,6 +43,7 @@
 // footprint (block_luminance.hpp): thin bright lines, diluted in every sample, otherwise
 // spread too little against it to be refined.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -74,6 +75,9 @@ struct BrightCandidates {
     float meanLuminance = 0.0f;      // over the sphere, by solid angle
     // The integral of luminance^2 over the texels not in `texels` (all at most the floor).
     double squaredLuminanceOutsideList = 0.0;
+    // More texels were above brightThreshold x meanLuminance than the cap kept: the floor is
+    // the first one left out.
+    bool truncated = false;
     // Per refined mip, the equirect's luminance in blocks as wide as its samples' footprint
     // (block_luminance.hpp); none where the candidates came from a cube.
     std::vector<BlockLuminance> refinedMipBlocks;
@@ -87,12 +91,17 @@ struct BrightCandidates {
 double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, int mip = 0);
 
 // Whether the map clamped at threshold is spiky at a refined mip's scale: its RMS luminance at
-// full resolution above kSpikyBaseRatio times its RMS over that mip's samples' footprint
-// (clampedLuminanceRms with and without mip). Isolated texels far brighter than their
-// neighbourhood (one-texel lights) read about the footprint's width in texels, since a block
-// dilutes them; skies and large bright areas read about 1 (1.0-1.25 on the bundled maps).
-// false where the mip has no blocks.
-inline constexpr double kSpikyBaseRatio = 2.0;
+// full resolution above spikyBaseRatio times its RMS over that mip's samples' footprint
+// (clampedLuminanceRms with and without mip). Over blocks w texels wide, isolated one-texel
+// lights far brighter than their neighbourhood read about w, since a block dilutes them
+// w^2-fold; one-texel lines read sqrt(w), diluted w-fold; skies and large bright areas read
+// about 1 (1.0-1.25 on the bundled maps). false where the mip has no blocks.
+bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
+// The ratio above which a base is spiky over blocks 2^scale texels wide: w^(1/4), the
+// geometric middle of a smooth base's 1 and a one-texel line's sqrt(w), so that lines as thin
+// as a texel count as well as points (2 at mip 2's blocks of 16 on a 1024 x 512 map, 1.41 at
+// mip 1's of 4, where a one-texel line reads 2.0 and the bundled maps at most 1.10).
+double spikyBaseRatio(int scale);
 bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
 // Mips 1 and 2 list this many times the cap, the rough mips' blocks allow this many times
 // their far cells, and mip 2 refines this many times the samples, where the base the cap
@@ -103,8 +112,11 @@ inline constexpr int kSpikyBaseCapFactor = 4;
 // thresholdOverMean x the mean luminance, at most maxCandidates of them (the brightest;
 // the floor threshold then rises to the first one left out).
 // With blocks, also the map's luminance in blocks of 2^blocks->scale texels, from the same scan.
+// keepMore: where the cap left texels out and keepMore says so of the candidates kept, keeps
+// kSpikyBaseCapFactor times as many instead, from the same scan.
 BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOverMean, int maxCandidates,
-                                  BlockLuminance* blocks = nullptr);
+                                  BlockLuminance* blocks = nullptr,
+                                  const std::function<bool(const BrightCandidates&)>& keepMore = {});
 BrightCandidates brightCandidates(const CubeImage& level0, float thresholdOverMean, int maxCandidates);
 
 // The lights of the candidates strictly above threshold: their excess over it, merged in the
@@ -155,7 +167,9 @@ struct PrefilterBrightTexels {
     float meanLuminance = 0.0f;
 };
 
-// The most candidates the split keeps (the brightest; brightCandidates' maxCandidates).
+// The most candidates the split keeps (the brightest; brightCandidates' maxCandidates), and
+// where that many leave a spiky base behind (a field of tens of thousands of one-texel stars
+// on a 3000- or 4096-wide map), kSpikyBaseCapFactor times as many (splitCandidates).
 inline constexpr int kMaxBrightCandidates = 1 << 14;
 
 // The split's host work, which needs no GL: the thresholds and, per prefiltered mip (index =

@@ -33,11 +33,25 @@ constexpr int kTilesPerThread = 512;
 // the node's contribution (the lobe's tail falls as theta^-4), and far less near the peak,
 // where only the finest cells (alpha / 2) are summed.
 constexpr double kMergeRatio = 0.25;
+// Where a tile's list would not fit its cap even with every candidate lit at kMergeRatio (a
+// lattice of one-texel stars or lines converging at a pole), planTileLights may double the
+// tile's ratio up to this: a point's error then grows to about 0.4 of the merged node's
+// contribution, where the alternative, a threshold above the field, left all of it to the
+// samples (docs/bake.md, "Lines and lattices").
+constexpr double kCoarsestMergeRatio = 1.0;
+// And past that, sum whole the nodes up to this level however near (cells of alpha, twice the
+// finest: a cell full of light at the lobe's peak is then summed about 8% low, against 2%),
+// before the threshold rises.
+constexpr int kCoarsestFinestLevel = 1;
 
-// A tile of output texels: its centre and the angle to its farthest corner.
+// A tile of output texels: its centre, the angle to its farthest corner, the share of its
+// distance a node's cell may span for the tile to sum it whole, and the level up to which it
+// sums every node whole.
 struct Tile {
     glm::dvec3 centre;
     double radius = 0.0;
+    double mergeRatio = kMergeRatio;
+    int finestLevel = 0; // nodes of this level and finer are summed whole
 };
 
 glm::dvec3 faceDirection(int face, double u, double v)
@@ -161,7 +175,7 @@ TileReach tileReach(const LightTree& tree, const Tile& tile, double reach)
         // 1.5 / S of its centre.
         const double halfDiagonal = 1.5 / size;
         r.skip.push_back(std::cos(std::min(kPi, reach + tile.radius + halfDiagonal)));
-        r.whole.push_back(std::cos(std::min(kPi, 2.0 * halfDiagonal / kMergeRatio + tile.radius + halfDiagonal)));
+        r.whole.push_back(std::cos(std::min(kPi, 2.0 * halfDiagonal / tile.mergeRatio + tile.radius + halfDiagonal)));
     }
     return r;
 }
@@ -174,7 +188,7 @@ NodeUse nodeUse(const Tile& tile, const TileReach& reach, const LightTree::Node&
     const double c = glm::dot(tile.centre, node.centre);
     if (c < reach.skip[std::size_t(node.level)])
         return NodeUse::Skip;
-    return node.level == 0 || c <= reach.whole[std::size_t(node.level)] ? NodeUse::Sum : NodeUse::Open;
+    return node.level <= tile.finestLevel || c <= reach.whole[std::size_t(node.level)] ? NodeUse::Sum : NodeUse::Open;
 }
 
 // A tile's list: the nodes it sums among those of the first `lit` candidates, two entries
@@ -206,6 +220,56 @@ std::vector<glm::vec4> tileLights(const LightTree& tree, const Tile& tile, doubl
         }
     }
     return lights;
+}
+
+// How many nodes among those of the first `lit` candidates a tile sums, counted up to limit + 1.
+int countTileLights(const LightTree& tree, const Tile& tile, double reach, std::size_t lit, int limit)
+{
+    const TileReach r = tileReach(tree, tile, reach);
+    std::vector<int> stack(tree.roots.begin(), tree.roots.end());
+    int count = 0;
+    while (!stack.empty() && count <= limit) {
+        const LightTree::Node& node = tree.nodes[std::size_t(stack.back())];
+        stack.pop_back();
+        if (node.firstCandidate >= lit)
+            continue;
+        switch (nodeUse(tile, r, node)) {
+        case NodeUse::Skip: break;
+        case NodeUse::Sum: ++count; break;
+        case NodeUse::Open:
+            for (int child : node.children)
+                if (child >= 0)
+                    stack.push_back(child);
+            break;
+        }
+    }
+    return count;
+}
+
+// Each tile whose list with the first `lit` candidates lit exceeds the cap merges coarser:
+// its ratio doubled up to kCoarsestMergeRatio, then its finest level raised up to
+// kCoarsestFinestLevel, until the list fits. Whether every list then fits.
+bool coarsenOverfullTiles(const LightTree& tree, std::vector<Tile>& tiles, double reach, int cap, std::size_t lit)
+{
+    std::atomic<bool> allFit{true};
+    parallelRows(int(tiles.size()), [&](int first, int end) {
+        for (int t = first; t < end; ++t) {
+            Tile& tile = tiles[std::size_t(t)];
+            for (;;) {
+                if (countTileLights(tree, tile, reach, lit, cap) <= cap)
+                    break;
+                if (tile.mergeRatio < kCoarsestMergeRatio) {
+                    tile.mergeRatio = std::min(2.0 * tile.mergeRatio, kCoarsestMergeRatio);
+                } else if (tile.finestLevel < kCoarsestFinestLevel && tile.finestLevel + 1 < int(tree.faceSizes.size())) {
+                    ++tile.finestLevel;
+                } else {
+                    allFit = false;
+                    break;
+                }
+            }
+        }
+    }, kTilesPerThread);
+    return allFit;
 }
 
 // The most candidates (a prefix) whose nodes every tile sums in at most cap lights: per tile
@@ -267,7 +331,7 @@ double bandReach(double roughness)
 }
 
 TileLights planTileLights(const BrightCandidates& candidates, float upperThreshold, double roughness, int faceSize, int capPerTile,
-                          double reach, float lowestThreshold)
+                          double reach, float lowestThreshold, bool coarsenOverfull)
 {
     TileLights out;
     out.threshold = upperThreshold;
@@ -275,7 +339,7 @@ TileLights planTileLights(const BrightCandidates& candidates, float upperThresho
     if (capPerTile <= 0 || faceSize <= 0 || n == 0 || !(std::max(candidates.floorThreshold, lowestThreshold) < upperThreshold))
         return out;
     const int tilesPerEdge = std::max(1, faceSize / kTileLightsTile);
-    const std::vector<Tile> tiles = outputTiles(tilesPerEdge);
+    std::vector<Tile> tiles = outputTiles(tilesPerEdge);
 
     // The threshold: the luminance of the first candidate past the longest prefix that fits
     // (the floor where all do), or lowestThreshold where that is higher; the lights are the
@@ -283,19 +347,30 @@ TileLights planTileLights(const BrightCandidates& candidates, float upperThresho
     const std::size_t aboveUpper = std::size_t(std::partition_point(candidates.texels.begin(), candidates.texels.end(),
                                                                     [&](const BrightTexel& t) { return t.luminance > upperThreshold; }) -
                                                candidates.texels.begin());
-    // The tree of the first `built` candidates holds every node of a longer prefix whose
-    // firstCandidate is below `built`, so a prefix it finds shorter than that is the prefix
-    // of all of them: on a map with large bright areas the tiles fill within the first
-    // thousand candidates of 16384, and building the tree of all of them took 20 ms.
-    std::size_t built = std::min(n, std::max<std::size_t>(kFirstTreeCandidates, 2 * aboveUpper));
     LightTree tree;
     std::size_t prefix = 0;
-    for (;;) {
-        tree = lightTree(candidates, built, brightCellFaceSize(roughness));
-        prefix = longestFittingPrefix(tree, tiles, reach, capPerTile, built, aboveUpper);
-        if (prefix < built || built == n)
-            break;
-        built = std::min(n, 4 * built);
+    if (coarsenOverfull) {
+        // The candidates that may be lit, each tile that cannot list them all merging coarser:
+        // the search runs only where some tile overflows even so.
+        const std::size_t litAtMost = std::size_t(std::partition_point(candidates.texels.begin(), candidates.texels.end(),
+                                                                       [&](const BrightTexel& t) { return t.luminance > lowestThreshold; }) -
+                                                  candidates.texels.begin());
+        tree = lightTree(candidates, n, brightCellFaceSize(roughness));
+        prefix = coarsenOverfullTiles(tree, tiles, reach, capPerTile, litAtMost) ? litAtMost
+                                                                                 : longestFittingPrefix(tree, tiles, reach, capPerTile, litAtMost, aboveUpper);
+    } else {
+        // The tree of the first `built` candidates holds every node of a longer prefix whose
+        // firstCandidate is below `built`, so a prefix it finds shorter than that is the prefix
+        // of all of them: on a map with large bright areas the tiles fill within the first
+        // thousand candidates of 16384, and building the tree of all of them took 20 ms.
+        std::size_t built = std::min(n, std::max<std::size_t>(kFirstTreeCandidates, 2 * aboveUpper));
+        for (;;) {
+            tree = lightTree(candidates, built, brightCellFaceSize(roughness));
+            prefix = longestFittingPrefix(tree, tiles, reach, capPerTile, built, aboveUpper);
+            if (prefix < built || built == n)
+                break;
+            built = std::min(n, 4 * built);
+        }
     }
     out.threshold = std::min(std::max(prefix < n ? candidates.texels[prefix].luminance : candidates.floorThreshold, lowestThreshold), upperThreshold);
     if (!(out.threshold < upperThreshold))

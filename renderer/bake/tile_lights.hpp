@@ -54,8 +54,9 @@ struct TileLights {
 // The candidates between the threshold found and upperThreshold (their excess over the one,
 // up to the other) as the lights of a level with this roughness and face size, within `reach`
 // radians of a tile's texels, at most capPerTile per tile, with a threshold no lower than
-// lowestThreshold. capPerTile 0: none.
+// lowestThreshold. capPerTile 0: none. coarsenOverfull: a tile whose list would exceed the cap
+// with every candidate lit merges its far lights coarser before the threshold is raised for it.
 TileLights planTileLights(const BrightCandidates& candidates, float upperThreshold, double roughness, int faceSize, int capPerTile,
-                          double reach, float lowestThreshold = 0.0f);
+                          double reach, float lowestThreshold = 0.0f, bool coarsenOverfull = false);
 
 } // namespace iblab::bake

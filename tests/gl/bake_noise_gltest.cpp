@@ -7,7 +7,9 @@
 // which fill the lists of mips 1 and 2 and the rough mips' far cells past their caps: where
 // the base a cap leaves is spiky, the cap is four times as large, and so is mip 2's refined set
 // (bright_texels.hpp's spikyBase).
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,8 +18,10 @@
 
 #include "bake/bake_accuracy.hpp"
 #include "bake/bright_texels.hpp"
+#include "bake/tile_lights.hpp"
 #include "bake_test_support.hpp"
 #include "gl_test_fixture.hpp"
+#include "ibl/conventions.hpp"
 #include "ibl/image.hpp"
 #include "io/environment.hpp"
 
@@ -54,32 +58,36 @@ Environment texelNoise(int width, int power, float scale, std::uint32_t seed)
     return environment;
 }
 
-// Sparse, very bright noise (a fifteenth of the texels above 4 times the mean): refined only
-// where the samples' spread says so, mip 1 is over the bound (0.069); refined where their
-// standard error is above the default's too, every mip is within it (mip 1 0.034). Its base is
-// spiky at mip 1, so both bakes list mip 1's lights four times as long.
+// Sparse, very bright noise (a fifteenth of the texels above 4 times the mean): its base is
+// spiky at mip 1, so mip 1 lists its lights four times as long, and every mip is within the
+// bound (mip 1 0.012). A denser noise (u^8 x 1000, 512 wide) leaves more of itself to the
+// samples: refined only where their spread says so, mip 1 reads 0.058; refined where their
+// standard error is above the default's too, 0.015.
 TEST_F(GlTest, TexelNoiseMeetsThePerMipBoundAtEveryMip)
 {
     auto shaders = testing::bakeShaderLibrary();
-    const Environment environment = texelNoise(1024, 30, 2e4f, 17);
     const bake::BakeSettings settings = bake::defaultPreset();
     ASSERT_GT(settings.prefilter.brightTexels, 0);
-    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
-    ASSERT_EQ(errors.size(), 5u);
-    for (std::size_t m = 0; m < errors.size(); ++m)
-        EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
     bake::BakeSettings spreadOnly = settings;
     spreadOnly.prefilter.refineError = 1e9f;
-    EXPECT_GT(perMipErrors(shaders, environment, spreadOnly).front(), kPerMipBound) << environment.source << ", mip 1 refined by spread only";
+    for (const Environment& environment : {texelNoise(1024, 30, 2e4f, 17), texelNoise(512, 8, 1000.0f, 41)}) {
+        const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+        ASSERT_EQ(errors.size(), 5u);
+        for (std::size_t m = 0; m < errors.size(); ++m)
+            EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
+        if (environment.image.width == 512) {
+            EXPECT_GT(perMipErrors(shaders, environment, spreadOnly).front(), kPerMipBound) << environment.source << ", mip 1 refined by spread only";
+        }
+    }
 }
 
 // A sky gradient with `stars` one-texel stars of 3000 at seeded random places: 524 is a tenth
 // of a percent of a 1024 x 512 map's texels.
-Environment starField(int stars, std::uint32_t seed)
+Environment starField(int stars, std::uint32_t seed, int width = 1024)
 {
     Environment environment;
-    environment.source = std::to_string(stars) + " one-texel stars of 3000";
-    environment.image = ImageRGB32F(1024, 512);
+    environment.source = std::to_string(stars) + " one-texel stars of 3000, " + std::to_string(width) + " wide";
+    environment.image = ImageRGB32F(width, width / 2);
     for (int y = 0; y < environment.image.height; ++y)
         for (int x = 0; x < environment.image.width; ++x) {
             const float sky = 0.05f + 0.5f * (1.0f - float(y) / float(environment.image.height));
@@ -91,11 +99,11 @@ Environment starField(int stars, std::uint32_t seed)
     std::uint32_t state = seed;
     auto next = [&state] { return (state = state * 1664525u + 1013904223u) >> 8; };
     for (int star = 0; star < stars; ++star) {
-        const std::size_t at = environment.image.offset(int(next() % 1024u), int(next() % 512u));
+        const std::size_t at = environment.image.offset(int(next() % std::uint32_t(width)), int(next() % std::uint32_t(width / 2)));
         for (int c = 0; c < 3; ++c)
             environment.image.texels[at + std::size_t(c)] += 3000.0f;
     }
-    environment.contentHash = 0x2950u + seed;
+    environment.contentHash = 0x2950u + seed + std::uint32_t(width);
     return environment;
 }
 
@@ -141,22 +149,106 @@ TEST_F(GlTest, ThousandsOfStarsMeetThePerMipBoundAtEveryMip)
     }
 }
 
-// 2400 stars: past what even the larger caps hold (the rough blocks' 2048 far cells), so mips
-// 2 and 3 sample them, and mip 2 read 0.047 (0.045-0.050 on such fields) with the default's
-// refined set. Its base is spiky at mip 2, so its refined set there is four times as large:
-// 0.026.
-TEST_F(GlTest, StarsPastTheCapsAreRefinedFourTimesAtMipTwo)
+// 2400 stars fill mip 2's lists past even four times the cap near the poles, so the rough
+// mips' base kept them and mips 2 and 3 sampled them (mip 2 0.047). Where a tile cannot list
+// every light, it merges its far lights coarser before the threshold rises
+// (planTileLights' coarsenOverfull): the lists hold the field, and mip 2 reads 0.002.
+TEST_F(GlTest, ListsThatCannotHoldAStarFieldMergeCoarser)
 {
     auto shaders = testing::bakeShaderLibrary();
     const bake::BakeSettings settings = bake::defaultPreset();
     const Environment environment = starField(2400, 19);
-    const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
-    EXPECT_GT(plan.roughThreshold, 3000.0f) << environment.source << ": the caps hold the stars";
-    EXPECT_EQ(plan.levels.at(2).refineFactor, bake::kSpikyBaseCapFactor * settings.prefilter.refineFactor);
-    EXPECT_EQ(plan.levels.at(1).refineFactor, settings.prefilter.refineFactor);
+    const bake::BrightCandidates candidates = bake::splitCandidates(environment.image, settings.prefilter);
+    const bake::BrightSplitPlan plan = bake::planBrightSplit(candidates, settings.prefilter);
+    EXPECT_LT(plan.roughThreshold, 3000.0f) << environment.source << ": the lists hold the stars";
+    const float infinite = std::numeric_limits<float>::infinity();
+    const double roughness = bake::prefilterMipRoughness(settings.prefilter, 2);
+    const int face = settings.prefilter.faceSize >> 2, cap = bake::kSpikyBaseCapFactor * settings.prefilter.tileLights;
+    EXPECT_GT(bake::planTileLights(candidates, infinite, roughness, face, cap, 0.5 * kPi, 0.0f, false).threshold, 3000.0f)
+        << environment.source << ": without coarser merging the lists cannot hold the stars";
+    const bake::TileLights merged = bake::planTileLights(candidates, infinite, roughness, face, cap, 0.5 * kPi, 0.0f, true);
+    EXPECT_LT(merged.threshold, 3000.0f) << environment.source;
+    EXPECT_LE(merged.longestList, cap);
     const std::vector<double> errors = perMipErrors(shaders, environment, settings);
     ASSERT_EQ(errors.size(), 5u);
-    EXPECT_LE(errors[1], 0.04) << environment.source << " mip 2";
+    EXPECT_LE(errors[1], 0.01) << environment.source << " mip 2";
+    for (std::size_t m = 0; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
+}
+
+// 10400 stars (2% of the texels): mip 1's lists, four times the cap, could not hold them near
+// the poles, its threshold rose above them and its samples aliased them (0.069 on such a
+// field); merged coarser where a tile overflows, they are listed. 52000 (10%) overflow even at
+// the coarsest ratio near the poles, where those tiles also sum the level above the finest
+// whole: mip 1 0.013 (0.033 without). 5200 stars fill even the coarser lists of mip 2, whose
+// base keeps them: its refined set is four times as large there.
+TEST_F(GlTest, DenseStarFieldsMeetThePerMipBoundAtEveryMip)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = bake::defaultPreset();
+    for (const auto& [stars, seed] : {std::pair{10400, 23u}, std::pair{52000, 37u}, std::pair{5200, 29u}}) {
+        const Environment environment = starField(stars, seed);
+        const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
+        EXPECT_LT(plan.mip1Threshold, 3000.0f) << environment.source << ": mip 1 lists its stars";
+        if (stars == 5200) {
+            EXPECT_GT(plan.roughThreshold, 3000.0f) << environment.source << ": past mip 2's lists";
+            EXPECT_EQ(plan.levels.at(2).refineFactor, bake::kSpikyBaseCapFactor * settings.prefilter.refineFactor);
+        }
+        const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+        ASSERT_EQ(errors.size(), 5u);
+        for (std::size_t m = 0; m < errors.size(); ++m)
+            EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
+        if (stars == 52000) {
+            EXPECT_LE(errors[0], 0.025) << environment.source << " mip 1";
+        }
+    }
+}
+
+// 19000 stars on a 2048 x 1024 map: more texels above the floor than the candidates' cap
+// (16384), which raised the floor to the stars' brightness, so no threshold could take any and
+// mip 1 sampled them all. The base the cap leaves is spiky, so four times as many are kept; a
+// map of large bright areas past the cap keeps it.
+TEST_F(GlTest, StarsPastTheCandidatesCapAreKept)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = bake::defaultPreset();
+    const Environment environment = starField(19000, 31, 2048);
+    const bake::BrightCandidates candidates = bake::splitCandidates(environment.image, settings.prefilter);
+    EXPECT_FALSE(candidates.truncated) << environment.source;
+    EXPECT_GT(candidates.texels.size(), std::size_t(bake::kMaxBrightCandidates)) << environment.source;
+    const Environment areas = loadEnvironment(std::string(IBLAB_ASSET_DIR) + "/environments/courtyard.exr");
+    const bake::BrightCandidates areaCandidates = bake::splitCandidates(areas.image, settings.prefilter);
+    EXPECT_TRUE(areaCandidates.truncated) << "courtyard.exr's sky";
+    EXPECT_LE(areaCandidates.texels.size(), std::size_t(bake::kMaxBrightCandidates)) << "courtyard.exr's sky";
+    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+    ASSERT_EQ(errors.size(), 5u);
+    for (std::size_t m = 0; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
+}
+
+// 24 one-texel meridians of 2000 over a sky of 0.5, meeting at the poles: over mip 1's blocks of
+// 4 x 4 texels a one-texel line reads 2.0 (a block dilutes it 4-fold), a one-texel star 4, a
+// sky 1, so with a ratio of 2 at every mip the lines were not spiky at mip 1; the lists there
+// could not hold the lines near the poles, the threshold rose above them and mip 1 sampled
+// them (0.064). The ratio is now the footprint's w^(1/4), 1.41 at mip 1 (spikyBaseRatio).
+TEST_F(GlTest, LinesMeetingAtThePolesAreSpikyAtMipOne)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = bake::defaultPreset();
+    Environment environment;
+    environment.source = "24 one-texel meridians of 2000";
+    environment.image = ImageRGB32F(1024, 512);
+    for (int y = 0; y < environment.image.height; ++y)
+        for (int x = 0; x < environment.image.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                environment.image.texels[environment.image.offset(x, y) + std::size_t(c)] = x % 43 == 0 ? 2000.0f : 0.5f;
+    environment.contentHash = 0x2990u;
+    EXPECT_NEAR(bake::spikyBaseRatio(2), std::sqrt(2.0), 1e-12);
+    EXPECT_NEAR(bake::spikyBaseRatio(4), 2.0, 1e-12);
+    const bake::BrightCandidates candidates = bake::splitCandidates(environment.image, settings.prefilter);
+    EXPECT_TRUE(bake::spikyBase(candidates, 1000.0f, 1)) << environment.source << " clamped below its lines";
+    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+    ASSERT_EQ(errors.size(), 5u);
     for (std::size_t m = 0; m < errors.size(); ++m)
         EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
 }
