@@ -20,6 +20,7 @@
 #include "ibl/conventions.hpp"
 #include "ibl/equirect.hpp"
 #include "ibl/reference.hpp"
+#include "gl/seamless_cube_scope.hpp"
 #include "gl/uniform.hpp"
 #include "bake/bake_pass_uniforms.hpp"
 
@@ -43,27 +44,6 @@ constexpr const char* kClampLuminance = "bake/clamp_luminance.comp";
 constexpr const char* kClampNearLights = "bake/clamp_near_lights.comp";
 constexpr const char* kSamplePrefiltered = "bake/sample_prefiltered.comp";
 
-// Seamless filtering across cube faces (GL 4.5 core, global state): without it a texel
-// near a face edge is clamped to its own face, and the blurred mips show their seams.
-// Turned on for the pass and restored after it.
-class SeamlessCubeScope {
-public:
-    SeamlessCubeScope() : wasEnabled_(glIsEnabled(GL_TEXTURE_CUBE_MAP_SEAMLESS) == GL_TRUE)
-    {
-        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    }
-    ~SeamlessCubeScope()
-    {
-        if (!wasEnabled_)
-            glDisable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    }
-    SeamlessCubeScope(const SeamlessCubeScope&) = delete;
-    SeamlessCubeScope& operator=(const SeamlessCubeScope&) = delete;
-
-private:
-    bool wasEnabled_;
-};
-
 // Clears the units a pass used, so that a later pass cannot read or write through a
 // binding it did not make.
 void clearPassBindings()
@@ -75,6 +55,7 @@ void clearPassBindings()
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, 0);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 2, 0);
 }
 
 GLuint groupsFor(int n) { return GLuint((n + 7) / 8); }
@@ -122,9 +103,11 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
     }
     // The refined mips' tables hold their refined sets too where the split refines them (prefilter()).
     const int refinedSets = settings.prefilter.brightTexels > 0 ? std::max(1, settings.prefilter.refineFactor + 1) : 1;
-    for (int level = 1; level < settings.prefilter.levels; ++level)
+    for (int level = 1; level < settings.prefilter.levels; ++level) {
+        const bool split = prefilterMipRoughness(settings.prefilter, level) > 0.0f && settings.prefilter.brightTexels > 0;
         prefilterProgram(sampleTableCapacity(prefilterSamples(settings.prefilter, level) * (level <= kLastRefinedMip ? refinedSets : 1)),
-                         prefilterMipRoughness(settings.prefilter, level) > 0.0f ? brightBlockCapacity(settings.prefilter) : 0);
+                         split ? brightBlockCapacity(settings.prefilter) : 0, split ? exactTableCapacity(settings.prefilter) : 0);
+    }
     if (lut)
         shaders_.program({kBrdfLut});
 }
@@ -151,9 +134,11 @@ const gl::ShaderProgram& BakePasses::sampleTableProgram(const char* file, int ca
     return shaders_.program({file}, {{"SAMPLE_TABLE_CAPACITY", std::to_string(capacity)}});
 }
 
-const gl::ShaderProgram& BakePasses::prefilterProgram(int capacity, int brightCapacity)
+const gl::ShaderProgram& BakePasses::prefilterProgram(int capacity, int brightCapacity, int exactCapacity)
 {
-    return shaders_.program({kPrefilter}, {{"SAMPLE_TABLE_CAPACITY", std::to_string(capacity)}, {"BRIGHT_CAPACITY", std::to_string(brightCapacity)}});
+    return shaders_.program({kPrefilter}, {{"SAMPLE_TABLE_CAPACITY", std::to_string(capacity)},
+                                           {"BRIGHT_CAPACITY", std::to_string(brightCapacity)},
+                                           {"EXACT_CAPACITY", std::to_string(exactCapacity)}});
 }
 
 int BakePasses::equirectLevelsForCube(int width, int height, int faceSize)
@@ -408,7 +393,7 @@ gl::Buffer bindSampleTable(const gl::ShaderProgram& program, int capacity, const
 void BakePasses::irradianceRiemann(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                                    const RiemannIrradianceSettings& settings, bool exactTexelSolidAngle)
 {
-    SeamlessCubeScope seamless;
+    gl::SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = cubeProgram(kIrradianceRiemann);
     const RiemannUniforms& uniforms = program.uniforms<RiemannUniforms>();
     uniforms.phiSteps.set(riemannPhiSteps(settings.sampleDelta));
@@ -421,7 +406,7 @@ void BakePasses::irradianceRiemann(const BakedTexture& environment, const BakedT
 void BakePasses::irradianceImportance(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                                       const ImportanceIrradianceSettings& settings, bool exactTexelSolidAngle)
 {
-    SeamlessCubeScope seamless;
+    gl::SeamlessCubeScope seamless;
     const int capacity = sampleTableCapacity(settings.samples);
     const gl::ShaderProgram& program = sampleTableProgram(kIrradianceImportance, capacity);
     const gl::Buffer table = bindSampleTable(program, capacity, cosineSampleTable(settings.samples, settings.mipBias));
@@ -475,7 +460,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
 {
     if (copyMirrorLevel(environment, out, slice, settings))
         return;
-    SeamlessCubeScope seamless;
+    gl::SeamlessCubeScope seamless;
     const int sampleCount = prefilterSamples(settings, slice.level);
     const float roughness = prefilterMipRoughness(settings, slice.level);
     // The mirror level has no lobe to weight lights by: it reads the environment itself.
@@ -484,7 +469,8 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     // A level the split refines (mips 1 and 2, bright_texels.hpp) takes a second, larger set where its first is unsure.
     const int refineCount = lights && lights->refineSpread >= 0.0f ? sampleCount * lights->refineFactor : 0;
     const int capacity = sampleTableCapacity(sampleCount + refineCount);
-    const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0);
+    const int exactCapacity = lights ? exactTableCapacity(settings) : 0;
+    const gl::ShaderProgram& program = prefilterProgram(capacity, lights ? lights->capacity : 0, exactCapacity);
     std::vector<glm::vec4> samples = ggxReflectedSampleTable(roughness, sampleCount, settings.mipBias, settings.sampleRotation);
     auto weightSumOf = [](std::span<const glm::vec4> set) {
         return std::accumulate(set.begin(), set.end(), 0.0f, [](float sum, const glm::vec4& sample) { return sum + sample.z; });
@@ -514,7 +500,7 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
         uniforms.brightScale.set(float(alpha * alpha / (kPi * ggxPrefilterNormalization(roughness))));
         glBindBufferBase(GL_UNIFORM_BUFFER, 1, lights->texels.id());
         uniforms.exactCount.set(lights->exactCount);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, lights->exactCount > 0 ? lights->exactTexels.id() : 0);
+        glBindBufferBase(exactCapacity > 0 ? GL_UNIFORM_BUFFER : GL_SHADER_STORAGE_BUFFER, 2, lights->exactCount > 0 ? lights->exactTexels.id() : 0);
         uniforms.tileLightsPerEdge.set(lights->tileLightsPerEdge);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, lights->tileLightsPerEdge > 0 ? lights->tileLights.id() : 0);
     }
@@ -554,7 +540,7 @@ std::vector<glm::vec3> BakePasses::samplePrefiltered(const BakedTexture& prefilt
                                                      const std::vector<glm::vec4>& queries)
 {
     if (queries.empty()) return {};
-    SeamlessCubeScope seamless;
+    gl::SeamlessCubeScope seamless;
     const gl::ShaderProgram& program = shaders_.program({kSamplePrefiltered});
     const gl::Buffer in = gl::createBufferWith<glm::vec4>(queries);
     gl::Buffer out = gl::createBuffer();

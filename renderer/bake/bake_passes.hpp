@@ -68,6 +68,11 @@ public:
     // where it is not the settings' precision (BakeJob::cubeFormat); 0: the settings'.
     void compileFor(const BakeSettings& settings, int equirectLevels, bool lut, GLenum cubeFormat = 0);
 
+    // The entries of the uniform block that holds a level's exact-sum table
+    // (prefilter_ggx.comp's EXACT_CAPACITY; the table is padded to it), or 0 when the table
+    // needs a storage buffer.
+    int exactTableCapacity(const PrefilterSettings& settings) const { return sampleTableCapacity(2 * settings.exactSumTexels); }
+
     // The equirect levels equirectToCube reads for a cube of faceSize texels per edge: its
     // footprint's minor axis is at most a face-centre texel, 2/f rad, against an equirect
     // row's pi/H, so its lod is at most log2(2H / (pi f)); levels are built up to that lod
@@ -135,7 +140,7 @@ private:
     // sampleCount entries, or 0 when it needs a storage buffer.
     int sampleTableCapacity(int sampleCount) const;
     const gl::ShaderProgram& sampleTableProgram(const char* file, int capacity);
-    const gl::ShaderProgram& prefilterProgram(int capacity, int brightCapacity);
+    const gl::ShaderProgram& prefilterProgram(int capacity, int brightCapacity, int exactCapacity);
     // One clamp_luminance.comp pass into `first` (and `second`, of the same size, where
     // targets is 2).
     void clampPass(const BakedTexture& environment, const BakedTexture& first, const BakedTexture& second, glm::vec2 thresholds,

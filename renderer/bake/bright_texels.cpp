@@ -422,8 +422,10 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
         std::copy(planned.block.begin(), planned.block.begin() + std::ptrdiff_t(std::min(planned.block.size(), padded.size())), padded.begin());
         l.texels = gl::createBufferWith<glm::vec4>(padded);
         if (const int exact = exactSumSourceLevel(settings, environment.size, environment.levels, roughness); exact >= 0) {
-            const std::vector<glm::vec4> texels = exactSumTexels(readCubeLevel(out.bases[std::size_t(l.base)], exact - topLevels[std::size_t(l.base)]));
+            std::vector<glm::vec4> texels = exactSumTexels(readCubeLevel(out.bases[std::size_t(l.base)], exact - topLevels[std::size_t(l.base)]));
             l.exactCount = int(texels.size() / 2);
+            // A uniform block reads undefined past a bound range shorter than itself: padded.
+            texels.resize(std::max(texels.size(), std::size_t(passes.exactTableCapacity(settings))), glm::vec4(0.0f));
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
         }
         // A level that sums its base exactly has no samples to refine.

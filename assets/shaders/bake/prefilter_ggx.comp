@@ -85,12 +85,20 @@ vec3 sumTileLights(vec3 n, ivec2 texel)
 // solid angle, and normalised by the weights' sum: a constant map stays exact. The host
 // lists the texels (PrefilterBrightTexels::Level::exactTexels: (direction, 0), (radiance x
 // solid angle, solid angle)), so that every lane reads the same entry at the same time and
-// no texture: on llvmpipe a cube read per texel made mip 4 cost about twice as much.
-// Where the samples see a large bright area through a few reads that move with the texel,
-// this sees every texel of it with its weight.
+// no texture: on llvmpipe a cube read per texel made mip 4 cost about twice as much. The
+// table is a uniform block where it fits (EXACT_CAPACITY > 0, as source_samples.glsl's sample
+// tables: mip 4 took 2.9 ms on courtyard.exr against 5.1 from a storage buffer), else a
+// storage buffer. Where the samples see a large bright area through a few reads that move with
+// the texel, this sees every texel of it with its weight.
+#if EXACT_CAPACITY > 0
+layout(std140, binding = 2) uniform ExactTexels {
+    vec4 exactTexels[EXACT_CAPACITY];
+};
+#else
 layout(std430, binding = 2) readonly buffer ExactTexels {
     vec4 exactTexels[];
 };
+#endif
 uniform int uExactCount;
 
 vec3 exactBaseSum(vec3 n)
