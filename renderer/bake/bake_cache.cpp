@@ -114,8 +114,8 @@ namespace {
 // cube in floats where the map is brighter than a half float holds (BakeJob::cubeFormat).
 // 15: mip 2's refined set four times as large where its base is spiky. 16: a spiky base's
 // lists merged coarser where a tile cannot hold them, and one-texel lines spiky at mip 1
-// (spikyBaseRatio).
-constexpr int kBakeOutputRevision = 16;
+// (spikyBaseRatio). 17: mip 1's refined set four times as large where its base is spiky too.
+constexpr int kBakeOutputRevision = 17;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

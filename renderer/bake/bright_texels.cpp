@@ -354,11 +354,10 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             const double baseRms = clampedLuminanceRms(candidates, l.threshold, level);
             l.refineSpread = float(double(settings.refineSpread) * baseRms);
             l.refineError = float(double(settings.refineError) * baseRms);
-            // Mip 2 refines four times as many where its base keeps one-texel lights: star fields
-            // past what even the larger caps hold (before their tiles merged coarser, 2400 stars;
-            // now 1% of the texels) sampled them at 0.043-0.050. (Mip 1 gained nothing on them,
-            // at twice mip 2's cost.)
-            const bool spiky = level == 2 && spikyBase(candidates, l.threshold, level);
+            // Four times as many where the base keeps one-texel lights or lines: star fields past
+            // what the lists hold sampled them at 0.043-0.050 at mip 2, and a grid of one-texel
+            // lines past even the candidates' larger cap read 0.051 at mip 1 (0.039 so).
+            const bool spiky = spikyBase(candidates, l.threshold, level);
             l.refineFactor = spiky ? kSpikyBaseCapFactor * settings.refineFactor : settings.refineFactor;
         }
     }

@@ -226,6 +226,30 @@ TEST_F(GlTest, StarsPastTheCandidatesCapAreKept)
         EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
 }
 
+// A grid of one-texel lines of 600 every 32 texels both ways on a 2048 x 1024 map: 130000
+// texels above the floor, past even the candidates' larger cap, all of one brightness, so
+// every mip samples them. Its base is spiky at mip 1, whose refined set is then four times as
+// large, as mip 2's is: mip 1 0.039, against 0.051 with the default's refined set.
+TEST_F(GlTest, AGridOfLinesPastEveryCapMeetsTheBoundAtMipOne)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = bake::defaultPreset();
+    Environment environment;
+    environment.source = "one-texel lines of 600 every 32 texels, 2048 wide";
+    environment.image = ImageRGB32F(2048, 1024);
+    for (int y = 0; y < environment.image.height; ++y)
+        for (int x = 0; x < environment.image.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                environment.image.texels[environment.image.offset(x, y) + std::size_t(c)] = x % 32 == 0 || y % 32 == 0 ? 600.0f : 0.2f;
+    environment.contentHash = 0x29a0u;
+    const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
+    EXPECT_EQ(plan.levels.at(1).refineFactor, bake::kSpikyBaseCapFactor * settings.prefilter.refineFactor);
+    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+    ASSERT_EQ(errors.size(), 5u);
+    for (std::size_t m = 0; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << environment.source << " mip " << m + 1;
+}
+
 // 24 one-texel meridians of 2000 over a sky of 0.5, meeting at the poles: over mip 1's blocks of
 // 4 x 4 texels a one-texel line reads 2.0 (a block dilutes it 4-fold), a one-texel star 4, a
 // sky 1, so with a ratio of 2 at every mip the lines were not spiky at mip 1; the lists there
