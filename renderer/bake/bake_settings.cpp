@@ -294,7 +294,7 @@ const FieldTable<BakeSettings>& bakeSettingsFields()
         {"prefilter.sample_growth", "Prefilter sample growth", "Growth of the prefilter's samples per mip: mip m takes samples * growth^(m-1)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.sampleGrowth; }), {1, 8}, "--prefilter-sample-growth", value},
         {"prefilter.mip_sample_scale", "Prefilter sample scale per mip",
-         "Factors on samples * growth^(m-1) for mips 1, 2, ..., comma-separated (1,1,2 doubles mip 3; \"\" for none)",
+         "Factors on samples * growth^(m-1) for mips 1, 2, ..., comma-separated (1,1,4, the default, quadruples mip 3; \"\" for none)",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipSampleScale; }), {1.0 / 64.0, 64.0}, "--prefilter-mip-sample-scale", value},
         {"prefilter.mip_filtering", "Prefilter mip filtering", "PDF-based source-mip selection for the prefilter",
          fieldRef<S>([](S& s) -> auto& { return s.prefilter.mipFiltering; }), {}, "--prefilter-mip-filter", value},

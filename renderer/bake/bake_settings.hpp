@@ -111,11 +111,14 @@ struct PrefilterSettings {
     float sampleGrowth = 3.0f;
     // Per-mip factors on that rule, mips 1, 2, ..., each in [1/64, 64] (a mip the list does
     // not reach: 1).
-    // The default doubles mip 3 (roughness 0.37; 8, 24, 144, 216, 648): of the mips that
+    // The default quadruples mip 3 (roughness 0.37; 8, 24, 288, 216, 648): of the mips that
     // roughness 0.2-0.5 reads, it had the most error per sample on maps with small, very
-    // bright lights, and doubling it halves its error against the exact prefilter on
-    // courtyard.exr and sunset.exr for about 10 ms of bake (docs/bake.md).
-    NumberList mipSampleScale = {1.0, 1.0, 2.0};
+    // bright lights (doubling it halved its error against the exact prefilter on
+    // courtyard.exr and sunset.exr), and it is the one mip the split leaves to its samples
+    // alone, unrefined, where bright lines a few texels wide are too many to list (16
+    // meridians 6 texels wide on a 2048-wide map read 0.049 at 144 samples, 0.031 at 288; the
+    // mip costs about 6 ms more on llvmpipe; docs/bake.md).
+    NumberList mipSampleScale = {1.0, 1.0, 4.0};
     bool mipFiltering = true;
     // Added to 0.5 log2(Omega_s / Omega_p): 0 = LearnOpenGL's anchor, 1 = Filament's.
     float mipBias = 0.0f;

@@ -111,7 +111,7 @@ TEST(SettingsRoundTrip, MipSampleFactorsReadTheirOldTextForm)
     fromJson(bake::bakeSettingsFields(), nlohmann::json::parse(R"({"prefilter": {"mip_sample_scale": ""}})"), s, "bake");
     EXPECT_TRUE(s.prefilter.mipSampleScale.empty());
     const nlohmann::json written = nlohmann::json::parse(bake::toJsonText(bake::BakeSettings{}, -1));
-    EXPECT_EQ(written["prefilter"]["mip_sample_scale"], nlohmann::json::array({1.0, 1.0, 2.0}));
+    EXPECT_EQ(written["prefilter"]["mip_sample_scale"], nlohmann::json::array({1.0, 1.0, 4.0}));
 }
 
 } // namespace

