@@ -28,10 +28,11 @@ namespace iblab {
 namespace {
 
 using testing::GlTest;
+using testing::expectWithinPerMipBound;
+using testing::kPerMipBound;
 using testing::perMipErrors;
 using testing::runBake;
 
-constexpr double kPerMipBound = 0.05; // the bound on every mip with roughness > 0
 
 // The real sun's size (0.5 degrees) at 1e4 over a sky of 0.05 (builtin:sun's): its flux is
 // as large as the whole sky's, on about one texel of the 256 environment cube that a
@@ -50,13 +51,6 @@ std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const std::string& 
 double largest(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
 
 // Each of the five mips from firstMip (1: every mip with roughness > 0) within the bound.
-void expectWithinPerMipBound(const std::vector<double>& errors, const std::string& spec, std::size_t firstMip = 1)
-{
-    ASSERT_EQ(errors.size(), 5u) << spec;
-    for (std::size_t m = firstMip - 1; m < errors.size(); ++m)
-        EXPECT_LE(errors[m], kPerMipBound) << spec << " mip " << m + 1;
-}
-
 bake::BakeSettings everyTexelSampled()
 {
     bake::BakeSettings s = bake::defaultPreset();

@@ -24,8 +24,8 @@ namespace iblab {
 namespace {
 
 using testing::GlTest;
+using testing::kPerMipBound;
 
-constexpr double kPerMipBound = 0.05; // the bound on every mip with roughness > 0
 
 // Mips with roughness > 0, at a 32 x 32 grid of texel centres per face: the clipped texels
 // lie within a few degrees of the sun, which the default 16 x 16 grid can step over.

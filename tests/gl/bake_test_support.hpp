@@ -2,9 +2,12 @@
 // Small bakes for the bake gltests: tiny environments and settings that run in tens of
 // milliseconds on llvmpipe, and helpers that build environments directly from images.
 #include <filesystem>
+#include <functional>
 #include <unistd.h>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "bake/bake_accuracy.hpp"
 #include "bake/bake_job.hpp"
@@ -69,6 +72,31 @@ inline std::vector<double> perMipErrors(gl::ShaderLibrary& shaders, const Enviro
         if (e.roughness > 0.0f)
             errors.push_back(e.relativeRmse);
     return errors;
+}
+
+// Issue #29's bound on every prefiltered mip with roughness > 0 (relative RMSE at texel centres).
+inline constexpr double kPerMipBound = 0.05;
+
+// Every mip from firstMip (1: the first with roughness > 0) within kPerMipBound.
+inline void expectWithinPerMipBound(const std::vector<double>& errors, const std::string& source, std::size_t firstMip = 1)
+{
+    ASSERT_EQ(errors.size(), 5u) << source;
+    for (std::size_t m = firstMip - 1; m < errors.size(); ++m)
+        EXPECT_LE(errors[m], kPerMipBound) << source << " mip " << m + 1;
+}
+
+// A width x width/2 grey map whose texel (x, y) holds value(x, y), named source.
+inline Environment greyMap(std::string source, int width, std::uint32_t hash, const std::function<float(int, int)>& value)
+{
+    Environment e;
+    e.source = std::move(source);
+    e.image = ImageRGB32F(width, width / 2);
+    for (int y = 0; y < e.image.height; ++y)
+        for (int x = 0; x < e.image.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                e.image.texels[e.image.offset(x, y) + std::size_t(c)] = value(x, y);
+    e.contentHash = hash;
+    return e;
 }
 
 // A fresh empty directory under the system temp dir, removed by the destructor.
