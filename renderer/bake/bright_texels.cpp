@@ -267,16 +267,16 @@ int brightTexelCap(const PrefilterSettings& settings, int level)
     return int(std::min<std::int64_t>(std::int64_t(8 * settings.brightTexels) << shift, kMaxBrightLights));
 }
 
-double spikyBaseRatio(int scale) { return std::exp2(0.25 * double(scale)); }
+double spikyBaseRatio(int scale, double exponent) { return std::exp2(exponent * double(scale)); }
 
-bool spikyBase(const BrightCandidates& candidates, float threshold, int mip)
+bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, double exponent)
 {
     const auto blocks = std::find_if(candidates.refinedMipBlocks.begin(), candidates.refinedMipBlocks.end(),
                                      [&](const BlockLuminance& b) { return b.mip == mip; });
     if (blocks == candidates.refinedMipBlocks.end())
         return false;
     const double overFootprint = clampedLuminanceRms(candidates, threshold, mip);
-    return overFootprint > 0.0 && clampedLuminanceRms(candidates, threshold) > spikyBaseRatio(blocks->scale) * overFootprint;
+    return overFootprint > 0.0 && clampedLuminanceRms(candidates, threshold) > spikyBaseRatio(blocks->scale, exponent) * overFootprint;
 }
 
 BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings)
@@ -354,10 +354,11 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             const double baseRms = clampedLuminanceRms(candidates, l.threshold, level);
             l.refineSpread = float(double(settings.refineSpread) * baseRms);
             l.refineError = float(double(settings.refineError) * baseRms);
-            // Four times as many where the base keeps one-texel lights or lines: star fields past
-            // what the lists hold sampled them at 0.043-0.050 at mip 2, and a grid of one-texel
-            // lines past even the candidates' larger cap read 0.051 at mip 1 (0.039 so).
-            const bool spiky = spikyBase(candidates, l.threshold, level);
+            // Four times as many where the base keeps one-texel lights or lines, or lines a few
+            // texels wide (kRefineSpikyExponent): star fields past what the lists hold sampled them
+            // at 0.043-0.050 at mip 2, a grid of one-texel lines past even the candidates' larger
+            // cap read 0.051 at mip 1 (0.039 so), 4-texel meridians on a 2048-wide map 0.055 (0.032).
+            const bool spiky = spikyBase(candidates, l.threshold, level, kRefineSpikyExponent);
             l.refineFactor = spiky ? kSpikyBaseCapFactor * settings.refineFactor : settings.refineFactor;
         }
     }

@@ -96,16 +96,20 @@ double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, 
 // lights far brighter than their neighbourhood read about w, since a block dilutes them
 // w^2-fold; one-texel lines read sqrt(w), diluted w-fold; skies and large bright areas read
 // about 1 (1.0-1.25 on the bundled maps). false where the mip has no blocks.
-bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
-// The ratio above which a base is spiky over blocks 2^scale texels wide: w^(1/4), the
-// geometric middle of a smooth base's 1 and a one-texel line's sqrt(w), so that lines as thin
-// as a texel count as well as points (2 at mip 2's blocks of 16 on a 1024 x 512 map, 1.41 at
-// mip 1's of 4, where a one-texel line reads 2.0 and the bundled maps at most 1.10).
-double spikyBaseRatio(int scale);
-bool spikyBase(const BrightCandidates& candidates, float threshold, int mip);
+// exponent: the ratio is spikyBaseRatio(scale, exponent).
+bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, double exponent = 0.25);
+// The ratio above which a base is spiky over blocks w = 2^scale texels wide: w^exponent. The
+// caps take w^(1/4), the geometric middle of a smooth base's 1 and a one-texel line's sqrt(w),
+// so that lines as thin as a texel count as well as points (2 at mip 2's blocks of 16 on a
+// 1024 x 512 map, 1.41 at mip 1's of 4, where a one-texel line reads 2.0 and the bundled maps
+// at most 1.10). The refined sets take w^(1/8), the middle of 1 and that: lines a few texels
+// wide (4 texels on a 2048-wide map read 1.41 over mip 1's blocks of 8) are refined more, with
+// no list to take them; the bundled maps read at most 1.10 and 1.25 against 1.19 and 1.41.
+inline constexpr double kRefineSpikyExponent = 0.125;
+double spikyBaseRatio(int scale, double exponent = 0.25);
 // Mips 1 and 2 list this many times the cap, the rough mips' blocks allow this many times
-// their far cells, and mip 2 refines this many times the samples, where the base the cap
-// leaves is spiky (planBrightSplit).
+// their far cells, and mips 1 and 2 refine this many times the samples, where the base the
+// cap leaves is spiky (planBrightSplit).
 inline constexpr int kSpikyBaseCapFactor = 4;
 
 // Every texel of the equirect (exact row solid angles) or of a cube level above

@@ -231,6 +231,21 @@ TEST_F(GlTest, AGridOfLinesPastEveryCapMeetsTheBoundAtMipOne)
     expectWithinPerMipBound(errors, environment.source);
 }
 
+// 16 meridians 4 texels wide of 800 on a 2048 x 1024 map: 65536 texels of one brightness above
+// the floor, past the candidates' cap, and over mip 1's blocks of 8 texels they read 1.41, not
+// spiky for the caps (1.68) but for the refined sets (w^(1/8), 1.30): mip 1 refines four times
+// as many samples, 0.032 against 0.055.
+TEST_F(GlTest, LinesAFewTexelsWideAreRefinedFourTimesAtMipOne)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = bake::defaultPreset();
+    const Environment environment =
+        testing::greyMap("16 meridians 4 texels wide of 800, 2048 wide", 2048, 0x29b0u, [](int x, int) { return x % 128 < 4 ? 800.0f : 0.5f; });
+    const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
+    EXPECT_EQ(plan.levels.at(1).refineFactor, bake::kSpikyBaseCapFactor * settings.prefilter.refineFactor);
+    expectWithinPerMipBound(perMipErrors(shaders, environment, settings), environment.source);
+}
+
 // 24 one-texel meridians of 2000 over a sky of 0.5, meeting at the poles: over mip 1's blocks of
 // 4 x 4 texels a one-texel line reads 2.0 (a block dilutes it 4-fold), a one-texel star 4, a
 // sky 1, so with a ratio of 2 at every mip the lines were not spiky at mip 1; the lists there
