@@ -19,7 +19,9 @@
 // hemisphere (the weight is 0 beyond it), and has no block.
 //
 // The threshold is the lowest (at least the candidates' floor) at which no tile's list
-// exceeds the cap; the level's base is the map clamped at it.
+// exceeds the cap; the level's base is the map clamped at it. Where planBrightSplit asks
+// (coarsenOverfull, a spiky base), a tile that cannot list every light first merges its far
+// lights coarser, so that a few tiles near a pole do not raise the threshold of all of them.
 #include <vector>
 
 #include <glm/vec4.hpp>

@@ -5,8 +5,10 @@
 // by a twentieth of the map; the samples' own standard error (PrefilterSettings::refineError)
 // finds them (docs/bake.md, "The prefilter's estimator"). And on a field of one-texel stars,
 // which fill the lists of mips 1 and 2 and the rough mips' far cells past their caps: where
-// the base a cap leaves is spiky, the cap is four times as large, and so is mip 2's refined set
-// (bright_texels.hpp's spikyBase).
+// the base a cap leaves is spiky, the cap is four times as large, an overfull tile merges
+// coarser, the candidates' cap is four times as large, and so are the refined sets of mips 1
+// and 2 (bright_texels.hpp's spikyBase); and on lines, one texel wide or a few, which meet at
+// the poles or fill a grid.
 #include <cmath>
 #include <cstdint>
 #include <limits>
