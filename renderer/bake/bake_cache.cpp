@@ -115,8 +115,9 @@ namespace {
 // 15: mip 2's refined set four times as large where its base is spiky. 16: a spiky base's
 // lists merged coarser where a tile cannot hold them, and one-texel lines spiky at mip 1
 // (spikyBaseRatio). 17: mip 1's refined set four times as large where its base is spiky too.
-// 18: the refined sets' spikiness at w^(1/8) (kRefineSpikyExponent).
-constexpr int kBakeOutputRevision = 18;
+// 18: the refined sets' spikiness at w^(1/8) (kRefineSpikyExponent). 19: mip 1's over blocks
+// twice as wide too.
+constexpr int kBakeOutputRevision = 19;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)

@@ -87,19 +87,25 @@ int brightCellFaceSize(double roughness)
     return size;
 }
 
+namespace {
+
+// The RMS over blocks of the map clamped at threshold. Texels outside the list are at most the
+// floor, and the threshold is at least the floor: the list holds every texel the clamp changes.
+double clampedBlocksRms(const BrightCandidates& candidates, float threshold, BlockLuminance blocks)
+{
+    for (const BrightTexel& t : candidates.texels)
+        if (t.luminance > threshold)
+            blocks.removeExcess(t.sourceIndex, (double(t.luminance) - double(threshold)) * t.solidAngle);
+    return blocks.rms();
+}
+
+} // namespace
+
 double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, int mip)
 {
-    // Texels outside the list are at most the floor, and the threshold is at least the floor:
-    // the list holds every texel the clamp changes.
-    for (const BlockLuminance& blocks : candidates.refinedMipBlocks) {
-        if (blocks.mip != mip)
-            continue;
-        BlockLuminance clamped = blocks;
-        for (const BrightTexel& t : candidates.texels)
-            if (t.luminance > threshold)
-                clamped.removeExcess(t.sourceIndex, (double(t.luminance) - double(threshold)) * t.solidAngle);
-        return clamped.rms();
-    }
+    for (const BlockLuminance& blocks : candidates.refinedMipBlocks)
+        if (blocks.mip == mip)
+            return clampedBlocksRms(candidates, threshold, blocks);
     double squared = candidates.squaredLuminanceOutsideList;
     for (const BrightTexel& t : candidates.texels) {
         const double clamped = std::min(double(t.luminance), double(threshold));
@@ -269,14 +275,15 @@ int brightTexelCap(const PrefilterSettings& settings, int level)
 
 double spikyBaseRatio(int scale, double exponent) { return std::exp2(exponent * double(scale)); }
 
-bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, double exponent)
+bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, double exponent, int coarser)
 {
     const auto blocks = std::find_if(candidates.refinedMipBlocks.begin(), candidates.refinedMipBlocks.end(),
                                      [&](const BlockLuminance& b) { return b.mip == mip; });
     if (blocks == candidates.refinedMipBlocks.end())
         return false;
-    const double overFootprint = clampedLuminanceRms(candidates, threshold, mip);
-    return overFootprint > 0.0 && clampedLuminanceRms(candidates, threshold) > spikyBaseRatio(blocks->scale, exponent) * overFootprint;
+    const int scale = blocks->scale + coarser;
+    const double overFootprint = clampedBlocksRms(candidates, threshold, coarser > 0 ? coarsenedBlocks(*blocks, scale, mip) : *blocks);
+    return overFootprint > 0.0 && clampedLuminanceRms(candidates, threshold) > spikyBaseRatio(scale, exponent) * overFootprint;
 }
 
 BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSettings& settings)
@@ -358,7 +365,12 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             // texels wide (kRefineSpikyExponent): star fields past what the lists hold sampled them
             // at 0.043-0.050 at mip 2, a grid of one-texel lines past even the candidates' larger
             // cap read 0.051 at mip 1 (0.039 so), 4-texel meridians on a 2048-wide map 0.055 (0.032).
-            const bool spiky = spikyBase(candidates, l.threshold, level, kRefineSpikyExponent);
+            // Mip 1's over blocks twice as wide too: lines a quarter to a whole footprint wide
+            // read at most sqrt(2) over its own blocks, under their gate, but twice that
+            // over blocks twice as wide (8-texel meridians on a 4096-wide map 1.41 and 2.0,
+            // against gates of 1.41 and 1.54: mip 1 0.055 refined eightfold, 0.033 so).
+            const bool spiky = spikyBase(candidates, l.threshold, level, kRefineSpikyExponent) ||
+                               (level == 1 && spikyBase(candidates, l.threshold, level, kRefineSpikyExponent, 1));
             l.refineFactor = spiky ? kSpikyBaseCapFactor * settings.refineFactor : settings.refineFactor;
         }
     }

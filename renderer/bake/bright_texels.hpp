@@ -97,7 +97,8 @@ double clampedLuminanceRms(const BrightCandidates& candidates, float threshold, 
 // w^2-fold; one-texel lines read sqrt(w), diluted w-fold; skies and large bright areas read
 // about 1 (1.0-1.25 on the bundled maps). false where the mip has no blocks.
 // exponent: the ratio is spikyBaseRatio(scale, exponent).
-bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, double exponent = 0.25);
+// coarser: over blocks 2^coarser times as wide as the mip's (and their ratio).
+bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, double exponent = 0.25, int coarser = 0);
 // The ratio above which a base is spiky over blocks w = 2^scale texels wide: w^exponent. The
 // caps take w^(1/4), the geometric middle of a smooth base's 1 and a one-texel line's sqrt(w),
 // so that lines as thin as a texel count as well as points (2 at mip 2's blocks of 16 on a
@@ -105,6 +106,9 @@ bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, dou
 // at most 1.10). The refined sets take w^(1/8), the middle of 1 and that: lines a few texels
 // wide (4 texels on a 2048-wide map read 1.41 over mip 1's blocks of 8) are refined more, with
 // no list to take them; the bundled maps read at most 1.10 and 1.25 against 1.19 and 1.41.
+// Mip 1's refined set is tested over blocks twice as wide as well (coarser = 1): a line a
+// quarter to a whole footprint wide reads at most sqrt(2) over its blocks, but up to 2 over
+// those; the bundled maps read at most 1.23 there (studio) against 1.30, the pmndrs maps 1.12.
 inline constexpr double kRefineSpikyExponent = 0.125;
 double spikyBaseRatio(int scale, double exponent = 0.25);
 // Mips 1 and 2 list this many times the cap, the rough mips' blocks allow this many times
