@@ -12,6 +12,10 @@
 # once saw the first window test fail with "Failed to open display" right after Xvfb had
 # reported its display. A server no client can reach is stopped and another started (five
 # tries); its log is shown if all fail.
+# -noreset: an X server resets itself when its last client disconnects, and the probe
+# (xkbcomp) is that client: a fresh-root run saw the test's GLFW fail with "Failed to open
+# display" after the probe had succeeded, most likely while the server was resetting (not
+# reproduced in 70 tries, idle or with both cores busy; the option costs nothing).
 set -euo pipefail
 size=1920x1080x24
 if [ "${1:-}" = "--size" ]; then size=$2; shift 2; fi
@@ -39,7 +43,7 @@ reachable() {
 for attempt in 1 2 3 4 5; do
   mkfifo "$work/displayfd"
   # With a display given, -displayfd reports it once the server accepts clients.
-  Xvfb ":$((100 + (RANDOM * 32768 + RANDOM) % 29900))" -displayfd 3 -screen 0 "$size" -nolisten tcp 3>"$work/displayfd" 2>"$work/xvfb.log" &
+  Xvfb ":$((100 + (RANDOM * 32768 + RANDOM) % 29900))" -displayfd 3 -screen 0 "$size" -nolisten tcp -noreset 3>"$work/displayfd" 2>"$work/xvfb.log" &
   server=$!
   display=
   read -r -t 30 display <"$work/displayfd" || true
