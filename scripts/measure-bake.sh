@@ -10,8 +10,10 @@
 #                                           # rounds (ROUNDS=N); IBLAB_BASELINE=an older build's iblab: interleaved too, --no-errors
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
 #   scripts/measure-bake.sh hugepages       # the bake with and without malloc's huge pages (app/main.cpp)
-#   scripts/measure-bake.sh unseen          # the default prefilter's per-mip errors on maps that chose none of its
-#                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6)
+#   scripts/measure-bake.sh unseen [DIR...] # the default prefilter's per-mip errors on maps that chose none of its
+#                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6, builtin
+#                                           # slits) and every map in each DIR (scripts/probe-maps.py DIR,
+#                                           # scripts/heldout-maps.py DIR make them)
 #   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms) and part of one (part_timings_ms), minimum and median of ROUNDS
 #                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved;
 #                                           # BASELINE_ARGS="..." bakes the baseline (or this build) with those options
@@ -356,6 +358,12 @@ PY
 measure_unseen() {
   local maps=()
   for f in ../shared/assets/hdri/pmndrs/*.exr; do [ -f "$f" ] && maps+=("$f"); done
+  maps+=("builtin:slits" "builtin:slits?width=1024")
+  local dir
+  for dir in "$@"; do
+    [ -d "$dir" ] || { echo "measure-bake: unseen: $dir is not a directory" >&2; exit 1; }
+    for f in "$dir"/*.pfm "$dir"/*.hdr "$dir"/*.exr; do [ -f "$f" ] && maps+=("$f"); done
+  done
   for sky in 1 0.05; do
     for intensity in 1e2 1e3 1e4 1e5 1e6; do
       for place in "elevation=45&azimuth=0" "elevation=23&azimuth=37" "elevation=35&azimuth=44"; do
@@ -378,7 +386,7 @@ PY
 
 case $mode in
   phases) measure_phases "$@" ;;
-  unseen) measure_unseen ;;
+  unseen) measure_unseen "$@" ;;
   tutorial) measure_tutorial "$@" ;;
   hugepages) measure_hugepages ;;
   batch) measure_batch ;;
