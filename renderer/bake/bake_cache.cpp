@@ -1,8 +1,11 @@
 #include "bake/bake_cache.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <utility>
 
@@ -33,6 +36,28 @@ void removeQuietly(const fs::path& path)
 }
 
 } // namespace
+
+std::uint64_t bakeShaderFingerprint(const gl::ShaderSearchPath& roots)
+{
+    std::uint64_t h = fnv1a("iblab-bake-shaders");
+    for (const fs::path& root : roots)
+        for (const char* folder : {"bake", "common"}) {
+            std::error_code ec;
+            std::vector<fs::path> files;
+            for (fs::recursive_directory_iterator it(root / folder, ec), end; !ec && it != end; it.increment(ec))
+                if (it->is_regular_file(ec))
+                    files.push_back(it->path());
+            std::sort(files.begin(), files.end());
+            for (const fs::path& file : files) {
+                std::ifstream in(file, std::ios::binary);
+                const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+                h = fnv1a(file.lexically_relative(root).generic_string(), h);
+                h = fnv1a(std::string_view("\0", 1), h);
+                h = fnv1a(text, h);
+            }
+        }
+    return h;
+}
 
 fs::path defaultCacheDirectory()
 {
@@ -97,10 +122,10 @@ double BakeCache::writeMilliseconds()
 }
 
 namespace {
-// What this build's bake makes of given settings. The key holds every setting, but a change
-// to an estimator's code (its shaders, or the host code that feeds them) changes the output
-// of the same settings, and a cache written by an older build would then be read as this
-// build's bake. Raise it with every such change. 2: bright lights merged at alpha / 2 and the
+// What this build's bake makes of given settings. The key holds every setting and the
+// shaders' fingerprint (bakeShaderFingerprint), but a change to the host code that plans or
+// feeds the passes changes the output of the same settings and shaders, and a cache written
+// by an older build would then be read as this build's bake. Raise it with every such change. 2: bright lights merged at alpha / 2 and the
 // rough mips' far cells capped at 8N. 3: mip 1 refined where its samples disagree, its
 // bases from the finest level its refined samples read. 4: mip 2 refined too. 5: the
 // refinement's spread against the base's RMS in blocks as wide as the samples' footprint.
@@ -120,7 +145,7 @@ namespace {
 constexpr int kBakeOutputRevision = 19;
 } // namespace
 
-std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings)
+std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings, std::uint64_t shaderFingerprint)
 {
     nlohmann::json j = nlohmann::json::parse(toJsonText(settings));
     j.erase("preset");
@@ -128,13 +153,14 @@ std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& se
     // The factors as the text they were before they became a list, so that a cache written
     // then is still found.
     j["prefilter"]["mip_sample_scale"] = numberListText(settings.prefilter.mipSampleScale);
-    return hex16(fnv1a("iblab-bake-" + std::to_string(kBakeFormatVersion) + "-r" + std::to_string(kBakeOutputRevision) + "|" + hex16(contentHash) + "|" + j.dump()));
+    return hex16(fnv1a("iblab-bake-" + std::to_string(kBakeFormatVersion) + "-r" + std::to_string(kBakeOutputRevision) + "|" + hex16(contentHash) +
+                       "|" + hex16(shaderFingerprint) + "|" + j.dump()));
 }
 
-std::string BakeCache::lutKey(int size, int samples, GeometryTerm term)
+std::string BakeCache::lutKey(int size, int samples, GeometryTerm term, std::uint64_t shaderFingerprint)
 {
     return "brdf_lut_" + std::string(enumName(term)) + "_" + std::to_string(size) + "_" + std::to_string(samples) + "_v" +
-           std::to_string(kLutFormatVersion);
+           std::to_string(kLutFormatVersion) + "_" + hex16(shaderFingerprint);
 }
 
 fs::path BakeCache::bakeDirectory(const std::string& key) const { return root_ / "bake" / key; }
@@ -144,7 +170,7 @@ bool BakeCache::loadBake(BakeResult& result, const MipBuilder& buildMips, std::v
 {
     if (!enabled())
         return false;
-    const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));
+    const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings, result.shaderFingerprint));
     for (std::string& note : settleWrites(dir))
         notes.push_back(std::move(note));
     if (!hasBakeDirectory(dir))
@@ -169,7 +195,7 @@ void BakeCache::storeBake(const BakeResult& result)
     auto snapshot = std::make_shared<BakeSnapshot>(snapshotBake(result, {}, MirrorFile::FromEnvironment));
     snapshot->exrCompression = exrCompression_;
     snapshot->durability = Durability::NoFlush;
-    const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings));
+    const fs::path dir = bakeDirectory(bakeKey(result.contentHash, result.settings, result.shaderFingerprint));
     writeInBackground(dir, [dir, snapshot] { writeBakeSnapshot(dir, *snapshot); });
 }
 
@@ -228,9 +254,10 @@ void BakeCache::rememberSource(const std::string& spec, const SourceRecord& reco
     });
 }
 
-bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes)
+bool BakeCache::loadLut(int size, int samples, GeometryTerm term, std::uint64_t shaderFingerprint, BakedTexture& out,
+                        std::vector<std::string>& notes)
 {
-    const std::string key = lutKey(size, samples, term);
+    const std::string key = lutKey(size, samples, term, shaderFingerprint);
     if (const auto kept = lutImages_.find(key); kept != lutImages_.end()) {
         out = create2DTexture(GL_RGBA16F, size);
         upload2D(out, kept->second);
@@ -256,9 +283,9 @@ bool BakeCache::loadLut(int size, int samples, GeometryTerm term, BakedTexture& 
     }
 }
 
-void BakeCache::storeLut(const BakedTexture& lut, int samples, GeometryTerm term)
+void BakeCache::storeLut(const BakedTexture& lut, int samples, GeometryTerm term, std::uint64_t shaderFingerprint)
 {
-    const std::string key = lutKey(lut.size, samples, term);
+    const std::string key = lutKey(lut.size, samples, term, shaderFingerprint);
     const Image2D& kept = lutImages_[key] = read2D(lut);
     if (!enabled())
         return;

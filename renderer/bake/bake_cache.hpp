@@ -3,10 +3,10 @@
 // loaded instead of recomputed.
 //
 //   <root>/bake/<key>/...       a bake directory (bake_files.hpp), key = hash of the input
-//                               pixels (Environment::contentHash) and every setting that
-//                               changes the output
-//   <root>/lut/<key>.exr        one BRDF LUT, key = its own (size, samples, geometry) only:
-//                               it depends on no environment
+//                               pixels (Environment::contentHash), every setting that
+//                               changes the output and the shaders (bakeShaderFingerprint)
+//   <root>/lut/<key>.exr        one BRDF LUT, key = its own (size, samples, geometry) and the
+//                               shaders only: it depends on no environment
 //   <root>/source/<key>.json    what a file decoded to when it was last loaded (its content
 //                               hash and size), key = its absolute path, size and
 //                               modification time: a bake can then be read from the cache
@@ -45,11 +45,19 @@
 
 #include "bake/bake_files.hpp"
 #include "bake/bake_result.hpp"
+#include "gl/shader_library.hpp"
 
 namespace iblab::bake {
 
 // Empty when none of the variables is set.
 std::filesystem::path defaultCacheDirectory();
+
+// FNV-1a 64 of every file under the roots' bake/ and common/ folders (the bake's shaders and
+// what they include), each with its path relative to its root, in path order: part of every
+// cache key, so that an edited or updated shader is never answered with a bake made by the
+// one before. Reads them each time (a few dozen small files, well under a millisecond), so a
+// GUI session's hot-reloaded shaders count from its next bake on.
+std::uint64_t bakeShaderFingerprint(const gl::ShaderSearchPath& roots);
 
 inline constexpr const char* kCacheExrCompression = "none";
 
@@ -63,10 +71,11 @@ public:
     const std::filesystem::path& root() const { return root_; }
     bool enabled() const { return !root_.empty(); }
 
-    // 16 hex digits: FNV-1a 64 of the format version, the content hash and the settings that
-    // affect the output (not the preset's name nor the step size).
-    static std::string bakeKey(std::uint64_t contentHash, const BakeSettings& settings);
-    static std::string lutKey(int size, int samples, GeometryTerm term);
+    // 16 hex digits: FNV-1a 64 of the format version, the content hash, the settings that
+    // affect the output (not the preset's name nor the step size) and the bake's shader sources
+    // (bakeShaderFingerprint).
+    static std::string bakeKey(std::uint64_t contentHash, const BakeSettings& settings, std::uint64_t shaderFingerprint);
+    static std::string lutKey(int size, int samples, GeometryTerm term, std::uint64_t shaderFingerprint);
     std::filesystem::path bakeDirectory(const std::string& key) const;
     std::filesystem::path lutPath(const std::string& key) const;
 
@@ -78,9 +87,9 @@ public:
 
     // Creates `out` (RGBA16F) from the LUT kept in memory or, for an enabled cache, its file;
     // false on a miss (a corrupt file: noted, removed).
-    bool loadLut(int size, int samples, GeometryTerm term, BakedTexture& out, std::vector<std::string>& notes);
+    bool loadLut(int size, int samples, GeometryTerm term, std::uint64_t shaderFingerprint, BakedTexture& out, std::vector<std::string>& notes);
     // Keeps the LUT in memory and, for an enabled cache, writes its file.
-    void storeLut(const BakedTexture& lut, int samples, GeometryTerm term);
+    void storeLut(const BakedTexture& lut, int samples, GeometryTerm term, std::uint64_t shaderFingerprint);
 
     // What a file decoded to when it was last loaded, if the cache has a record of it and the
     // file's size and modification time are still those; nullopt for builtins, unknown or

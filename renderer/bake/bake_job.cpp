@@ -98,6 +98,8 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, Environment environment, const Bake
     result_.settings = imported_ ? importedSettings(settings, *imported_) : settings;
     result_.source = environment.source;
     result_.contentHash = environment.contentHash;
+    if (cache_)
+        result_.shaderFingerprint = bakeShaderFingerprint(shaders.roots());
     result_.sourceWidth = image_.width;
     result_.sourceHeight = image_.height;
     // The job reads a map too coarse for mip 1's lobe as its bilinear upsample; the result
@@ -118,6 +120,7 @@ BakeJob::BakeJob(gl::ShaderLibrary& shaders, const std::string& source, const Ba
     result_.settings = settings;
     result_.source = source;
     result_.contentHash = record.contentHash;
+    result_.shaderFingerprint = bakeShaderFingerprint(shaders.roots());
     result_.sourceWidth = record.width;
     result_.sourceHeight = record.height;
     result_.sourceUpsample = bakeSourceUpsampleFactor(settings.prefilter, record.width);
@@ -412,7 +415,7 @@ void BakeJob::planLuts()
         if (cache_)
             steps_.push_back({BakePhase::BrdfLut, StepGroup::None, 1.0e5, [this, term, index, group] {
                                   const LutSettings& lut = result_.settings.lut;
-                                  if (cache_->loadLut(lut.size, lut.samples, term, result_.brdfLut[index], result_.notes)) {
+                                  if (cache_->loadLut(lut.size, lut.samples, term, result_.shaderFingerprint, result_.brdfLut[index], result_.notes)) {
                                       result_.lutFromCache[index] = true;
                                       skipGroup(group);
                                   }
@@ -430,7 +433,7 @@ void BakeJob::planLuts()
         }
         if (cache_)
             steps_.push_back({BakePhase::BrdfLut, group, 1.0e5, [this, term, index] {
-                                  cache_->storeLut(result_.brdfLut[index], result_.settings.lut.samples, term);
+                                  cache_->storeLut(result_.brdfLut[index], result_.settings.lut.samples, term, result_.shaderFingerprint);
                               }});
     }
 }

@@ -66,6 +66,7 @@ struct BakeResult {
     BakeSettings settings;
     std::string source;             // the environment's spec
     std::uint64_t contentHash = 0;  // Environment::contentHash of the input pixels
+    std::uint64_t shaderFingerprint = 0; // bakeShaderFingerprint of the shaders it is (or was to be) baked with
     int sourceWidth = 0;
     int sourceHeight = 0;
     // The map was baked from its bilinear upsample by this factor (bakeSourceUpsampleFactor;

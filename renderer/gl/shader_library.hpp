@@ -95,6 +95,8 @@ public:
     // Programs that reloadChanged linked again: when it moves, what was drawn or computed
     // with the old programs (a running mean, a reference) is stale.
     std::uint64_t reloads() const { return reloads_; }
+    // Where the library looks for files, first root first.
+    const ShaderSearchPath& roots() const { return roots_; }
 
 
 private:

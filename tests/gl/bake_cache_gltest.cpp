@@ -71,7 +71,7 @@ TEST_F(GlTest, ASecondBakeIsLoadedFromTheCacheUnchanged)
     EXPECT_FALSE(first.fromCache);
     EXPECT_TRUE(first.notes.empty());
     EXPECT_TRUE(cache.finishWrites().empty()); // the files are written in the background
-    EXPECT_TRUE(fs::exists(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, first.settings)) / "bake.json"));
+    EXPECT_TRUE(fs::exists(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, first.settings, first.shaderFingerprint)) / "bake.json"));
 
     const bake::BakeResult second = runBake(shaders, env, smallBakeSettings(), &cache);
     EXPECT_TRUE(second.fromCache);
@@ -95,7 +95,7 @@ TEST_F(GlTest, TheMirrorMipIsStoredOnceAndLoadedUnchanged)
         const Environment env = loadEnvironment(spec);
         const bake::BakeResult baked = runBake(shaders, env, smallBakeSettings(), &cache);
         ASSERT_TRUE(cache.finishWrites().empty());
-        const fs::path entry = cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, baked.settings));
+        const fs::path entry = cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, baked.settings, baked.shaderFingerprint));
         EXPECT_FALSE(fs::exists(entry / "prefiltered_mip0.exr"));
         EXPECT_TRUE(fs::exists(entry / "prefiltered_mip1.exr"));
         const bake::BakeResult loaded = runBake(shaders, env, smallBakeSettings(), &cache);
@@ -107,9 +107,10 @@ TEST_F(GlTest, TheMirrorMipIsStoredOnceAndLoadedUnchanged)
     bake::BakeSettings filtered = smallBakeSettings();
     filtered.prefilter.mirrorCopy = false;
     const Environment env = loadEnvironment("builtin:sun?width=64&size=10");
-    runBake(shaders, env, filtered, &cache);
+    const bake::BakeResult unfiltered = runBake(shaders, env, filtered, &cache);
     ASSERT_TRUE(cache.finishWrites().empty());
-    EXPECT_TRUE(fs::exists(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, filtered)) / "prefiltered_mip0.exr"));
+    EXPECT_TRUE(fs::exists(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, filtered, unfiltered.shaderFingerprint)) /
+                           "prefiltered_mip0.exr"));
 }
 
 TEST_F(GlTest, TheLutCacheIgnoresTheEnvironment)
@@ -130,18 +131,56 @@ TEST_F(GlTest, TheLutCacheIgnoresTheEnvironment)
 TEST_F(GlTest, TheCacheKeyFollowsTheOutputNotTheBookkeeping)
 {
     const bake::BakeSettings base = smallBakeSettings();
-    const std::string key = bake::BakeCache::bakeKey(42, base);
+    const std::string key = bake::BakeCache::bakeKey(42, base, 7);
     bake::BakeSettings s = base;
     s.samplesPerStep *= 4;
     s.preset = "renamed";
-    EXPECT_EQ(bake::BakeCache::bakeKey(42, s), key);
-    EXPECT_NE(bake::BakeCache::bakeKey(43, base), key);
+    EXPECT_EQ(bake::BakeCache::bakeKey(42, s, 7), key);
+    EXPECT_NE(bake::BakeCache::bakeKey(43, base, 7), key);
+    EXPECT_NE(bake::BakeCache::bakeKey(42, base, 8), key) << "the shaders' fingerprint";
     s = base;
     s.prefilter.mipBias += 0.5f;
-    EXPECT_NE(bake::BakeCache::bakeKey(42, s), key);
+    EXPECT_NE(bake::BakeCache::bakeKey(42, s, 7), key);
     s = base;
     s.precision = bake::Precision::Float;
-    EXPECT_NE(bake::BakeCache::bakeKey(42, s), key);
+    EXPECT_NE(bake::BakeCache::bakeKey(42, s, 7), key);
+    EXPECT_NE(bake::BakeCache::lutKey(128, 64, GeometryTerm::SchlickGGX, 7), bake::BakeCache::lutKey(128, 64, GeometryTerm::SchlickGGX, 8));
+}
+
+// A bake made by other shaders is not the bake these would make: an edited (or updated) bake
+// shader, or a file it includes, misses the cache, bake and LUTs alike; an edit elsewhere
+// (the frame's shaders) does not.
+TEST_F(GlTest, AnEditedBakeShaderMissesTheCache)
+{
+    TempDirectory dir("bake-shader-edit");
+    const fs::path shaderCopy = dir.path() / "shaders";
+    fs::copy(IBLAB_SHADER_DIR, shaderCopy, fs::copy_options::recursive);
+    bake::BakeCache cache(dir.path() / "cache");
+    const Environment env = loadEnvironment("builtin:sun?width=64&size=10");
+    auto bakeWithCopy = [&] {
+        gl::ShaderLibrary shaders(shaderCopy);
+        bake::BakeResult result = runBake(shaders, env, smallBakeSettings(), &cache);
+        EXPECT_TRUE(cache.finishWrites().empty());
+        return result;
+    };
+    auto append = [](const fs::path& file) { std::ofstream(file, std::ios::app) << "\n// edited\n"; };
+    const bake::BakeResult first = bakeWithCopy();
+    EXPECT_FALSE(first.fromCache);
+    EXPECT_TRUE(bakeWithCopy().fromCache);
+
+    append(shaderCopy / "pbr.frag");
+    const bake::BakeResult frameEdited = bakeWithCopy();
+    EXPECT_TRUE(frameEdited.fromCache) << "pbr.frag is not the bake's";
+    EXPECT_EQ(frameEdited.shaderFingerprint, first.shaderFingerprint);
+
+    append(shaderCopy / "bake" / "prefilter_ggx.comp");
+    const bake::BakeResult edited = bakeWithCopy();
+    EXPECT_FALSE(edited.fromCache);
+    EXPECT_FALSE(edited.lutFromCache[0] || edited.lutFromCache[1]);
+    EXPECT_NE(edited.shaderFingerprint, first.shaderFingerprint);
+
+    append(shaderCopy / "common" / "sampling.glsl");
+    EXPECT_FALSE(bakeWithCopy().fromCache) << "a file the bake's shaders include";
 }
 
 // Damages one file of a cached entry, bakes again, and checks that the damage is reported
@@ -154,7 +193,7 @@ void expectDetectedAndRebuilt(const std::string& file, const std::function<void(
     const Environment env = loadEnvironment("builtin:studio?width=64");
     const bake::BakeResult original = runBake(shaders, env, smallBakeSettings(), &cache);
     ASSERT_TRUE(cache.finishWrites().empty());
-    const fs::path entry = cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, original.settings));
+    const fs::path entry = cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, original.settings, original.shaderFingerprint));
     damage(entry / file);
 
     const bake::BakeResult rebuilt = runBake(shaders, env, smallBakeSettings(), &cache);
@@ -229,7 +268,7 @@ TEST_F(GlTest, ALutReadOnceIsKeptForTheNextBakeOfTheSameCache)
     const bake::BakeResult first = runBake(shaders, env, settings, &cache);
     ASSERT_TRUE(first.lutFromCache[0] && first.lutFromCache[1]);
     for (GeometryTerm term : bake::kGeometryTerms)
-        ASSERT_TRUE(fs::remove(cache.lutPath(bake::BakeCache::lutKey(settings.lut.size, settings.lut.samples, term))));
+        ASSERT_TRUE(fs::remove(cache.lutPath(bake::BakeCache::lutKey(settings.lut.size, settings.lut.samples, term, first.shaderFingerprint))));
     const bake::BakeResult kept = runBake(shaders, env, settings, &cache);
     EXPECT_TRUE(kept.lutFromCache[0] && kept.lutFromCache[1]);
     EXPECT_EQ(bake::read2D(kept.lut(GeometryTerm::SchlickGGX)).texels, bake::read2D(first.lut(GeometryTerm::SchlickGGX)).texels);
@@ -244,9 +283,9 @@ TEST_F(GlTest, ACorruptLutIsReportedAndRebuilt)
     bake::BakeCache cache(dir.path());
     const Environment env = loadEnvironment("builtin:white?width=32");
     const bake::BakeSettings settings = smallBakeSettings();
-    runBake(shaders, env, settings, &cache);
+    const bake::BakeResult stored = runBake(shaders, env, settings, &cache);
     ASSERT_TRUE(cache.finishWrites().empty());
-    const fs::path lut = cache.lutPath(bake::BakeCache::lutKey(settings.lut.size, settings.lut.samples, GeometryTerm::SchlickGGX));
+    const fs::path lut = cache.lutPath(bake::BakeCache::lutKey(settings.lut.size, settings.lut.samples, GeometryTerm::SchlickGGX, stored.shaderFingerprint));
     ASSERT_TRUE(fs::exists(lut));
     std::ofstream(lut, std::ios::trunc) << "not an EXR";
     // A new cache (the next process): the one that stored the LUT keeps it in memory.
@@ -479,7 +518,7 @@ TEST_F(GlTest, AJobFromASourceRecordReadsTheCachedBakeOrSaysItMissed)
     EXPECT_EQ(read.source, "sun.exr");
     expectSameResults(baked, read);
 
-    fs::remove_all(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, baked.settings)));
+    fs::remove_all(cache.bakeDirectory(bake::BakeCache::bakeKey(env.contentHash, baked.settings, baked.shaderFingerprint)));
     bake::BakeJob missing(shaders, "sun.exr", record, smallBakeSettings(), cache);
     const bake::BakeResult empty = missing.runToCompletion();
     EXPECT_TRUE(missing.missedCache());
