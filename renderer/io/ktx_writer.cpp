@@ -23,10 +23,6 @@ void putU32(std::string& out, std::uint32_t v)
 {
     for (int i = 0; i < 4; ++i) out.push_back(char((v >> (8 * i)) & 0xFFu));
 }
-void putU64(std::string& out, std::uint64_t v)
-{
-    for (int i = 0; i < 8; ++i) out.push_back(char((v >> (8 * i)) & 0xFFu));
-}
 void setU64(std::string& out, std::size_t at, std::uint64_t v)
 {
     for (int i = 0; i < 8; ++i) out[at + std::size_t(i)] = char((v >> (8 * i)) & 0xFFu);
