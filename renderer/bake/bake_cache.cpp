@@ -125,9 +125,9 @@ namespace {
 // What this build's bake makes of given settings. The key holds every setting and the
 // shaders' fingerprint (bakeShaderFingerprint), but a change to the host code that plans or
 // feeds the passes changes the output of the same settings and shaders, and a cache written
-// by an older build would then be read as this build's bake. Raise it with every such change. 2: bright lights merged at alpha / 2 and the
-// rough mips' far cells capped at 8N. 3: mip 1 refined where its samples disagree, its
-// bases from the finest level its refined samples read. 4: mip 2 refined too. 5: the
+// by an older build would then be read as this build's bake. Raise it with every such change.
+// 2: bright lights merged at alpha / 2 and the rough mips' far cells capped at 8N. 3: mip 1
+// refined where its samples disagree, its bases from the finest level its refined samples read. 4: mip 2 refined too. 5: the
 // refinement's spread against the base's RMS in blocks as wide as the samples' footprint.
 // 6: the bases near the bright texels resampled from the map clamped (near_lights.hpp).
 // 7: mip 1's band of lights per tile. 8: mip 2's lights per tile, the rougher mips' caps
