@@ -365,10 +365,10 @@ BrightSplitPlan planBrightSplit(BrightCandidates candidates, const PrefilterSett
             // texels wide (kRefineSpikyExponent): star fields past what the lists hold sampled them
             // at 0.043-0.050 at mip 2, a grid of one-texel lines past even the candidates' larger
             // cap read 0.051 at mip 1 (0.039 so), 4-texel meridians on a 2048-wide map 0.055 (0.032).
-            // Mip 1's over blocks twice as wide too: lines a quarter to a whole footprint wide
-            // read at most sqrt(2) over its own blocks, under their gate, but twice that
-            // over blocks twice as wide (8-texel meridians on a 4096-wide map 1.41 and 2.0,
-            // against gates of 1.41 and 1.54: mip 1 0.055 refined eightfold, 0.033 so).
+            // Mip 1's over blocks twice as wide too: lines half a footprint wide or more read
+            // at most sqrt(2) over its own blocks, under their gate, but more over blocks
+            // twice as wide (8-texel meridians on a 4096-wide map 1.41 and 2.0, against gates
+            // of 1.41 and 1.54: mip 1 0.055 refined eightfold, 0.033 so).
             const bool spiky = spikyBase(candidates, l.threshold, level, kRefineSpikyExponent) ||
                                (level == 1 && spikyBase(candidates, l.threshold, level, kRefineSpikyExponent, 1));
             l.refineFactor = spiky ? kSpikyBaseCapFactor * settings.refineFactor : settings.refineFactor;

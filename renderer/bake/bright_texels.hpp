@@ -107,8 +107,9 @@ bool spikyBase(const BrightCandidates& candidates, float threshold, int mip, dou
 // wide (4 texels on a 2048-wide map read 1.41 over mip 1's blocks of 8) are refined more, with
 // no list to take them; the bundled maps read at most 1.10 and 1.25 against 1.19 and 1.41.
 // Mip 1's refined set is tested over blocks twice as wide as well (coarser = 1): a line a
-// quarter to a whole footprint wide reads at most sqrt(2) over its blocks, but up to 2 over
-// those; the bundled maps read at most 1.23 there (studio) against 1.30, the pmndrs maps 1.12.
+// texels wide reads sqrt(w / a), at most sqrt(2) once it is half a footprint wide or more, but
+// sqrt(2 w / a), up to 2, over those, above their gate up to about 0.85 w; the bundled maps
+// read at most 1.23 there (studio) against 1.30, the pmndrs maps 1.12.
 inline constexpr double kRefineSpikyExponent = 0.125;
 double spikyBaseRatio(int scale, double exponent = 0.25);
 // Mips 1 and 2 list this many times the cap, the rough mips' blocks allow this many times
