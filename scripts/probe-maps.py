@@ -9,7 +9,7 @@
 # for its value), so the bytes depend neither on -j nor on which other maps are made. A file
 # already present at its full size is kept, so a rerun resumes.
 # License: the repository's.
-import argparse, math, os, random, sys, time
+import argparse, math, os, random, signal, sys, time
 from array import array
 from multiprocessing import Pool
 
@@ -465,6 +465,7 @@ def main():
     unknown = [n for n in names if n not in MAPS]
     if unknown: ap.error('no such map: ' + ' '.join(unknown))
     if args.list:
+        signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `--list | head` ends quietly
         for n in names: print(n, *MAPS[n][:3])
         return
     if not args.out_dir: ap.error('OUT_DIR is required')
