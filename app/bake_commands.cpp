@@ -476,7 +476,7 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
         ->check(CLI::Range(1, 100));
     c->add_option("--host-work", o->hostWork,
                   "Where the host work that reads only the map (shading lights, the bright-texel split's plan) runs: auto (worker "
-                  "threads beside the GPU's passes on a hardware GPU, steps of its own on llvmpipe), threads or steps")
+                  "threads beside the GPU's passes on a hardware GPU, steps of its own, with no GL work in flight, on llvmpipe), threads or steps")
         ->capture_default_str()
         ->check(CLI::IsMember({"auto", "threads", "steps"}));
     c->add_flag("--json", o->json, "Print a JSON report");

@@ -36,8 +36,9 @@ namespace iblab::bake {
 
 // Where a bake runs the host work that reads only the float map (the fitted lobe's shading
 // lights, the bright-texel split's plan): Auto picks worker threads beside the GPU's passes on
-// a hardware GPU and steps of their own on a software renderer (BakeJob::plan()). Process-wide,
-// read when a job is made; the other two force one way (`iblab bake --host-work`, tests).
+// a hardware GPU and steps of their own, with no GL work in flight, on a software renderer
+// (BakeJob::planHostWork()). Process-wide, read when a job is made; the other two force one
+// way (`iblab bake --host-work`, tests).
 enum class HostWorkPlacement { Auto, WorkerThreads, OwnSteps };
 void setHostWorkPlacement(HostWorkPlacement placement);
 
