@@ -133,7 +133,7 @@ BrightCandidates brightCandidates(const ImageRGB32F& equirect, float thresholdOv
         every = ranked;
     BrightCandidates candidates = finishCandidates(std::move(ranked), floorThreshold, flux, squared, maxCandidates, makeTexel);
     if (!every.empty() && keepMore(candidates))
-        candidates = finishCandidates(std::move(every), floorThreshold, flux, squared, kSpikyBaseCapFactor * maxCandidates, makeTexel);
+        candidates = finishCandidates(std::move(every), floorThreshold, flux, squared, kSpikyCandidatesFactor * maxCandidates, makeTexel);
     candidates.sourceWidth = w;
     candidates.sourceHeight = h;
     return candidates;
@@ -185,11 +185,16 @@ BrightCandidates splitCandidates(const ImageRGB32F& equirect, const PrefilterSet
     };
     // Where the cap raised the floor into a field of one-texel lights, no threshold can take
     // them and every mip samples them (mip 1 0.059-0.081 on 3000- and 4096-wide star fields):
-    // four times as many are kept. A map of large bright areas (16384 texels of sky above the
-    // floor) is not spiky there and keeps the cap.
+    // more are kept. Spiky over mip 1's blocks or over blocks twice as wide, as its refined
+    // set is judged: squares nearly a footprint wide fill mip 1's blocks, and 700 squares 10
+    // texels wide on a 4096-wide map kept the cap and were left to the samples (mips 1-3 0.044
+    // 0.024 0.032; kept, 0.036 0.002 0.001). A map of large bright areas (16384 texels of sky
+    // above the floor) is not spiky there and keeps the cap (courtyard.exr 1.07, the bundled
+    // maps at most 1.23 over the wider blocks, against 1.68).
     const int firstRefined = refinedScales.front().first;
     return withBlocks(brightCandidates(equirect, settings.brightThreshold, kMaxBrightCandidates, &finest, [&](const BrightCandidates& kept) {
-        return spikyBase(withBlocks(kept), kept.floorThreshold, firstRefined);
+        const BrightCandidates withMipBlocks = withBlocks(kept);
+        return spikyBase(withMipBlocks, kept.floorThreshold, firstRefined) || spikyBase(withMipBlocks, kept.floorThreshold, firstRefined, 0.25, 1);
     }));
 }
 

@@ -218,19 +218,55 @@ TEST_F(GlTest, StarsPastTheCandidatesCapAreKept)
 }
 
 // A grid of one-texel lines of 600 every 32 texels both ways on a 2048 x 1024 map: 130000
-// texels above the floor, past even the candidates' larger cap, all of one brightness, so
-// every mip samples them. Its base is spiky at mip 1, whose refined set is then four times as
-// large, as mip 2's is: mip 1 0.039, against 0.051 with the default's refined set.
-TEST_F(GlTest, AGridOfLinesPastEveryCapMeetsTheBoundAtMipOne)
+// texels above the floor, all of one brightness. Past four times the candidates' cap every
+// mip sampled them: mip 1 0.051 with the default's refined set, 0.039 with four times that
+// (its base is spiky at mip 1). The candidates' larger cap (kSpikyCandidatesFactor) keeps
+// them all: mip 1 0.010.
+TEST_F(GlTest, AGridOfLinesIsKeptWholeByTheCandidatesLargerCap)
 {
     auto shaders = testing::bakeShaderLibrary();
     const bake::BakeSettings settings = bake::defaultPreset();
     const Environment environment = testing::greyMap("one-texel lines of 600 every 32 texels, 2048 wide", 2048, 0x29a0u,
                                                      [](int x, int y) { return x % 32 == 0 || y % 32 == 0 ? 600.0f : 0.2f; });
-    const bake::BrightSplitPlan plan = bake::planBrightSplit(bake::splitCandidates(environment.image, settings.prefilter), settings.prefilter);
-    EXPECT_EQ(plan.levels.at(1).refineFactor, bake::kSpikyBaseCapFactor * settings.prefilter.refineFactor);
+    const bake::BrightCandidates candidates = bake::splitCandidates(environment.image, settings.prefilter);
+    EXPECT_FALSE(candidates.truncated) << environment.source;
+    EXPECT_GT(candidates.texels.size(), std::size_t(bake::kSpikyBaseCapFactor * bake::kMaxBrightCandidates)) << environment.source;
     const std::vector<double> errors = perMipErrors(shaders, environment, settings);
     expectWithinPerMipBound(errors, environment.source);
+    EXPECT_LT(errors.at(0), 0.02) << environment.source << " mip 1";
+}
+
+// 1500 squares 7 texels wide of 150-450 over 0.3 on a 2048 x 1024 map (about 72000 texels
+// above the floor). At the candidates' cap the base they leave is not spiky over mip 1's blocks
+// of 8 (a square fills most of one), so the cap held (16373 kept) and the rough mips sampled
+// the rest; over blocks twice as wide it is, and the candidates' larger cap (16 times; 4
+// would leave some out) keeps them all: mips 2-5 0.013 0.021 0.005 0.004 -> 0.006 0.011 0.003
+// 0.002. Mip 1 reads 0.030 either way: its lists do not take squares this wide.
+TEST_F(GlTest, SquaresNearlyAsWideAsAFootprintPastTheCapAreKept)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const bake::BakeSettings settings = bake::defaultPreset();
+    constexpr int kWidth = 2048, kSquare = 7;
+    std::vector<float> lit(std::size_t(kWidth) * (kWidth / 2), 0.0f);
+    std::uint32_t state = 0x2a20u;
+    auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+    for (int square = 0; square < 1500; ++square) {
+        const int x0 = int(next() % unsigned(kWidth)), y0 = int(next() % unsigned(kWidth / 2 - kSquare));
+        const float value = 150.0f + 300.0f * float(next() >> 8) / float(1u << 24);
+        for (int y = y0; y < y0 + kSquare; ++y)
+            for (int x = x0; x < x0 + kSquare; ++x)
+                lit[std::size_t(y) * kWidth + std::size_t(x % kWidth)] = value;
+    }
+    const Environment environment = testing::greyMap("1500 squares 7 texels wide, 2048 wide", kWidth, 0x2a20u, [&](int x, int y) {
+        const float v = lit[std::size_t(y) * kWidth + std::size_t(x)];
+        return v > 0.0f ? v : 0.3f;
+    });
+    const bake::BrightCandidates candidates = bake::splitCandidates(environment.image, settings.prefilter);
+    EXPECT_FALSE(candidates.truncated) << environment.source;
+    EXPECT_GT(candidates.texels.size(), std::size_t(bake::kSpikyBaseCapFactor * bake::kMaxBrightCandidates)) << environment.source;
+    const std::vector<double> errors = perMipErrors(shaders, environment, settings);
+    expectWithinPerMipBound(errors, environment.source);
+    EXPECT_LT(errors.at(2), 0.015) << environment.source << " mip 3";
 }
 
 // 16 meridians 4 texels wide of 800 on a 2048 x 1024 map: 65536 texels of one brightness above
