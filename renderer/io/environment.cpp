@@ -202,7 +202,7 @@ private:
     std::vector<float> rowTmp_;
 };
 
-enum class Encoding { Linear, Srgb, Gamma };
+enum class Encoding { Linear, Srgb, Gamma, Rec709 };
 
 // "1536x512 is 3:1", or "1000x431 is 2.32:1" when the reduced ratio is not small.
 std::string aspectText(int w, int h)
@@ -305,6 +305,13 @@ void checkHeader(const std::string& path, const ImageHeader& spec, const Environ
         throw Error(path, "invalid size cap maxWidth=" + std::to_string(options.maxWidth) + " (must be even and >= 2)");
 }
 
+// The inverse of BT.709's opto-electronic transfer function (ITU-R BT.709-6, item 1.2:
+// V = 4.5 L below L = 0.018, else 1.099 L^0.45 - 0.099).
+float rec709ToLinear(float v)
+{
+    return v < 0.081f ? v / 4.5f : std::pow((v + 0.099f) / 1.099f, 1.0f / 0.45f);
+}
+
 // How the stored values are encoded: what the header's colour space says, else sRGB for
 // integer images (display-referred); an unknown colour space is read as linear, with a warning.
 struct StoredEncoding {
@@ -330,6 +337,11 @@ StoredEncoding storedEncoding(const ImageHeader& spec, std::vector<std::string>&
         const std::size_t digit = cs.find_first_of("0123456789");
         gamma = digit == std::string::npos ? 2.2f : std::strtof(cs.c_str() + digit, nullptr);
         encoding = gamma > 0.0f && gamma != 1.0f ? Encoding::Gamma : Encoding::Linear;
+    } else if (cs == "rec709") {
+        // OpenImageIO names every PNM file "Rec709": netpbm's PPM and PGM samples carry
+        // BT.709's transfer function, while a PFM's floats are linear by that format's own
+        // convention.
+        encoding = integer ? Encoding::Rec709 : Encoding::Linear;
     } else if (cs.empty() && integer) {
         encoding = Encoding::Srgb; // integer images that name no colour space are display-referred
     } else if (!cs.empty() && cs.find("lin") == std::string::npos && cs != "raw" && cs.find("aces") == std::string::npos &&
@@ -405,6 +417,8 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
                         v = srgbToLinear(v);
                     else if (encoding == Encoding::Gamma && v > 0.0f)
                         v = std::pow(v, gamma);
+                    else if (encoding == Encoding::Rec709)
+                        v = rec709ToLinear(v);
                     row[std::size_t(x) * 3 + std::size_t(c)] = v;
                 }
             maxValue = std::max(maxValue, repairer.row(row.data(), y));
@@ -422,6 +436,8 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
             w += " (decoded from sRGB to linear)";
         else if (encoding == Encoding::Gamma)
             w += " (decoded from gamma " + formatShort(gamma) + " to linear)";
+        else if (encoding == Encoding::Rec709)
+            w += " (decoded from BT.709's transfer function to linear)";
         env.warnings.push_back(w);
     }
     if (downsample)

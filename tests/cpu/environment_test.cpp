@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -307,6 +308,51 @@ TEST(Environment, EightBitPngLoadsLinearisedWithLdrWarning)
     const double expected = std::pow((128.0 / 255.0 + 0.055) / 1.055, 2.4);
     EXPECT_NEAR(env.image.texels[0], expected, 1e-5);
     EXPECT_NEAR(env.image.texels.back(), expected, 1e-5);
+}
+
+// OpenImageIO names every PNM file "Rec709". Netpbm's PPM samples carry BT.709's transfer
+// function; a PFM's floats are linear, and an HDR map in one loads without a colour-space note.
+TEST(Environment, PfmLoadsLinearWithoutAColourSpaceNote)
+{
+    TempDir dir;
+    const std::string path = dir.file("map.pfm");
+    std::vector<float> px(32 * 16 * 3, 0.5f);
+    px[3 * 40] = 2000.0f;
+    // OpenImageIO reads PFM but does not write it: the header by hand, then the rows bottom
+    // first, little-endian (the scale's sign says so).
+    std::ofstream file(path, std::ios::binary);
+    file << "PF\n32 16\n-1.0\n";
+    for (int y = 15; y >= 0; --y)
+        for (int x = 0; x < 32 * 3; ++x) {
+            const float v = px[std::size_t(y) * 32 * 3 + std::size_t(x)];
+            unsigned char bytes[4];
+            std::memcpy(bytes, &v, 4);
+            if constexpr (std::endian::native == std::endian::big)
+                std::reverse(bytes, bytes + 4);
+            file.write(reinterpret_cast<const char*>(bytes), 4);
+        }
+    file.close();
+    const Environment env = loadEnvironment(path);
+    EXPECT_TRUE(env.warnings.empty()) << env.warnings.front();
+    EXPECT_EQ(env.image.texels[0], 0.5f);
+    EXPECT_EQ(*std::max_element(env.image.texels.begin(), env.image.texels.end()), 2000.0f);
+}
+
+TEST(Environment, EightBitPpmDecodesBt709sTransferFunction)
+{
+    TempDir dir;
+    const std::string path = dir.file("ldr.ppm");
+    std::vector<float> px(32 * 16 * 3, 128.0f / 255.0f);
+    px[0] = 51.0f / 255.0f; // 0.2: above the linear segment's end at 0.081
+    px[1] = 10.0f / 255.0f; // on the linear segment
+    writeImage(path, 32, 16, 3, px, OIIO::TypeDesc::UINT8);
+    const Environment env = loadEnvironment(path);
+    EXPECT_TRUE(hasWarningContaining(env, "BT.709")) << env.warnings.front();
+    EXPECT_FALSE(hasWarningContaining(env, "unknown colour space"));
+    // BT.709-6 item 1.2 inverted by hand: L = ((V + 0.099) / 1.099)^(1 / 0.45), or V / 4.5.
+    EXPECT_NEAR(env.image.texels[0], std::pow((0.2 + 0.099) / 1.099, 1.0 / 0.45), 1e-5);
+    EXPECT_NEAR(env.image.texels[1], 10.0 / 255.0 / 4.5, 1e-6);
+    EXPECT_NEAR(env.image.texels.back(), std::pow((128.0 / 255.0 + 0.099) / 1.099, 1.0 / 0.45), 1e-5);
 }
 
 TEST(Environment, FloatMapWithoutValuesAboveOneWarns)
