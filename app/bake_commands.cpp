@@ -2,7 +2,6 @@
 // sh_lut_commands.cpp). It prints its result on stdout (a table, or JSON with --json) and, on
 // failure, exits non-zero with one line on stderr naming the file or the problem.
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -319,30 +318,24 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     return bakeReportJson(settings, map, result, errors, accuracy, cache, times, notes, exported, processStart);
 }
 
-bool isEnvironmentFile(const std::filesystem::path& path)
-{
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return extension == ".exr" || extension == ".hdr";
-}
-
-// The maps to bake: each --env in order, a directory standing for every .exr and .hdr in
-// it (sorted by name, hidden files skipped).
+// The maps to bake: each --env in order, a directory standing for every environment image in
+// it (isEnvironmentImagePath; sorted by name, hidden files skipped).
 std::vector<std::string> expandEnvironments(const std::vector<std::string>& given)
 {
     std::vector<std::string> maps;
     for (const std::string& entry : given) {
         std::error_code ec;
-        if (!std::filesystem::is_directory(entry, ec)) {
+        // A directory that holds another tool's bake (a KTX2 pair, an iblab bake) is that bake.
+        if (!std::filesystem::is_directory(entry, ec) || isImportedBakeSpec(entry)) {
             maps.push_back(entry);
             continue;
         }
         std::vector<std::string> files;
         for (std::filesystem::directory_iterator it(entry, ec), end; !ec && it != end; it.increment(ec))
-            if (it->path().filename().string().front() != '.' && isEnvironmentFile(it->path()) && it->is_regular_file(ec))
+            if (it->path().filename().string().front() != '.' && isEnvironmentImagePath(it->path().string()) && it->is_regular_file(ec))
                 files.push_back(it->path().string());
         if (ec) throw Error(entry, "cannot list the directory: " + ec.message());
-        if (files.empty()) throw Error(entry, "no .exr or .hdr files in the directory");
+        if (files.empty()) throw Error(entry, std::string("no environment images (") + kEnvironmentImageKinds + ") in the directory");
         std::sort(files.begin(), files.end());
         maps.insert(maps.end(), files.begin(), files.end());
     }
@@ -452,7 +445,8 @@ Command addBakeCommand(CLI::App& app, ProcessClock::time_point processStart)
     CLI::App* c = app.add_subcommand("bake", "Bake an environment on the GPU (headless): cubemap, SH9, irradiance, GGX "
                                              "prefilter, BRDF LUTs; prints per-phase timings and errors against exact references");
     c->add_option("--env", o->environments,
-                  "Environment: an .exr/.hdr file, builtin:NAME, or a directory (every .exr/.hdr in it); several --env bake "
+                  "Environment: an image file (.exr, .hdr, .pfm, .tif, .png, .jpg, or any other OpenImageIO reads), builtin:NAME, another "
+                  "tool's bake (.ktx, .ktx2, a KTX2 pair's directory), or a directory (every .exr, .hdr, .pfm, .tif, .png and .jpg in it); several --env bake "
                   "one after another in one process (--env A --env B, or --env A B), with a progress line each and one report")
         ->required();
     c->add_option("--preset", o->preset, "Starting settings: default (fast, accurate) or tutorial (LearnOpenGL's)")

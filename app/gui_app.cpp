@@ -25,6 +25,7 @@
 #include "frame/conventions.hpp"
 #include "io/atomic_file.hpp"
 #include "io/builtin_environments.hpp"
+#include "io/environment.hpp"
 #include "io/error.hpp"
 #include "gl/context_info.hpp"
 #include "gl/debug_output.hpp"
@@ -117,15 +118,17 @@ void showEnvironmentStatus(ui::StatusLine& line, const StatusReport& report)
 void handleDrop(const std::string& path, ui::UiRequests& requests, ui::PanelState& panels)
 {
     const std::string extension = lowerExtension(path);
-    if (extension == ".exr" || extension == ".hdr")
-        requests.loadEnvironment = path;
-    else if (extension == ".gltf" || extension == ".glb")
+    if (extension == ".gltf" || extension == ".glb")
         requests.loadModel = path;
     else if (extension == ".json")
         requests.loadPreset = path;
+    else if (isEnvironmentImagePath(path) || isImportedBakeSpec(path))
+        requests.loadEnvironment = path;
     else
         showEnvironmentStatus(panels.environmentStatus,
-                              StatusReport{path + ": cannot open this kind of file (drop .exr, .hdr, .gltf, .glb or a .json preset)", true});
+                              StatusReport{path + ": cannot open this kind of file (drop an environment, " + kEnvironmentImageKinds +
+                                               "; another tool's bake, .ktx, .ktx2 or its directory; a model, .gltf or .glb; or a .json preset)",
+                                           true});
 }
 
 bool keyPressed(int glfwKey) { return ImGui::IsKeyPressed(glfwKey, /*repeat=*/false); }

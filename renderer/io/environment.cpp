@@ -12,6 +12,7 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include <unistd.h>
 #include <xxhash.h>
@@ -531,6 +532,15 @@ Environment loadEnvironment(const std::string& spec, const EnvironmentLoadOption
     // of a file load is one Error naming the file.
     return rethrowAsError(spec, "reading (a corrupt header claiming a huge size?)", "cannot read", [&] { return loadFile(spec, options); });
 }
+
+bool isEnvironmentImagePath(const std::string& path)
+{
+    static constexpr std::string_view kExtensions[] = {".exr", ".hdr", ".pfm", ".tif", ".tiff", ".png", ".jpg", ".jpeg"};
+    const std::string extension = lower(fs::path(path).extension().string());
+    return std::find(std::begin(kExtensions), std::end(kExtensions), extension) != std::end(kExtensions);
+}
+
+const char* const kEnvironmentImageKinds = ".exr, .hdr, .pfm, .tif, .png or .jpg";
 
 std::string defaultEnvironmentPath(const std::string& assetDir)
 {

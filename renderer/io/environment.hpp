@@ -100,6 +100,14 @@ inline constexpr int kMinEnvironmentWidth = 8;
 // Texels in one tile of a tiled file (real files use 32x32 to 512x512; this is 2048x2048).
 inline constexpr std::uint64_t kMaxTileTexels = std::uint64_t(1) << 22;
 
+// The image files a user brings as environments, by extension (any case): OpenEXR, Radiance
+// .hdr, PFM, TIFF, PNG and JPEG. The GUI's drop and `bake`'s directories take these (and the
+// GUI another tool's bake, isImportedBakeSpec); loadEnvironment reads whatever OpenImageIO
+// reads, named in full.
+bool isEnvironmentImagePath(const std::string& path);
+// Those extensions, as a message lists them (".exr, .hdr, .pfm, .tif, .png or .jpg").
+extern const char* const kEnvironmentImageKinds;
+
 // Also takes another tool's bake (isImportedBakeSpec: .ktx, .ktx2, a KTX2 pair's directory).
 // Loads a file (any format OpenImageIO reads: .exr including DWAB, .hdr, .png, .jpg, ...)
 // or a builtin. Files must be 2:1 (+-1 texel of rounding). Grey inputs are replicated to

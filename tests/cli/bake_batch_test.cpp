@@ -46,12 +46,21 @@ TEST_F(Cli, BakeOfADirectoryBakesItsMapsInNameOrder)
     fs::copy_file(IBLAB_SOURCE_DIR "/assets/environments/sunset.exr", maps / "b-sunset.exr");
     fs::copy_file(IBLAB_SOURCE_DIR "/assets/environments/night.exr", maps / "a-night.EXR");
     std::ofstream(maps / "notes.txt") << "not a map";
+    {
+        // A PFM (header, then little-endian rows) is a map too: the directory took only .exr and .hdr.
+        std::ofstream pfm(maps / "c-grey.pfm", std::ios::binary);
+        pfm << "PF\n8 4\n-1.0\n";
+        const float grey = 2.0f;
+        for (int i = 0; i < 8 * 4 * 3; ++i)
+            pfm.write(reinterpret_cast<const char*>(&grey), sizeof grey);
+    }
     const Result r = run("bake --env maps" + kSmallBake);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    ASSERT_EQ(j["maps"].size(), 2u) << r.out;
+    ASSERT_EQ(j["maps"].size(), 3u) << r.out;
     EXPECT_EQ(j["maps"][0]["source"], "maps/a-night.EXR");
     EXPECT_EQ(j["maps"][1]["source"], "maps/b-sunset.exr");
+    EXPECT_EQ(j["maps"][2]["source"], "maps/c-grey.pfm");
     EXPECT_EQ(j["failed"], 0);
 
     // One map named once keeps the single report that scripts read.

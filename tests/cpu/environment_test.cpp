@@ -355,6 +355,14 @@ TEST(Environment, EightBitPpmDecodesBt709sTransferFunction)
     EXPECT_NEAR(env.image.texels.back(), std::pow((128.0 / 255.0 + 0.099) / 1.099, 1.0 / 0.45), 1e-5);
 }
 
+TEST(Environment, EnvironmentImagesAreKnownByExtensionInAnyCase)
+{
+    for (const char* path : {"a.exr", "b.HDR", "dir/c.pfm", "d.tif", "e.TIFF", "f.png", "g.jpg", "h.Jpeg"})
+        EXPECT_TRUE(isEnvironmentImagePath(path)) << path;
+    for (const char* path : {"a.glb", "b.gltf", "c.json", "d.ktx", "e.ktx2", "f.txt", "exr", "dir.exr/g", ""})
+        EXPECT_FALSE(isEnvironmentImagePath(path)) << path;
+}
+
 TEST(Environment, FloatMapWithoutValuesAboveOneWarns)
 {
     TempDir dir;
