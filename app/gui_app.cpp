@@ -115,16 +115,27 @@ void showEnvironmentStatus(ui::StatusLine& line, const StatusReport& report)
     line = std::move(status);
 }
 
+// A dropped file's path goes into its panel's path field, as if typed there, so that the field
+// names what is loading and Load reloads it (where the path fits the field).
+template <std::size_t N>
+void showDroppedPath(char (&field)[N], const std::string& path)
+{
+    if (path.size() < N) std::snprintf(field, N, "%s", path.c_str());
+}
+
 void handleDrop(const std::string& path, ui::UiRequests& requests, ui::PanelState& panels)
 {
     const std::string extension = lowerExtension(path);
-    if (extension == ".gltf" || extension == ".glb")
+    if (extension == ".gltf" || extension == ".glb") {
         requests.loadModel = path;
-    else if (extension == ".json")
+        showDroppedPath(panels.modelPath, path);
+    } else if (extension == ".json") {
+        // Not into the preset's field: Save would then overwrite the dropped file.
         requests.loadPreset = path;
-    else if (isEnvironmentImagePath(path) || isImportedBakeSpec(path))
+    } else if (isEnvironmentImagePath(path) || isImportedBakeSpec(path)) {
         requests.loadEnvironment = path;
-    else
+        showDroppedPath(panels.environmentPath, path);
+    } else
         showEnvironmentStatus(panels.environmentStatus,
                               StatusReport{path + ": cannot open this kind of file (drop an environment, " + kEnvironmentImageKinds +
                                                "; another tool's bake, .ktx, .ktx2 or its directory; a model, .gltf or .glb; or a .json preset)",

@@ -138,7 +138,7 @@ void drawEnvironmentPanel(EnvironmentSettings& settings, PanelState& state, UiRe
     }
     noteField(sourceRow, "combo");
     fieldTooltip(sourceRow.help);
-    if (auto path = pathField("##envpath", ".exr / .hdr path or builtin:NAME", state.environmentPath, sizeof state.environmentPath, "Load"))
+    if (auto path = pathField("##envpath", "map or bake path, or builtin:NAME", state.environmentPath, sizeof state.environmentPath, "Load"))
         requests.loadEnvironment = std::move(*path);
     fieldSlider<&EnvironmentSettings::yawDegrees>(settings);
     fieldSlider<&EnvironmentSettings::intensityEv>(settings);
