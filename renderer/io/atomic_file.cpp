@@ -121,15 +121,26 @@ void writeTextFileAtomic(const std::string& path, std::string_view contents, Dur
     writeFileAtomic(path, [&](const std::string& temp) { writeWholeFile(temp, contents); }, durability);
 }
 
+Error cannotOpenForReading(const std::string& path, int error)
+{
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status))
+        return Error(path, "no such file");
+    if (fs::is_directory(status))
+        return Error(path, "is a directory, not a file");
+    return Error(path, "cannot open for reading: " + errnoText(error));
+}
+
 std::string readTextFile(const std::string& path)
 {
+    // A directory opens as a stream on Linux and reads as nothing.
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw cannotOpenForReading(path, EISDIR);
     std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        std::error_code ec;
-        if (!fs::exists(path, ec))
-            throw Error(path, "no such file");
-        throw Error(path, "cannot open for reading: " + errnoText(errno));
-    }
+    if (!in)
+        throw cannotOpenForReading(path, errno);
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad())

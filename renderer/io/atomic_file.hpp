@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "io/error.hpp"
+
 namespace iblab {
 
 // Flush: the new content is flushed to disk (fsync, and the directory) before and after
@@ -35,5 +37,9 @@ void writeTextFileAtomic(const std::string& path, std::string_view contents, Dur
 
 // Reads a whole file; throws iblab::Error naming the file when it cannot.
 std::string readTextFile(const std::string& path);
+
+// Why `path` could not be opened for reading, after an open that failed with `error` (errno):
+// "no such file", "is a directory", or the system's reason.
+Error cannotOpenForReading(const std::string& path, int error);
 
 } // namespace iblab

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ibl/conventions.hpp"
+#include "io/atomic_file.hpp"
 #include "io/error.hpp"
 #include "io/image_codec_direct.hpp"
 #include "io/image_writer.hpp"
@@ -166,9 +167,7 @@ ImageRGB32F readIblabStrip(const fs::path& path, int size)
 
 nlohmann::json readJsonFile(const fs::path& path)
 {
-    std::ifstream in(path);
-    if (!in) throw Error(path.string(), "cannot open");
-    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    nlohmann::json j = nlohmann::json::parse(readTextFile(path.string()), nullptr, false);
     if (j.is_discarded() || !j.is_object()) throw Error(path.string(), "not a JSON object");
     return j;
 }

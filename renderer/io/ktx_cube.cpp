@@ -5,10 +5,13 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <cerrno>
+#include <filesystem>
 #include <fstream>
 
 #include <Imath/half.h>
 
+#include "io/atomic_file.hpp"
 #include "io/error.hpp"
 #include "io/ktx_format.hpp"
 
@@ -171,8 +174,11 @@ KtxCube parseKtxCube(std::span<const std::byte> bytes, std::string_view name, co
 
 KtxCube readKtxCube(const std::string& path, const KtxReadOptions& options)
 {
+    // A directory opens as a stream on Linux, and then reports a size it does not have.
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw cannotOpenForReading(path, EISDIR);
     std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw Error(path, "cannot open");
+    if (!in) throw cannotOpenForReading(path, errno);
     const std::streamoff size = in.tellg();
     if (size < 0) throw Error(path, "cannot read");
     // The largest legal file: an RGBA32F cube of maxFaceSize with every mip, and some slack

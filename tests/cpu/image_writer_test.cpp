@@ -207,6 +207,14 @@ TEST(AtomicFile, TextWriteReplacesContents)
     EXPECT_EQ(readTextFile(path), std::string("second\0with nul", 15));
     EXPECT_EQ(dir.entries(), std::vector<std::string>{"preset.json"});
     EXPECT_THROW(readTextFile(dir.file("absent.json")), Error);
+    // A directory is said to be one (it read as an empty text).
+    std::filesystem::create_directories(dir.file("folder.json"));
+    try {
+        readTextFile(dir.file("folder.json"));
+        ADD_FAILURE() << "a directory read as a text";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("folder.json: is a directory"), std::string::npos) << e.what();
+    }
 }
 
 TEST(AtomicFile, UnflushedWritesStillReplaceWholeFiles)

@@ -160,7 +160,15 @@ TEST(KtxReader, FileErrorsNameThePath)
         loadEnvironment((dir / "missing_ibl.ktx").string());
         ADD_FAILURE() << "a missing bake loaded";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("missing_ibl.ktx: cannot open"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("missing_ibl.ktx: no such file"), std::string::npos) << e.what();
+    }
+    // A directory named like a bake is said to be one (an open of it said only "cannot open").
+    fs::create_directories(dir / "folder_ibl.ktx");
+    try {
+        loadEnvironment((dir / "folder_ibl.ktx").string());
+        ADD_FAILURE() << "a directory loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("folder_ibl.ktx: is a directory"), std::string::npos) << e.what();
     }
     fs::remove_all(dir);
 }
