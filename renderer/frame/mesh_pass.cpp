@@ -113,9 +113,10 @@ gl::Texture uploadLobeFit(const LobeFitTable& table)
     return texture;
 }
 
-// The fitted lobe's lights, with the cube less them in the prefiltered unit (IblUniforms bound
-// the bake's own there); none where the method does not sum them or the bake has none.
-void bindShadingLights(const MeshUniforms& u, const Lighting& lighting, bool wanted)
+// The fitted lobe's lights, with the cubes and SH9 less them in the prefiltered and
+// irradiance units and the SH9 uniform (IblUniforms bound the bake's own there); none where
+// the method does not sum them or the bake has none.
+void bindShadingLights(const MeshUniforms& u, const Lighting& lighting, const FrameSettings& settings, bool wanted)
 {
     const ShadingLightsTexture* lights = wanted ? lighting.shadingLights : nullptr;
     u.shadingLightCount.set(lights ? int(lights->lights.size()) : 0);
@@ -126,6 +127,11 @@ void bindShadingLights(const MeshUniforms& u, const Lighting& lighting, bool wan
     u.shadingLightFlux.set(flux);
     u.shadingLightMinAlpha.set(lights->minAlpha);
     glBindTextureUnit(kUnitPrefiltered, lights->residual.id());
+    if (lights->residualIrradiance) glBindTextureUnit(kUnitIrradianceCube, lights->residualIrradiance.id());
+    const SH9Color& sh = settings.sampling.diffuse == DiffuseSource::Sh9Plain ? lights->shResidual : lights->shResidualWindowed;
+    std::vector<glm::vec3> coefficients;
+    for (const glm::dvec3& c : sh.c) coefficients.emplace_back(c);
+    u.ibl.shIrradiance.set(coefficients);
 }
 
 } // namespace
@@ -200,7 +206,7 @@ bool MeshPass::draw(SceneSlot& sceneSlot, const FrameSettings& settings, const L
                 u->normalizeByAccepted.set(settings.sampling.normalizeByAccepted);
                 u->cosineSampledDiffuse.set(settings.sampling.cosineSampledDiffuse);
                 glBindTextureUnit(kUnitLobeFit, lobeFit_.id());
-                bindShadingLights(*u, lighting, !gbuffer && !sampled && settings.sampling.method == ShadingMethod::FittedLobe && settings.sampling.shadingLights);
+                bindShadingLights(*u, lighting, settings, !gbuffer && !sampled && settings.sampling.method == ShadingMethod::FittedLobe && settings.sampling.shadingLights);
             }
             u->model.set(draw.model);
             u->normalMatrix.set(glm::transpose(glm::inverse(glm::mat3(draw.model))));

@@ -42,7 +42,7 @@ const FieldTable<SamplingSettings>& samplingSettingsFields()
          "Form of the compensation: filament (1 + F0 (1/E_ss - 1))|fdez-aguera (1 / (1 - F_avg (1 - E_ss)), the glTF Sample Viewer's and Bevy's)",
          fieldRef<S>([](S& s) -> auto& { return s.multiscatterModel; }), {}, "--multiscatter-model", value},
         {"shading_lights", "Shading lights exact",
-         "Fitted lobe: sum the bake's brightest texel groups (a sun, lamps) exactly as lights and read the cube without them (--no-shading-lights: the plain cube)",
+         "Fitted lobe: sum the bake's brightest texel groups (a sun, lamps) exactly as lights, specular and diffuse, and read the cubes and SH9 without them (--no-shading-lights: the plain cubes)",
          fieldRef<S>([](S& s) -> auto& { return s.shadingLights; }), {}, "--shading-lights", flag},
         {"rough_fresnel_on_lut", "F_roughness on the LUT", "Split sum as LearnOpenGL: F_roughness(n.v) * A + B instead of F0 * A + B",
          fieldRef<S>([](S& s) -> auto& { return s.roughFresnelOnLut; }), {}, "--rough-fresnel-lut", flag},

@@ -97,6 +97,30 @@ void keepInMirrorOnTheGpu(const bake::BakeResult& bake, const bake::BakedTexture
     }
 }
 
+// The irradiance cube less the lights: subtractShadingLightsIrradiance on a read-back (a 32
+// face is 6144 texels, a fraction of a millisecond).
+bake::BakedTexture residualIrradianceCube(const bake::BakedTexture& irradiance, const std::vector<ShadingLight>& lights)
+{
+    const bake::CubeImage full = bake::readCubeLevel(irradiance, 0);
+    CubeLevelRgb cube{full.size, {}};
+    cube.texels.reserve(full.texels.size());
+    for (const glm::vec4& t : full.texels) cube.texels.emplace_back(t);
+    subtractShadingLightsIrradiance(cube, lights);
+    std::vector<glm::vec4> texels;
+    texels.reserve(cube.texels.size());
+    for (const glm::vec3& t : cube.texels) texels.emplace_back(t, 1.0f);
+    bake::BakedTexture out = bake::createCubeTexture(irradiance.internalFormat, irradiance.size, 1);
+    glTextureSubImage3D(out.id(), 0, 0, 0, 0, full.size, full.size, 6, GL_RGBA, GL_FLOAT, texels.data());
+    return out;
+}
+
+SH9Color minus(const SH9Color& a, const SH9Color& b)
+{
+    SH9Color out;
+    for (std::size_t i = 0; i < out.c.size(); ++i) out.c[i] = a.c[i] - b.c[i];
+    return out;
+}
+
 } // namespace
 
 std::unique_ptr<ShadingLightsTexture> makeShadingLightsTexture(gl::ShaderLibrary& shaders, const bake::BakeResult& bake)
@@ -114,6 +138,10 @@ std::unique_ptr<ShadingLightsTexture> makeShadingLightsTexture(gl::ShaderLibrary
     for (int level = 0; level < full.levels; ++level)
         if (bake::prefilterMipRoughness(bake.settings.prefilter, level) <= 0.0) keepInMirrorOnTheGpu(bake, out->residual, level);
     subtractOnTheGpu(shaders, bake, out->residual);
+    if (bake.irradianceCube) out->residualIrradiance = residualIrradianceCube(bake.irradianceCube, out->lights);
+    const SH9Color lightsSh = shadingLightsShIrradiance(out->lights);
+    out->shResidual = minus(bake.sh.irradiance, lightsSh);
+    out->shResidualWindowed = minus(bake.sh.irradianceWindowed, applyWindow(lightsSh, bake.sh.window, bake.sh.windowWidth));
     glFinish();
     out->milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;

@@ -1,6 +1,7 @@
 #include "ibl/shading_lights.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -254,6 +255,34 @@ void keepInMirror(CubeLevelRgb& mip0, const ShadingLights& lights)
             for (int x = b.x; x < b.x + b.texels; ++x)
                 mip0.texels[(std::size_t(b.face) * std::size_t(mip0.size) + std::size_t(row)) * std::size_t(mip0.size) + std::size_t(x)] *= g.keep;
     }
+}
+
+glm::dvec3 shadingLightsIrradiance(const std::vector<ShadingLight>& lights, glm::dvec3 n)
+{
+    glm::dvec3 sum(0.0);
+    for (const ShadingLight& light : lights) sum += glm::dvec3(light.flux) * std::max(0.0, glm::dot(n, glm::dvec3(light.direction)));
+    return sum;
+}
+
+void subtractShadingLightsIrradiance(CubeLevelRgb& cube, const std::vector<ShadingLight>& lights)
+{
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < cube.size; ++row)
+            for (int x = 0; x < cube.size; ++x) {
+                glm::vec3& texel = cube.texels[(std::size_t(face) * std::size_t(cube.size) + std::size_t(row)) * std::size_t(cube.size) + std::size_t(x)];
+                const glm::dvec3 lit = shadingLightsIrradiance(lights, glm::dvec3(cubeTexelDirection(cube.size, face, x, row)));
+                texel = glm::max(glm::vec3(glm::dvec3(texel) - lit), glm::vec3(0.0f));
+            }
+}
+
+SH9Color shadingLightsShIrradiance(const std::vector<ShadingLight>& lights)
+{
+    SH9Color radiance;
+    for (const ShadingLight& light : lights) {
+        const std::array<double, kSh9Count> basis = sh9Basis(glm::dvec3(light.direction));
+        for (int i = 0; i < kSh9Count; ++i) radiance.c[std::size_t(i)] += glm::dvec3(light.flux) * basis[std::size_t(i)];
+    }
+    return convolveWithCosineLobe(radiance);
 }
 
 std::vector<CubeLevelRgb> shadingLightResidual(std::vector<CubeLevelRgb> chain, const std::vector<double>& mipRoughness, const ShadingLights& lights)

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibl/image.hpp"
+#include "ibl/sh.hpp"
 
 namespace iblab {
 
@@ -98,5 +99,20 @@ MirrorBlock mirrorBlock(const ShadingLightGroup& group, int grid, int size);
 
 // The mirror (mip 0) with each light's group scaled by its `keep`.
 void keepInMirror(CubeLevelRgb& mip0, const ShadingLights& lights);
+
+// The lights' irradiance at a unit normal n (environment space): flux max(0, n.l) summed
+// over the lights (ShadingLights::lights(), the groups' centroids), as the renderer sums it
+// per pixel (ibl_lighting.glsl's shadingLightsSpecular, beside their specular).
+glm::dvec3 shadingLightsIrradiance(const std::vector<ShadingLight>& lights, glm::dvec3 n);
+
+// An irradiance cube (E at each texel centre) less the lights' irradiance there, clamped at 0:
+// what the renderer interpolates between texel centres before it adds the lights' own per
+// pixel. Interpolated with them, a 32 face spreads a sun's terminator over a texel (2.8
+// degrees) and lights the dark side beside it: up to 2.8 times the sky's irradiance there.
+void subtractShadingLightsIrradiance(CubeLevelRgb& cube, const std::vector<ShadingLight>& lights);
+
+// The lights' irradiance as SH9 coefficients (their radiance, a delta at each centroid,
+// projected and convolved with the cosine lobe), to take from a map's SH9 irradiance.
+SH9Color shadingLightsShIrradiance(const std::vector<ShadingLight>& lights);
 
 } // namespace iblab

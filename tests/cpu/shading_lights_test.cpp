@@ -1,7 +1,10 @@
 // The shading lights (ibl/shading_lights.hpp): which groups become lights and how much they
 // carry, the residual chain (the prefilter of the map without them), and bake.json's form of
 // them (io/shading_lights_json.hpp), bad input included.
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -11,6 +14,7 @@
 #include "ibl/equirect.hpp"
 #include "ibl/luminance.hpp"
 #include "ibl/reference.hpp"
+#include "ibl/sh.hpp"
 #include "ibl/shading_lights.hpp"
 #include "io/error.hpp"
 #include "io/shading_lights_json.hpp"
@@ -133,6 +137,44 @@ TEST(ShadingLights, TheResidualIsTheChainWithoutTheLights)
     // Without lights the chain comes back as it was.
     EXPECT_EQ(shadingLightResidual(chain, roughness, ShadingLights{}).front().texels, chain.front().texels);
     EXPECT_THROW(shadingLightResidual(chain, {0.0, 0.1}, lights), std::invalid_argument);
+}
+
+// The diffuse sources less the lights: a cube of a constant sky's irradiance plus the lights'
+// exact irradiance comes back as the sky's alone, and the lights' SH9 is what projecting a map
+// of them gives (one bright texel each, its radiance x solid angle the light's flux).
+TEST(ShadingLights, TheIrradianceLessTheLightsIsTheSkysAlone)
+{
+    // At texel centres of a 256 x 128 map, so that the map below holds them exactly.
+    auto centre = [](int x, int y) { return glm::vec3(equirectUvToDirection(glm::dvec2((x + 0.5) / 256.0, (y + 0.5) / 128.0))); };
+    const std::vector<std::pair<int, int>> texels{{40, 30}, {201, 77}};
+    const std::vector<ShadingLight> lights{{centre(40, 30), glm::vec3(40.0f, 30.0f, 20.0f)}, {centre(201, 77), glm::vec3(5.0f, 5.0f, 8.0f)}};
+    const glm::dvec3 sky(0.5 * kPi); // E of a sky of radiance 0.5 everywhere
+    const int size = 16;
+    CubeLevelRgb cube{size, std::vector<glm::vec3>(std::size_t(6 * size * size))};
+    for (int face = 0; face < 6; ++face)
+        for (int row = 0; row < size; ++row)
+            for (int x = 0; x < size; ++x) {
+                const glm::dvec3 n(texelDirection(size, face, x, row));
+                glm::dvec3 lit(0.0);
+                for (const ShadingLight& l : lights) lit += glm::dvec3(l.flux) * std::max(0.0, glm::dot(n, glm::dvec3(l.direction)));
+                EXPECT_NEAR(shadingLightsIrradiance(lights, n).r, lit.r, 1e-9);
+                cube.texels[std::size_t((face * size + row) * size + x)] = glm::vec3(sky + lit);
+            }
+    subtractShadingLightsIrradiance(cube, lights);
+    for (const glm::vec3& t : cube.texels)
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(t[c], sky[c], 2e-5 * (1.0 + 40.0)) << c;
+
+    // One texel of a 256-wide map per light, holding its flux over the texel's solid angle.
+    ImageRGB32F map(256, 128);
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const auto [x, y] = texels[i];
+        map.set(x, y, lights[i].flux / float(equirectTexelSolidAngle(y, 256, 128)));
+    }
+    const SH9Color projected = convolveWithCosineLobe(projectEquirect(map));
+    const SH9Color ours = shadingLightsShIrradiance(lights);
+    for (int i = 0; i < kSh9Count; ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(ours.c[std::size_t(i)][c], projected.c[std::size_t(i)][c], 1e-4 * 40.0) << i << " " << c;
+    EXPECT_GT(std::abs(ours.c[0].r), 10.0) << "the lights carry irradiance";
 }
 
 TEST(ShadingLightsJson, RoundTripsAndRejectsWhatIsNotLights)

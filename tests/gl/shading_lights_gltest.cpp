@@ -93,6 +93,24 @@ void expectResidualMatchesTheCpus(const std::string& spec, int maxLights, std::s
         // every other mip around them), so the comparison is not between two copies of the bake.
         EXPECT_GT(difference(bakeLevel, cpu[std::size_t(level)], bakeLevel).worst, 0.1) << spec << " level " << level;
     }
+
+    // The diffuse sources less the lights: the irradiance cube as subtractShadingLightsIrradiance
+    // leaves it (the same arithmetic on the same read-back, rounded to the cube's format), and
+    // SH9 less the lights' projection, plain and windowed as the bake windows it.
+    ASSERT_TRUE(bake.irradianceCube) << spec;
+    const bake::CubeImage irradiance = bake::readCubeLevel(bake.irradianceCube, 0);
+    CubeLevelRgb irradianceCpu = rgbOf(irradiance);
+    subtractShadingLightsIrradiance(irradianceCpu, texture->lights);
+    const LevelDifference d = difference(bake::readCubeLevel(texture->residualIrradiance, 0), irradianceCpu, irradiance);
+    EXPECT_LT(d.worst, 1e-3) << spec;
+    EXPECT_GT(difference(irradiance, irradianceCpu, irradiance).worst, 0.1) << spec << ": the lights took part of the irradiance";
+    const SH9Color lightsSh = shadingLightsShIrradiance(texture->lights);
+    const SH9Color lightsWindowed = applyWindow(lightsSh, bake.sh.window, bake.sh.windowWidth);
+    for (std::size_t i = 0; i < lightsSh.c.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(texture->shResidual.c[i][c], bake.sh.irradiance.c[i][c] - lightsSh.c[i][c], 1e-9 * std::abs(lightsSh.c[0][c])) << i;
+            EXPECT_NEAR(texture->shResidualWindowed.c[i][c], bake.sh.irradianceWindowed.c[i][c] - lightsWindowed.c[i][c], 1e-9 * std::abs(lightsSh.c[0][c])) << i;
+        }
 }
 
 // A 0.5 degree sun of 1e4, off every axis and face edge, whose excess is one light or a few.

@@ -142,22 +142,29 @@ vec3 fittedLobeRadiance(SurfacePoint s, float NdotV, vec3 R, vec3 scaledA, float
 }
 
 // The lights' exact specular, F D Vis (n.l) flux each, without the energy compensation (the
-// caller applies it to the whole specular, as to the cube's reads). Dot products are the same
-// in either space, so N and V are turned into the environment's rather than every light out.
-vec3 shadingLightsSpecular(SurfacePoint s, float NdotV)
+// caller applies it to the whole specular, as to the cube's reads), and their irradiance,
+// flux (n.l) each: with them the irradiance cube and SH9 are the map less them
+// (shading_lights_texture.cpp), and a sun's terminator is as sharp as the sun, not a texel of
+// the cube wide. One loop for both: a second one cost llvmpipe a quarter of a fitted-lobe grid
+// frame. Dot products are the same in either space, so N and V are turned into the
+// environment's rather than every light out.
+vec3 shadingLightsSpecular(SurfacePoint s, float NdotV, out vec3 irradiance)
 {
     vec3 N = toEnvironment(s.N), V = toEnvironment(s.V);
     float alpha = max(s.roughness * s.roughness, uShadingLightMinAlpha);
     vec3 sum = vec3(0.0);
+    irradiance = vec3(0.0);
     for (int i = 0; i < uShadingLightCount; ++i) {
         vec3 L = uShadingLightDirection[i];
         float NdotL = dot(N, L);
         if (NdotL <= 0.0) continue;
+        irradiance += uShadingLightFlux[i] * NdotL;
         vec3 H = normalize(V + L);
         float VdotH = max(dot(V, H), 0.0);
         sum += uShadingLightFlux[i] * fresnelSchlick(VdotH, s.F0)
                * (ggxD(max(dot(N, H), 0.0), alpha) * geometryVisibility(SHADING_LIGHTS_GEOMETRY, NdotV, NdotL, alpha) * NdotL);
     }
+    irradiance *= uEnvironmentIntensity;
     return sum * uEnvironmentIntensity;
 }
 
@@ -174,15 +181,18 @@ vec3 shadeSplitSum(SurfacePoint s)
     vec3 R = reflect(-s.V, s.N);
     vec3 lut = texture(uBrdfLut, vec2(NdotV, s.roughness)).rgb;
     vec3 scaleFresnel = uRoughFresnelOnLut ? fresnelSchlickRoughness(NdotV, s.F0, s.roughness) : s.F0;
+    vec3 irradiance = diffuseIrradiance(s.N);
 #if FITTED_LOBE
-    vec3 reflected = fittedLobeRadiance(s, NdotV, R, scaleFresnel * lut.r, lut.g) + shadingLightsSpecular(s, NdotV);
+    vec3 lightsIrradiance;
+    vec3 reflected = fittedLobeRadiance(s, NdotV, R, scaleFresnel * lut.r, lut.g) + shadingLightsSpecular(s, NdotV, lightsIrradiance);
+    irradiance += lightsIrradiance;
 #else
     if (uSpecularDirection != SPECULAR_DIRECTION_REFLECTION)
         R = lobeTapDirection(s.N, R, specularDirectionTowardsNormal(uSpecularDirection, s.roughness * s.roughness));
     vec3 reflected = prefilteredRadiance(R, s.roughness) * (scaleFresnel * lut.r + lut.g);
 #endif
     vec3 specular = reflected * energyCompensation(s.F0, lut.b);
-    return combineLobes(s, NdotV, diffuseIrradiance(s.N) * (1.0 / IBL_PI), specular);
+    return combineLobes(s, NdotV, irradiance * (1.0 / IBL_PI), specular);
 }
 
 // The first 1024 Hammersley points for the current N, two per vec4, uploaded once per N.
