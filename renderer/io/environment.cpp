@@ -19,6 +19,7 @@
 
 #include "ibl/equirect.hpp"
 
+#include "io/atomic_file.hpp"
 #include "io/builtin_environments.hpp"
 #include "io/error.hpp"
 #include "io/image_codec.hpp"
@@ -358,10 +359,8 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
     const LibpngStderrFilter quietLibpng;
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status))
-        throw Error(path, "no such file");
-    if (fs::is_directory(status))
-        throw Error(path, "is a directory, not an image file");
+    if (!fs::exists(status) || fs::is_directory(status))
+        throw cannotOpenForReading(path, 0);
     if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0 && !ec)
         throw Error(path, "empty file (0 bytes)");
 
