@@ -70,5 +70,25 @@ TEST(EngineExportCli, MeasureReportsAForeignBakeInTheBakesErrorKeys)
     }
 }
 
+// `iblab bake --env DIR` with another tool's bake in DIR (the Khronos pair exported here)
+// loads that bake, as the GUI's path field and drop do; it took the directory for a folder
+// of maps and found none.
+TEST(EngineExportCli, BakeOfAKhronosBakesDirectoryImportsIt)
+{
+    testing::TempDirectory dir("export-import");
+    const std::string out = (dir.path() / "khronos").string();
+    std::string baked;
+    ASSERT_EQ(runIblab("bake --env 'builtin:axes?width=64' --no-cache --no-errors --prefilter-size 32 --export khronos --out '" + out + "'", baked), 0)
+        << baked;
+    std::string imported;
+    ASSERT_EQ(runIblab("bake --env '" + out + "' --no-cache --no-errors --json", imported), 0) << imported;
+    const auto json = nlohmann::json::parse(imported.substr(imported.find('{')));
+    EXPECT_EQ(json["source"], out);
+    EXPECT_FALSE(json.contains("maps")) << "one bake, not a directory of maps";
+    EXPECT_NE(imported.find("imported glTF-IBL-Sampler bake"), std::string::npos) << imported;
+    EXPECT_FALSE(json["timings_ms"].contains("prefilter")) << "uploaded, not baked";
+    EXPECT_EQ(json["textures"]["prefiltered"]["size"], 32);
+}
+
 } // namespace
 } // namespace iblab
