@@ -264,8 +264,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // --repeat do, and --export when it prefilters again): a copy is 6 MB of fresh pages for a
     // 1024x512 map, a few ms.
     const bool pixelsNeededAfter = !o.noErrors || o.repeat > 1 || o.exportFormat;
-    // Said among the notes: the job below may take the environment.
-    const char* importedFormat = environment.imported ? importedBakeFormat(environment.imported->kind) : nullptr;
+    const char* importedFormat = environment.imported ? importedBakeFormat(environment.imported->kind) : nullptr; // the job may take it
     bake::BakeResult result =
         bake::BakeJob(shaders, pixelsNeededAfter ? Environment(environment) : std::move(environment), settings, &cache).runToCompletion();
     std::vector<double> totals{result.totalMilliseconds};
@@ -304,8 +303,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // the --out files overlapped them, and only what is left is waited for here.
     const auto waitStart = Clock::now();
     std::vector<std::string> notes = result.notes;
-    if (importedFormat)
-        notes.push_back(std::string("imported ") + importedFormat + ": its cubes are uploaded as made, not baked; the settings describe them");
+    if (importedFormat) notes.push_back(std::string("imported ") + importedFormat + ": its cubes are uploaded as made, not baked");
     if (errors) notes.insert(notes.end(), errors->notes.begin(), errors->notes.end());
     if (map.waitForWrites)
         for (std::string& note : cache.finishWrites())
