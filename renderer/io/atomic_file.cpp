@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -121,7 +122,9 @@ void writeTextFileAtomic(const std::string& path, std::string_view contents, Dur
     writeFileAtomic(path, [&](const std::string& temp) { writeWholeFile(temp, contents); }, durability);
 }
 
-Error cannotOpenForReading(const std::string& path, int error)
+namespace {
+
+std::optional<Error> missingOrDirectory(const std::string& path)
 {
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
@@ -129,15 +132,25 @@ Error cannotOpenForReading(const std::string& path, int error)
         return Error(path, "no such file");
     if (fs::is_directory(status))
         return Error(path, "is a directory, not a file");
-    return Error(path, "cannot open for reading: " + errnoText(error));
+    return std::nullopt;
+}
+
+} // namespace
+
+void requireFile(const std::string& path)
+{
+    if (std::optional<Error> error = missingOrDirectory(path))
+        throw *error;
+}
+
+Error cannotOpenForReading(const std::string& path, int error)
+{
+    return missingOrDirectory(path).value_or(Error(path, "cannot open for reading: " + errnoText(error)));
 }
 
 std::string readTextFile(const std::string& path)
 {
-    // A directory opens as a stream on Linux and reads as nothing.
-    std::error_code ec;
-    if (fs::is_directory(path, ec))
-        throw cannotOpenForReading(path, EISDIR);
+    requireFile(path);
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw cannotOpenForReading(path, errno);

@@ -38,8 +38,13 @@ void writeTextFileAtomic(const std::string& path, std::string_view contents, Dur
 // Reads a whole file; throws iblab::Error naming the file when it cannot.
 std::string readTextFile(const std::string& path);
 
+// Throws iblab::Error naming `path` where it is missing ("no such file") or a directory ("is a
+// directory, not a file"), before a reader opens it: a stream opens a directory on Linux, reads
+// it as nothing and reports a size it does not have.
+void requireFile(const std::string& path);
+
 // Why `path` could not be opened for reading, after an open that failed with `error` (errno):
-// "no such file", "is a directory", or the system's reason.
+// requireFile's reasons where they apply (it may have changed since), else the system's.
 Error cannotOpenForReading(const std::string& path, int error);
 
 } // namespace iblab

@@ -358,9 +358,8 @@ Environment loadFile(const std::string& path, const EnvironmentLoadOptions& opti
 {
     const LibpngStderrFilter quietLibpng;
     std::error_code ec;
+    requireFile(path);
     const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status) || fs::is_directory(status))
-        throw cannotOpenForReading(path, 0);
     if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0 && !ec)
         throw Error(path, "empty file (0 bytes)");
 

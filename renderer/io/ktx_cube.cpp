@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <cerrno>
-#include <filesystem>
 #include <fstream>
 
 #include <Imath/half.h>
@@ -174,9 +173,7 @@ KtxCube parseKtxCube(std::span<const std::byte> bytes, std::string_view name, co
 
 KtxCube readKtxCube(const std::string& path, const KtxReadOptions& options)
 {
-    // A directory opens as a stream on Linux, and then reports a size it does not have.
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw cannotOpenForReading(path, EISDIR);
+    requireFile(path);
     std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) throw cannotOpenForReading(path, errno);
     const std::streamoff size = in.tellg();

@@ -47,7 +47,8 @@ TEST_F(Cli, BakeOfADirectoryBakesItsMapsInNameOrder)
     fs::copy_file(IBLAB_SOURCE_DIR "/assets/environments/night.exr", maps / "a-night.EXR");
     std::ofstream(maps / "notes.txt") << "not a map";
     {
-        // A PFM (header, then little-endian rows) is a map too: the directory took only .exr and .hdr.
+        // A PFM is a map too (the directory took only .exr and .hdr): the header, then the rows
+        // in this machine's byte order, little-endian on amd64, as the scale's sign says.
         std::ofstream pfm(maps / "c-grey.pfm", std::ios::binary);
         pfm << "PF\n8 4\n-1.0\n";
         const float grey = 2.0f;

@@ -333,7 +333,7 @@ TEST(Environment, PfmLoadsLinearWithoutAColourSpaceNote)
         }
     file.close();
     const Environment env = loadEnvironment(path);
-    EXPECT_TRUE(env.warnings.empty()) << env.warnings.front();
+    EXPECT_TRUE(env.warnings.empty()) << ::testing::PrintToString(env.warnings);
     EXPECT_EQ(env.image.texels[0], 0.5f);
     EXPECT_EQ(*std::max_element(env.image.texels.begin(), env.image.texels.end()), 2000.0f);
 }
@@ -347,7 +347,7 @@ TEST(Environment, EightBitPpmDecodesBt709sTransferFunction)
     px[1] = 10.0f / 255.0f; // on the linear segment
     writeImage(path, 32, 16, 3, px, OIIO::TypeDesc::UINT8);
     const Environment env = loadEnvironment(path);
-    EXPECT_TRUE(hasWarningContaining(env, "BT.709")) << env.warnings.front();
+    EXPECT_TRUE(hasWarningContaining(env, "BT.709")) << ::testing::PrintToString(env.warnings);
     EXPECT_FALSE(hasWarningContaining(env, "unknown colour space"));
     // BT.709-6 item 1.2 inverted by hand: L = ((V + 0.099) / 1.099)^(1 / 0.45), or V / 4.5.
     EXPECT_NEAR(env.image.texels[0], std::pow((0.2 + 0.099) / 1.099, 1.0 / 0.45), 1e-5);

@@ -21,6 +21,18 @@ int runIblab(const std::string& arguments, std::string& output)
     return pclose(pipe);
 }
 
+// The JSON report in a run's output (the progress and notes on stderr come first).
+nlohmann::json reportIn(const std::string& output) { return nlohmann::json::parse(output.substr(output.find('{'))); }
+
+// Bakes builtin:axes 64 wide with `options` and --export FORMAT --json into OUT; the report.
+nlohmann::json exportAxes(const std::string& out, const std::string& format, const std::string& options)
+{
+    std::string output;
+    EXPECT_EQ(runIblab("bake --env 'builtin:axes?width=64' --no-cache " + options + " --export " + format + " --json --out '" + out + "'", output), 0)
+        << output;
+    return reportIn(output);
+}
+
 TEST(EngineExportCli, WritesTheEnginesFilesAndRefusesAMissingOut)
 {
     std::string output;
@@ -30,14 +42,7 @@ TEST(EngineExportCli, WritesTheEnginesFilesAndRefusesAMissingOut)
     EXPECT_NE(runIblab("bake --env 'builtin:axes?width=64' --no-cache --export unreal --out /tmp/x", output), 0);
     EXPECT_NE(output.find("filament"), std::string::npos) << output; // the choices are named
     testing::TempDirectory dir("export-cli");
-    output.clear();
-    const std::string out = (dir.path() / "studio").string();
-    ASSERT_EQ(runIblab("bake --env 'builtin:axes?width=64' --no-cache --no-errors --prefilter-size 32 --prefilter-levels 5 --export filament --json --out '" +
-                           out + "'",
-                       output),
-              0)
-        << output;
-    const auto json = nlohmann::json::parse(output.substr(output.find('{')));
+    const auto json = exportAxes((dir.path() / "studio").string(), "filament", "--no-errors --prefilter-size 32 --prefilter-levels 5");
     EXPECT_EQ(json["export"]["format"], "filament");
     EXPECT_EQ(json["export"]["files"].size(), 3u);
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "studio" / "studio_ibl.ktx"));
@@ -51,13 +56,10 @@ TEST(EngineExportCli, MeasureReportsAForeignBakeInTheBakesErrorKeys)
 {
     testing::TempDirectory dir("export-measure");
     const std::string out = (dir.path() / "axes").string();
-    std::string baked;
-    ASSERT_EQ(runIblab("bake --env 'builtin:axes?width=64' --no-cache --prefilter-size 64 --export filament --json --out '" + out + "'", baked), 0)
-        << baked;
+    const auto b = exportAxes(out, "filament", "--prefilter-size 64")["errors"];
     std::string measured;
     ASSERT_EQ(runIblab("measure --env 'builtin:axes?width=64' --no-cache --json --bake '" + out + "/axes_ibl.ktx'", measured), 0) << measured;
-    const auto b = nlohmann::json::parse(baked.substr(baked.find('{')))["errors"];
-    const auto m = nlohmann::json::parse(measured.substr(measured.find('{')))["errors"];
+    const auto m = reportIn(measured)["errors"];
     std::vector<std::string> bakeKeys, measureKeys;
     for (const auto& [key, value] : b.items()) bakeKeys.push_back(key);
     for (const auto& [key, value] : m.items()) measureKeys.push_back(key);
@@ -77,12 +79,10 @@ TEST(EngineExportCli, BakeOfAKhronosBakesDirectoryImportsIt)
 {
     testing::TempDirectory dir("export-import");
     const std::string out = (dir.path() / "khronos").string();
-    std::string baked;
-    ASSERT_EQ(runIblab("bake --env 'builtin:axes?width=64' --no-cache --no-errors --prefilter-size 32 --export khronos --out '" + out + "'", baked), 0)
-        << baked;
+    exportAxes(out, "khronos", "--no-errors --prefilter-size 32");
     std::string imported;
     ASSERT_EQ(runIblab("bake --env '" + out + "' --no-cache --no-errors --json", imported), 0) << imported;
-    const auto json = nlohmann::json::parse(imported.substr(imported.find('{')));
+    const auto json = reportIn(imported);
     EXPECT_EQ(json["source"], out);
     EXPECT_FALSE(json.contains("maps")) << "one bake, not a directory of maps";
     EXPECT_NE(imported.find("imported glTF-IBL-Sampler bake"), std::string::npos) << imported;
