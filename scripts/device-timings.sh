@@ -21,8 +21,10 @@ bake_line() {
   shift 3
   # An older build reads its own shaders (IBLAB_BASELINE_ASSETS: a copy of its assets folder).
   if [[ $kind == baseline-* ]]; then bin=(env "IBLAB_ASSET_DIR=${IBLAB_BASELINE_ASSETS:-$PWD/assets}" "$IBLAB_BASELINE"); fi
-  "${bin[@]}" bake --env "$map" --no-cache --no-errors --repeat 3 --json "$@" \
-    | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":sys.argv[1],"map":sys.argv[2],"round":int(sys.argv[3]),"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"part_timings_ms":j.get("part_timings_ms"),"gpu_total_ms":j.get("gpu_total_ms")}))' "$kind" "$map" "$round" >>"$out"
+  # The report is parsed once the bake has exited: python beside it would take a core from
+  # its host work (scripts/measure-bake.sh's bake_report).
+  "${bin[@]}" bake --env "$map" --no-cache --no-errors --repeat 3 --json "$@" > "$tmp/bake.json"
+  python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":sys.argv[1],"map":sys.argv[2],"round":int(sys.argv[3]),"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"part_timings_ms":j.get("part_timings_ms"),"gpu_total_ms":j.get("gpu_total_ms")}))' "$kind" "$map" "$round" < "$tmp/bake.json" >>"$out"
 }
 # Three repeats of each bake in one process (the first compiles the shaders: a bare machine has
 # no disk cache), ROUNDS processes of each, interleaved so that every variant sees the same
@@ -48,8 +50,8 @@ done
 for method in splitsum fitted-lobe sampled reference; do
   for size in "1280 720" "1920 1080"; do
     set -- $size
-    "$iblab" render --method "$method" --width "$1" --height "$2" --time 30 --json -o "$tmp/frame-$method.exr" \
-      | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"frame","method":sys.argv[1],"size":sys.argv[2],"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"gpu_timing_method":j.get("gpu_timing_method")}))' "$method" "$1x$2" >>"$out"
+    "$iblab" render --method "$method" --width "$1" --height "$2" --time 30 --json -o "$tmp/frame-$method.exr" > "$tmp/frame.json"
+    python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"frame","method":sys.argv[1],"size":sys.argv[2],"renderer":j.get("renderer"),"timings_ms":j.get("timings_ms"),"gpu_timing_method":j.get("gpu_timing_method")}))' "$method" "$1x$2" < "$tmp/frame.json" >>"$out"
   done
 done
 # The fitted lobe's shading lights on the GPU: a copper sphere filling 1280 x 720 (as
@@ -58,8 +60,8 @@ done
 for map in courtyard sunrise interior; do
   for variant in "splitsum" "fitted-lobe --no-shading-lights" "fitted-lobe"; do
     # shellcheck disable=SC2086
-    "$iblab" render --scene sphere --env "assets/environments/$map.exr" --method $variant --width 1280 --height 720 --time 30 --json -o "$tmp/sphere.exr" \
-      | python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"sphere","map":sys.argv[1],"variant":sys.argv[2],"shading_lights":j.get("shading_lights"),"timings_ms":j.get("timings_ms")}))' "$map" "$variant" >>"$out"
+    "$iblab" render --scene sphere --env "assets/environments/$map.exr" --method $variant --width 1280 --height 720 --time 30 --json -o "$tmp/sphere.exr" > "$tmp/sphere.json"
+    python3 -c 'import json,sys; j=json.load(sys.stdin); print(json.dumps({"kind":"sphere","map":sys.argv[1],"variant":sys.argv[2],"shading_lights":j.get("shading_lights"),"timings_ms":j.get("timings_ms")}))' "$map" "$variant" < "$tmp/sphere.json" >>"$out"
   done
 done
 # The tables of docs/gpu-timings.md: per map, the minimum over the rounds of each variant.

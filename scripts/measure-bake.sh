@@ -45,6 +45,16 @@ r = resource.getrusage(resource.RUSAGE_CHILDREN)
 print(round((r.ru_utime + r.ru_stime) * 1000))
 PY
 }
+# A bake's --json report, read only once the bake has exited: python's start-up in a pipeline
+# beside the bake takes a core the bake's GL threads use (on a 2-core machine with a pyenv shim
+# for python3 it added about 100 ms to a 150 ms bake, and its scatter).
+bake_report() {
+  local report
+  report=$(mktemp -p "$cache")
+  "$@" > "$report"
+  cat "$report"
+  rm -f "$report"
+}
 total() { python3 -c 'import json,sys; print(json.load(sys.stdin)["timings_ms"]["total"])'; }
 errors() {
   python3 -c '
@@ -68,10 +78,10 @@ measure_tutorial() {
     "$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json > /dev/null # the LUTs, once
     tutorial=() default=()
     for _ in 1 2 3; do
-      tutorial+=("$("$iblab" bake --env "$env" --preset tutorial --no-cache --no-errors --json | total)")
+      tutorial+=("$(bake_report "$iblab" bake --env "$env" --preset tutorial --no-cache --no-errors --json | total)")
       rm -rf "$cache/bake"
       # shellcheck disable=SC2086
-      default+=("$("$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json ${DEFAULT_ARGS:-} | total)")
+      default+=("$(bake_report "$iblab" bake --env "$env" --cache-dir "$cache" --no-errors --json ${DEFAULT_ARGS:-} | total)")
     done
     local t d
     t=$(minimum <<< "${tutorial[*]}")
@@ -203,8 +213,8 @@ PY
     # both builds, 8 interleaved runs, no cache.
     local load=() older_load=()
     for _ in 1 2 3 4 5 6 7 8; do
-      load+=("$("$iblab" bake --env "$map" --no-cache --no-errors --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["other_ms"]["environment_load"])')")
-      older_load+=("$("$baseline" bake --env "$map" --no-cache --no-errors --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["other_ms"]["environment_load"])')")
+      load+=("$(bake_report "$iblab" bake --env "$map" --no-cache --no-errors --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["other_ms"]["environment_load"])')")
+      older_load+=("$(bake_report "$baseline" bake --env "$map" --no-cache --no-errors --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["other_ms"]["environment_load"])')")
     done
     python3 - "${load[*]}" "${older_load[*]}" <<'PY'
 import statistics, sys
@@ -214,7 +224,7 @@ print(f"  decode of the map (environment_load), minimum / median of {len(ours)}:
 PY
   fi
   rm -rf "$cache/bake"
-  "$iblab" bake --env "$map" --cache-dir "$cache" --json | python3 -c '
+  bake_report "$iblab" bake --env "$map" --cache-dir "$cache" --json | python3 -c '
 import json, sys
 j = json.load(sys.stdin)
 t, o = j["timings_ms"], j["other_ms"]
@@ -316,7 +326,7 @@ measure_phases() {
       local dir="$cache/$(echo "${names[$i]}" | md5sum | cut -c1-8)"
       rm -rf "$dir/bake"
       # shellcheck disable=SC2086
-      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors --json ${options[$i]} | python3 -c 'import json,sys; j=json.load(sys.stdin); t=j["timings_ms"]; t.update(j.get("part_timings_ms", {})); print(json.dumps(t))' >> "${reports[$i]}"
+      bake_report "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors --json ${options[$i]} | python3 -c 'import json,sys; j=json.load(sys.stdin); t=j["timings_ms"]; t.update(j.get("part_timings_ms", {})); print(json.dumps(t))' >> "${reports[$i]}"
     done
   done
   python3 - "$map" "$rounds" "${names[@]}" -- "${reports[@]}" <<'PY'
