@@ -10,9 +10,9 @@
 #include <thread>
 
 #include <glm/geometric.hpp>
-#include <nlohmann/json.hpp>
 
 #include "bake/bake_passes.hpp"
+#include "bake/residual_irradiance.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/brdf_lut.hpp"
 #include "ibl/conventions.hpp"
@@ -49,11 +49,6 @@ double relativeRmse(const std::vector<glm::dvec3>& baked, std::span<const glm::d
         sumRef2 += glm::dot(reference[i], reference[i]);
     }
     return sumRef2 > 0.0 ? std::sqrt(sumErr2 / sumRef2) : std::sqrt(sumErr2);
-}
-
-nlohmann::ordered_json statsJson(const ErrorStats& s)
-{
-    return {{"mean_relative", s.mean}, {"max_relative", s.max}, {"directions", s.directions}};
 }
 
 // The width downsampleEquirectToWidth would give, without summing anything (for a report
@@ -457,6 +452,35 @@ void comparePrefilter(const MeasurePlan& plan, std::span<const glm::dvec3> value
     errors.prefilterShadedFloorRms = std::sqrt(floorSquares / double(errors.prefilterShadedFloor.size()));
 }
 
+// The fitted lobe's diffuse as shaded, where the bake found shading lights: each source less
+// the lights, read as shading reads it, plus the lights' own terms (residual_irradiance.hpp).
+void compareIrradianceWithLights(const MeasurePlan& plan, std::span<const glm::dvec3> shadedReference, const BakeResult& result,
+                                 gl::ShaderLibrary& shaders, BakeErrors& errors)
+{
+    if (result.shadingLights.groups.empty())
+        return;
+    const std::vector<ShadingLight> lights = result.shadingLights.lights();
+    const SH9Color lightsSh = shadingLightsShIrradiance(lights);
+    const SH9Color lightsShWindowed = applyWindow(lightsSh, result.sh.window, result.sh.windowWidth);
+    std::vector<glm::dvec3> lit, sh, shWindowed;
+    for (const glm::dvec3& d : plan.shadedDirections) {
+        lit.push_back(shadingLightsIrradiance(lights, d));
+        sh.push_back(evaluate(result.sh.irradiance, d) - evaluate(lightsSh, d) + lit.back());
+        shWindowed.push_back(evaluate(result.sh.irradianceWindowed, d) - evaluate(lightsShWindowed, d) + lit.back());
+    }
+    errors.shIrradianceWithLightsShaded = relativeErrors(sh, shadedReference);
+    errors.shIrradianceWindowedWithLightsShaded = relativeErrors(shWindowed, shadedReference);
+    if (!result.irradianceCube)
+        return;
+    std::vector<glm::vec4> queries;
+    for (const glm::dvec3& d : plan.shadedDirections) queries.emplace_back(glm::vec3(d), 0.0f);
+    const BakedTexture residual = residualIrradianceCube(result.irradianceCube, lights);
+    const std::vector<glm::vec3> read = BakePasses(shaders).samplePrefiltered(residual, RoughnessLayout::Linear, queries);
+    std::vector<glm::dvec3> cube;
+    for (std::size_t i = 0; i < read.size(); ++i) cube.push_back(glm::dvec3(read[i]) + lit[i]);
+    errors.irradianceCubeWithLightsShaded = relativeErrors(cube, shadedReference);
+}
+
 // SH9 and the irradiance cube against the irradiance references: at texel centres, then as
 // shaded.
 void compareIrradiance(const MeasurePlan& plan, std::span<const glm::dvec3> values, const BakeResult& result, gl::ShaderLibrary& shaders,
@@ -496,6 +520,7 @@ void compareIrradiance(const MeasurePlan& plan, std::span<const glm::dvec3> valu
             BakePasses(shaders).samplePrefiltered(result.irradianceCube, RoughnessLayout::Linear, irradianceQueries);
         errors.irradianceCubeShaded = relativeErrors(std::vector<glm::dvec3>(read.begin(), read.end()), shadedReference);
     }
+    compareIrradianceWithLights(plan, shadedReference, result, shaders, errors);
 }
 
 // Each BRDF LUT's largest absolute difference from its references over the grid of points.
@@ -533,67 +558,6 @@ BakeErrors measureBakeErrors(const BakeResult& result, const ImageRGB32F& enviro
     compareLuts(plan, values, result, errors);
     errors.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return errors;
-}
-
-std::string errorsJsonText(const BakeErrors& errors, const AccuracyOptions& options)
-{
-    nlohmann::ordered_json j;
-    nlohmann::ordered_json pre = nlohmann::ordered_json::array();
-    for (const PrefilterLevelError& e : errors.prefilter)
-        pre.push_back({{"mip", e.level},
-                       {"roughness", e.roughness},
-                       {"relative_rmse", e.relativeRmse},
-                       {"directions", e.directions},
-                       {"reference_width", e.referenceWidth}});
-    j["prefilter"] = pre;
-    nlohmann::ordered_json shaded = nlohmann::ordered_json::array();
-    for (const ShadedRoughnessError& e : errors.prefilterShaded)
-        shaded.push_back({{"roughness", e.roughness},
-                          {"lod", e.lod},
-                          {"relative_rmse", e.relativeRmse},
-                          {"directions", e.directions},
-                          {"reference_width", e.referenceWidth}});
-    j["prefilter_shaded"] = shaded;
-    j["prefilter_shaded_rms"] = errors.prefilterShadedRms;
-    if (!errors.prefilterShadedFloor.empty()) {
-        nlohmann::ordered_json floor = nlohmann::ordered_json::array();
-        for (const ShadedRoughnessError& e : errors.prefilterShadedFloor)
-            floor.push_back({{"roughness", e.roughness}, {"relative_rmse", e.relativeRmse}});
-        j["prefilter_shaded_floor"] = floor;
-        j["prefilter_shaded_floor_rms"] = errors.prefilterShadedFloorRms;
-    }
-    nlohmann::ordered_json irr;
-    irr["sh"] = statsJson(errors.shIrradiance);
-    irr["sh_windowed"] = statsJson(errors.shIrradianceWindowed);
-    const std::string cubeKey = "cube_" + std::string(enumName(errors.irradianceMethod));
-    if (errors.irradianceCube) irr[cubeKey] = statsJson(*errors.irradianceCube);
-    irr["reference_width"] = errors.irradianceReferenceWidth;
-    j["irradiance"] = irr;
-    nlohmann::ordered_json irrShaded;
-    irrShaded["sh"] = statsJson(errors.shIrradianceShaded);
-    if (errors.irradianceCubeShaded) irrShaded[cubeKey] = statsJson(*errors.irradianceCubeShaded);
-    j["irradiance_shaded"] = irrShaded;
-    nlohmann::ordered_json lut = nlohmann::ordered_json::object();
-    for (GeometryTerm term : kGeometryTerms)
-        if (errors.lutMaxAbs[std::size_t(term)])
-            lut[std::string(enumName(term))] = *errors.lutMaxAbs[std::size_t(term)];
-    j["lut_max_abs"] = lut;
-    j["method"] = "exact references of renderer/ibl (sums over every texel) at the texel centres of a " +
-                  std::to_string(options.texelsPerFaceEdge) + "x" + std::to_string(options.texelsPerFaceEdge) +
-                  " texel grid per cube face; prefilter: relative RMSE = sqrt(sum|baked-ref|^2 / sum|ref|^2); "
-                  "prefilter_shaded: the same for what split-sum shading reads (textureLod at the layout's lod, seamless "
-                  "trilinear) at " + std::to_string(options.shadedDirections) + " Fibonacci-lattice directions at roughness 0 to 1 in steps of 1/" +
-                  std::to_string(options.shadedRoughnessSteps) + ", "
-                  "prefilter_shaded_rms their root mean square; "
-                  "irradiance: per-direction |baked-ref|/|ref| at the texel grid of each cube (SH: of the shading cube); "
-                  "irradiance_shaded: the same for each cube read bilinearly and seamlessly at the Fibonacci directions; references for roughness >= 0.5 and irradiance on the "
-                  "environment halved to at most " +
-                  std::to_string(options.maxReferenceWidthForWideLobes) + " wide; LUT: max abs error on a " +
-                  std::to_string(options.lutGrid) + "x" + std::to_string(options.lutGrid) + " texel grid against " +
-                  std::to_string(options.lutReferenceSamples) + "-sample CPU integration";
-    j["milliseconds"] = errors.milliseconds;
-    j["references"] = {{"from_cache", errors.referencesFromCache}, {"milliseconds", errors.referenceMilliseconds}};
-    return j.dump();
 }
 
 } // namespace iblab::bake

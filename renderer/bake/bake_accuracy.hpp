@@ -96,6 +96,11 @@ struct BakeErrors {
     // As shaded: at AccuracyOptions::shadedDirections, each cube read bilinearly.
     ErrorStats shIrradianceShaded;
     std::optional<ErrorStats> irradianceCubeShaded;
+    // Where the bake found shading lights: the diffuse as the fitted lobe shades it, each source
+    // less the lights (residual_irradiance.hpp) read as above, plus each light's flux max(0, n.l).
+    std::optional<ErrorStats> shIrradianceWithLightsShaded;         // SH9 as projected
+    std::optional<ErrorStats> shIrradianceWindowedWithLightsShaded; // SH9 as the bake windowed it
+    std::optional<ErrorStats> irradianceCubeWithLightsShaded;
     // Max |baked - reference| over the grid and the A, B, A + B channels.
     std::array<std::optional<double>, 2> lutMaxAbs;
     bool referencesFromCache = false;

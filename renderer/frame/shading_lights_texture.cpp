@@ -4,6 +4,7 @@
 
 #include "bake/bake_result.hpp"
 #include "bake/bake_settings.hpp"
+#include "bake/residual_irradiance.hpp"
 #include "gl/handles.hpp"
 #include "gl/shader_library.hpp"
 #include "gl/uniform.hpp"
@@ -97,23 +98,6 @@ void keepInMirrorOnTheGpu(const bake::BakeResult& bake, const bake::BakedTexture
     }
 }
 
-// The irradiance cube less the lights: subtractShadingLightsIrradiance on a read-back (a 32
-// face is 6144 texels, a fraction of a millisecond).
-bake::BakedTexture residualIrradianceCube(const bake::BakedTexture& irradiance, const std::vector<ShadingLight>& lights)
-{
-    const bake::CubeImage full = bake::readCubeLevel(irradiance, 0);
-    CubeLevelRgb cube{full.size, {}};
-    cube.texels.reserve(full.texels.size());
-    for (const glm::vec4& t : full.texels) cube.texels.emplace_back(t);
-    subtractShadingLightsIrradiance(cube, lights);
-    std::vector<glm::vec4> texels;
-    texels.reserve(cube.texels.size());
-    for (const glm::vec3& t : cube.texels) texels.emplace_back(t, 1.0f);
-    bake::BakedTexture out = bake::createCubeTexture(irradiance.internalFormat, irradiance.size, 1);
-    glTextureSubImage3D(out.id(), 0, 0, 0, 0, full.size, full.size, 6, GL_RGBA, GL_FLOAT, texels.data());
-    return out;
-}
-
 SH9Color minus(const SH9Color& a, const SH9Color& b)
 {
     SH9Color out;
@@ -138,7 +122,7 @@ std::unique_ptr<ShadingLightsTexture> makeShadingLightsTexture(gl::ShaderLibrary
     for (int level = 0; level < full.levels; ++level)
         if (bake::prefilterMipRoughness(bake.settings.prefilter, level) <= 0.0) keepInMirrorOnTheGpu(bake, out->residual, level);
     subtractOnTheGpu(shaders, bake, out->residual);
-    if (bake.irradianceCube) out->residualIrradiance = residualIrradianceCube(bake.irradianceCube, out->lights);
+    if (bake.irradianceCube) out->residualIrradiance = bake::residualIrradianceCube(bake.irradianceCube, out->lights);
     const SH9Color lightsSh = shadingLightsShIrradiance(out->lights);
     out->shResidual = minus(bake.sh.irradiance, lightsSh);
     out->shResidualWindowed = minus(bake.sh.irradianceWindowed, applyWindow(lightsSh, bake.sh.window, bake.sh.windowWidth));

@@ -376,6 +376,36 @@ TEST_F(GlTest, MomentIrradianceOfASunIsExactAwayFromItsTerminator)
     EXPECT_GT(checked, 50);
 }
 
+// The report's diffuse as the fitted lobe shades it: with a sun of 1e6 over a sky of 1 split
+// off as a shading light, the cube alone spreads the sun's terminator over a texel of the
+// 8 face and lights the dark side beside it, and SH9 rings with the sun; less the light,
+// with its flux max(0, n.l) summed exactly, each source holds only the sky. A bake without
+// lights has no such figures.
+TEST_F(GlTest, TheReportMeasuresTheDiffuseWithTheShadingLightsSummedExactly)
+{
+    auto shaders = testing::bakeShaderLibrary();
+    const Environment env = loadEnvironment("builtin:sun?width=256&elevation=35&azimuth=25&size=0.5&intensity=1e6&sky=1");
+    bake::BakeSettings settings = smallBakeSettings();
+    settings.precision = bake::Precision::Float;
+    const bake::BakeResult result = runBake(shaders, env, settings);
+    ASSERT_FALSE(result.shadingLights.groups.empty());
+    const bake::BakeErrors errors = bake::measureBakeErrors(result, env.image, shaders);
+    ASSERT_TRUE(errors.irradianceCubeShaded && errors.irradianceCubeWithLightsShaded);
+    ASSERT_TRUE(errors.shIrradianceWithLightsShaded && errors.shIrradianceWindowedWithLightsShaded);
+    EXPECT_LT(errors.irradianceCubeWithLightsShaded->max, 0.25 * errors.irradianceCubeShaded->max)
+        << errors.irradianceCubeWithLightsShaded->max << " against " << errors.irradianceCubeShaded->max;
+    EXPECT_LT(errors.shIrradianceWithLightsShaded->mean, 0.1 * errors.shIrradianceShaded.mean)
+        << errors.shIrradianceWithLightsShaded->mean << " against " << errors.shIrradianceShaded.mean;
+    EXPECT_LT(errors.shIrradianceWindowedWithLightsShaded->mean, 0.1 * errors.shIrradianceShaded.mean);
+    const std::string json = bake::errorsJsonText(errors, {});
+    EXPECT_NE(json.find("\"cube_moments_with_lights\""), std::string::npos) << json;
+
+    settings.prefilter.shadingLights = 0;
+    const bake::BakeErrors without = bake::measureBakeErrors(runBake(shaders, env, settings), env.image, shaders);
+    EXPECT_FALSE(without.irradianceCubeWithLightsShaded || without.shIrradianceWithLightsShaded);
+    EXPECT_EQ(bake::errorsJsonText(without, {}).find("\"cube_moments_with_lights\""), std::string::npos);
+}
+
 TEST_F(GlTest, ShIrradianceOfASmallLightIsWithinTheSh9TruncationError)
 {
     auto shaders = testing::bakeShaderLibrary();

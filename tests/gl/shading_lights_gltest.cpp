@@ -12,6 +12,7 @@
 
 #include "bake/bake_result.hpp"
 #include "bake/bake_settings.hpp"
+#include "bake/residual_irradiance.hpp"
 #include "bake_test_support.hpp"
 #include "frame/shading_lights_texture.hpp"
 #include "gl_test_fixture.hpp"
@@ -23,13 +24,6 @@ namespace {
 
 using testing::GlTest;
 using testing::runBake;
-
-CubeLevelRgb rgbOf(const bake::CubeImage& image)
-{
-    CubeLevelRgb rgb{image.size, std::vector<glm::vec3>(image.texels.size())};
-    for (std::size_t i = 0; i < image.texels.size(); ++i) rgb.texels[i] = glm::vec3(image.texels[i]);
-    return rgb;
-}
 
 struct LevelDifference {
     double relativeRms = 0.0; // the difference's RMS over the level, against the bake's RMS
@@ -77,7 +71,7 @@ void expectResidualMatchesTheCpus(const std::string& spec, int maxLights, std::s
     std::vector<double> roughness;
     for (int level = 0; level < bake.prefiltered.levels; ++level) {
         levels.push_back(bake::readCubeLevel(bake.prefiltered, level));
-        chain.push_back(rgbOf(levels.back()));
+        chain.push_back(bake::cubeLevelRgb(levels.back()));
         roughness.push_back(bake::prefilterMipRoughness(bake.settings.prefilter, level));
     }
     const std::vector<CubeLevelRgb> cpu = shadingLightResidual(chain, roughness, bake.shadingLights);
@@ -99,7 +93,7 @@ void expectResidualMatchesTheCpus(const std::string& spec, int maxLights, std::s
     // SH9 less the lights' projection, plain and windowed as the bake windows it.
     ASSERT_TRUE(bake.irradianceCube) << spec;
     const bake::CubeImage irradiance = bake::readCubeLevel(bake.irradianceCube, 0);
-    CubeLevelRgb irradianceCpu = rgbOf(irradiance);
+    CubeLevelRgb irradianceCpu = bake::cubeLevelRgb(irradiance);
     subtractShadingLightsIrradiance(irradianceCpu, texture->lights);
     const LevelDifference d = difference(bake::readCubeLevel(texture->residualIrradiance, 0), irradianceCpu, irradiance);
     EXPECT_LT(d.worst, 1e-3) << spec;
