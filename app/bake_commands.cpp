@@ -185,6 +185,7 @@ ordered_json bakeReportJson(const bake::BakeSettings& settings, const MapBake& m
     ordered_json parts = ordered_json::object();
     for (const auto& t : result.partTimings) parts[t.name] = t.milliseconds;
     j["part_timings_ms"] = parts;
+    j["longest_step"] = {{"name", result.longestStep.name}, {"milliseconds", result.longestStep.milliseconds}};
     // Begin to end of the whole job on the GPU's clock, the gaps between its steps included.
     if (times.gpuMs) j["gpu_total_ms"] = *times.gpuMs;
     j["timing_method"] = "steady clock from each step's submission to its fence, one step in flight; shaders: compile (Mesa's disk "

@@ -115,6 +115,7 @@ private:
     void planIrradiance(int envFace);
     // The prefilter's first step, which runs or starts the host work that reads only the map;
     // true where it starts it on worker threads.
+    void planUpload(GLenum format, int envFace, int envLevels, int equirectLevels);
     bool planHostWork(double sourceTexels, int envFace);
     // The split (or the wait for the worker threads) and every mip's slices.
     void planPrefilter(int envFace, bool hostWorkBeside);

@@ -1,7 +1,6 @@
 #include "bake/bake_passes.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <numeric>
 #include <span>
@@ -59,9 +58,6 @@ void clearPassBindings()
 }
 
 GLuint groupsFor(int n) { return GLuint((n + 7) / 8); }
-
-// Levels of a full mip chain down to 1 texel on the longer side.
-int fullMipLevels(int width, int height) { return std::bit_width(unsigned(std::max({width, height, 1}))); }
 
 } // namespace
 
@@ -139,53 +135,6 @@ const gl::ShaderProgram& BakePasses::prefilterProgram(int capacity, int brightCa
     return shaders_.program({kPrefilter}, {{"SAMPLE_TABLE_CAPACITY", std::to_string(capacity)},
                                            {"BRIGHT_CAPACITY", std::to_string(brightCapacity)},
                                            {"EXACT_CAPACITY", std::to_string(exactCapacity)}});
-}
-
-int BakePasses::equirectLevelsForCube(int width, int height, int faceSize)
-{
-    const int full = fullMipLevels(width, height);
-    const double maxLod = std::log2(2.0 * double(height) / (kPi * double(faceSize)));
-    return std::clamp(1 + int(std::lround(maxLod)), 1, full);
-}
-
-gl::Texture BakePasses::uploadEquirect(const ImageRGB32F& image, int levels)
-{
-    const int full = fullMipLevels(image.width, image.height);
-    levels = levels > 0 ? std::min(levels, full) : full;
-    gl::Texture texture = gl::createTexture(GL_TEXTURE_2D);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    if (levels == 1) {
-        // No mips to build by image store: RGB32F, the image's own layout, so that the
-        // upload is one copy (the default bake's 1024x512 map: 9 ms against 14 for the
-        // padded RGBA upload below, minimum of 8 runs each; the same texels are sampled).
-        glTextureStorage2D(texture.id(), 1, GL_RGB32F, image.width, image.height);
-        glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, image.texels.data());
-    } else {
-        // RGBA32F, not RGB32F: the mips are built by image load/store, which RGB formats
-        // lack. Padded to RGBA here: the upload is then a copy, where Mesa's RGB -> RGBA
-        // conversion path costs about as much as the rest of the upload and mip chain
-        // together. A band of rows at a time, through one buffer that stays in cache, not a
-        // padded copy of the whole image (whose fresh pages alone cost milliseconds to fault in).
-        glTextureStorage2D(texture.id(), levels, GL_RGBA32F, image.width, image.height);
-        const int bandRows = std::max(1, (256 * 1024) / int(sizeof(glm::vec4)) / std::max(image.width, 1));
-        std::vector<glm::vec4> rgba(std::size_t(bandRows) * std::size_t(image.width));
-        for (int row = 0; row < image.height; row += bandRows) {
-            const int rows = std::min(bandRows, image.height - row);
-            const float* source = image.texels.data() + std::size_t(row) * std::size_t(image.width) * 3;
-            for (std::size_t i = 0; i < std::size_t(rows) * std::size_t(image.width); ++i)
-                rgba[i] = glm::vec4(source[3 * i], source[3 * i + 1], source[3 * i + 2], 1.0f);
-            glTextureSubImage2D(texture.id(), 0, 0, row, image.width, rows, GL_RGBA, GL_FLOAT, rgba.data());
-        }
-    }
-    // One level: plain bilinear, the same texels as trilinear clamped to level 0, without the
-    // per-lane level selection llvmpipe compiles for a mip filter (the environment cube pass
-    // took 0.8-0.95x the time in three interleaved runs of measure-bake.sh phases).
-    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    downsampleChain(texture.id(), GL_TEXTURE_2D, GL_RGBA32F, image.width, image.height, levels);
-    return texture;
 }
 
 void BakePasses::downsampleChain(GLuint texture, GLenum target, GLenum internalFormat, int width, int height, int levels)

@@ -81,6 +81,11 @@ public:
     // The equirect as an RGBA32F 2D texture (RGB32F when it has one level; REPEAT in s,
     // CLAMP_TO_EDGE in t) with `levels` mips (0: the full chain).
     gl::Texture uploadEquirect(const ImageRGB32F& image, int levels = 0);
+    // The same in parts, for a job that spreads a large map's upload over several steps: the
+    // texture, then bands of level 0's rows, then the mips from level 0.
+    gl::Texture createEquirect(const ImageRGB32F& image, int levels = 0);
+    void uploadEquirectRows(const gl::Texture& texture, const ImageRGB32F& image, int levels, int firstRow, int rowCount);
+    void finishEquirect(const gl::Texture& texture, const ImageRGB32F& image, int levels = 0);
     void equirectToCube(GLuint equirect, const BakedTexture& cube, const CubeSlice& slice);
     // Levels 1.. from level 0 by 2x2 box averages (downsample.comp), per face for cubes.
     void generateMips(const BakedTexture& texture);

@@ -85,6 +85,10 @@ struct BakeResult {
     std::vector<PhaseTiming> timings; // in the order the phases ran
     double totalMilliseconds = 0.0;
     std::vector<PartTiming> partTimings; // in the order the parts ran
+    // The step that took longest, the same clock: in the GUI, where a slice of steps runs per
+    // frame, the longest a frame can wait on the bake. Named as partTimings (its phase alone
+    // where it has no part).
+    PartTiming longestStep;
     bool fromCache = false;                 // environment-dependent results loaded from disk
     std::array<bool, 2> lutFromCache{};     // per geometry term
     std::vector<std::string> notes;         // one line each: cache problems found and fixed

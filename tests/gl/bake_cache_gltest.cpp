@@ -17,6 +17,7 @@
 #include "bake/bake_cache.hpp"
 #include "bake/bake_files.hpp"
 #include "bake/bake_job.hpp"
+#include "bake/bake_passes.hpp"
 #include "bake_test_support.hpp"
 #include "io/atomic_file.hpp"
 #include "io/error.hpp"
@@ -321,6 +322,27 @@ TEST_F(GlTest, ACacheWithoutARootKeepsOnlyTheLutsAndOnlyInMemory)
     otherLut.lut.samples *= 2;
     EXPECT_FALSE(runBake(shaders, env, otherLut, &memoryOnly).lutFromCache[0]) << "kept by the LUT's own settings";
     EXPECT_TRUE(memoryOnly.finishWrites().empty());
+}
+
+// A map's upload in bands of rows, one step each, and its mips built after the last band: the
+// same textures as one upload. A 256-wide map into a 16 face has equirect mips to build.
+TEST_F(GlTest, TheMapUploadsInBandsOfRowsToTheSameBake)
+{
+    auto shaders = library();
+    const Environment env = loadEnvironment("builtin:studio?width=256");
+    bake::BakeSettings fine = smallBakeSettings();
+    fine.cube.faceSize = 16;
+    fine.samplesPerStep = 4096; // 16 rows of the map per step
+    ASSERT_GT(bake::BakePasses::equirectLevelsForCube(256, 128, fine.cube.faceSize), 1);
+    bake::BakeJob job(shaders, env, fine);
+    int uploadSteps = 0;
+    do {
+        if (job.currentPhase() == bake::BakePhase::Upload) ++uploadSteps;
+    } while (job.step());
+    EXPECT_GE(uploadSteps, 2 + 128 / 16 + 1) << "the textures, the bands, the mips";
+    bake::BakeSettings coarse = fine;
+    coarse.samplesPerStep = bake::kUnslicedBake;
+    expectSameResults(job.takeResult(), runBake(shaders, env, coarse));
 }
 
 TEST_F(GlTest, StepsReportProgressAndSlicingChangesNothing)

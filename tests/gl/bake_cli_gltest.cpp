@@ -151,6 +151,12 @@ TEST(BakeCli, BakeWritesItsOutputsAndReportsTimingsAndErrors)
     for (const char* phase : {"shaders", "upload", "environment_cube", "sh9", "irradiance_importance", "prefilter", "brdf_lut",
                               "total"})
         EXPECT_TRUE(j["timings_ms"].contains(phase)) << phase;
+    // The longest step is one of the phases' steps: no longer than its phase, and named by it.
+    const std::string longest = j["longest_step"]["name"].get<std::string>();
+    const std::string longestPhase = longest.substr(0, longest.find('.'));
+    ASSERT_TRUE(j["timings_ms"].contains(longestPhase)) << longest;
+    EXPECT_GT(j["longest_step"]["milliseconds"].get<double>(), 0.0);
+    EXPECT_LE(j["longest_step"]["milliseconds"].get<double>(), j["timings_ms"][longestPhase].get<double>());
     EXPECT_EQ(j["errors"]["prefilter"].size(), 3u);
     EXPECT_TRUE(j["errors"]["irradiance"].contains("sh"));
     EXPECT_TRUE(j["errors"]["irradiance"].contains("cube_importance"));
