@@ -377,7 +377,8 @@ std::vector<glm::dvec3> referenceValues(const MeasurePlan& plan, const BakeResul
 {
     std::filesystem::path cached;
     if (!options.referenceCacheDirectory.empty()) {
-        const std::string key = hex16(fnv1a(plan.references.digest(), fnv1a("iblab-reference-2|" + std::to_string(result.contentHash) + "|" +
+        // 3: a coarse map's upsample keeps its texels' flux (fluxConservingRowBlends).
+        const std::string key = hex16(fnv1a(plan.references.digest(), fnv1a("iblab-reference-3|" + std::to_string(result.contentHash) + "|" +
                                                                              std::to_string(plan.fullWidth) + "|" + std::to_string(plan.wideWidth) + "|" +
                                                                              std::to_string(options.lutReferenceSamples))));
         cached = options.referenceCacheDirectory / (key + ".bin");

@@ -259,7 +259,8 @@ std::string lutJsonText(int size, int samples, GeometryTerm term, bool multiscat
 float prefilterMipRoughness(const PrefilterSettings& settings, int level);
 
 // How many times finer than a map of this width the bake reads it
-// (upsampleEquirectBilinear, the map as the sky and the GPU's sampler read it): enough
+// (upsampleEquirectBilinear, the map as the sky and the GPU's sampler read it, each texel's
+// flux kept): enough
 // for a sum over its texels to resolve mip 1's lobe, as the reference's sums do
 // (referenceUpsampleFactor). The job bakes from that upsample (its cube, SH, lights and
 // bases alike); from the map's own texels a coarse map's cube is coarser than that lobe and

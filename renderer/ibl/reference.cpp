@@ -425,6 +425,60 @@ double referenceMinResolvedRoughness(int width)
     return std::sqrt(1.5 * 2.0 * kPi / double(std::max(width, 1)));
 }
 
+std::vector<EquirectRowBlend> fluxConservingRowBlends(int height, int factor)
+{
+    const int rows = height * factor;
+    std::vector<EquirectRowBlend> blends(static_cast<std::size_t>(rows));
+    for (int k = 0; k < rows; ++k) {
+        // The bilinear read's rows: row k's centre in the source's continuous row coordinate
+        // (centres at integers), clamped at the poles.
+        const double y = (double(k) + 0.5) / double(factor) - 0.5;
+        const double y0 = std::floor(y);
+        EquirectRowBlend& b = blends[std::size_t(k)];
+        b.first = std::clamp(int(y0), 0, height - 1);
+        b.second = std::clamp(int(y0) + 1, 0, height - 1);
+        b.weight = b.first == b.second ? 0.0 : y - y0;
+    }
+    // A ring's solid angle; the columns divide every ring alike, so rings compare as texels do.
+    auto source = [&](int r) { return equirectTexelSolidAngle(r, 1, height); };
+    auto fine = [&](int k) { return equirectTexelSolidAngle(k, 1, rows); };
+    // From the north pole down, each source row's flux made its own: the rows that blend it
+    // with the row below get its weight scaled so that the flux it lends them, with what the
+    // rows above already lend it, is its ring's. Up to the two rows either side of the equator,
+    // which then hold the rest, the same by symmetry; the south half is the north's mirror.
+    const int exactRows = (height - 1) / 2;
+    int k = 0;
+    for (int r = 0; r < exactRows; ++r) {
+        double fixed = 0.0, adjustable = 0.0;
+        const int firstAdjustable = k;
+        for (; k < rows / 2 && blends[std::size_t(k)].first <= r; ++k) {
+            const EquirectRowBlend& b = blends[std::size_t(k)];
+            if (b.first == r && b.second == r) fixed += fine(k);
+            else if (b.first == r) adjustable += fine(k) * (1.0 - b.weight);
+        }
+        // The rows that read r as their second were set when r - 1 was.
+        for (int j = firstAdjustable - 1; j >= 0 && blends[std::size_t(j)].second == r && blends[std::size_t(j)].first == r - 1; --j)
+            fixed += fine(j) * blends[std::size_t(j)].weight;
+        if (adjustable <= 0.0) continue;
+        double scale = std::max(0.0, (source(r) - fixed) / adjustable);
+        for (int j = firstAdjustable; j < k; ++j)
+            if (blends[std::size_t(j)].first == r && blends[std::size_t(j)].second == r + 1)
+                scale = std::min(scale, 1.0 / (1.0 - blends[std::size_t(j)].weight));
+        for (int j = firstAdjustable; j < k; ++j) {
+            EquirectRowBlend& b = blends[std::size_t(j)];
+            if (b.first == r && b.second == r + 1) b.weight = 1.0 - (1.0 - b.weight) * scale;
+        }
+    }
+    for (int j = rows / 2; j < rows; ++j) {
+        const EquirectRowBlend& north = blends[std::size_t(rows - 1 - j)];
+        EquirectRowBlend& b = blends[std::size_t(j)];
+        b.first = height - 1 - north.second;
+        b.second = height - 1 - north.first;
+        b.weight = b.first == b.second ? 0.0 : 1.0 - north.weight;
+    }
+    return blends;
+}
+
 ImageRGB32F upsampleEquirectBilinear(const ImageRGB32F& env, int factor)
 {
     requireEnvironment(env, "upsampleEquirectBilinear");
@@ -434,10 +488,17 @@ ImageRGB32F upsampleEquirectBilinear(const ImageRGB32F& env, int factor)
     if (factor == 1)
         return env;
     ImageRGB32F out(env.width * factor, env.height * factor);
-    // Output texel i's centre in the source's continuous texel coordinates (centres at integers).
-    auto source = [factor](int i) { return (double(i) + 0.5) / double(factor) - 0.5; };
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x) out.set(x, y, equirectBilinearAt(env, source(x), source(y)));
+    const std::vector<EquirectRowBlend> blends = fluxConservingRowBlends(env.height, factor);
+    for (int y = 0; y < out.height; ++y) {
+        const EquirectRowBlend& b = blends[std::size_t(y)];
+        for (int x = 0; x < out.width; ++x) {
+            // Output texel x's centre in the source's continuous column coordinate, which wraps.
+            const double fx = (double(x) + 0.5) / double(factor) - 0.5;
+            const glm::dvec3 first(equirectBilinearAt(env, fx, double(b.first)));
+            const glm::dvec3 second(equirectBilinearAt(env, fx, double(b.second)));
+            out.set(x, y, glm::vec3(first * (1.0 - b.weight) + second * b.weight));
+        }
+    }
     return out;
 }
 
