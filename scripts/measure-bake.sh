@@ -11,8 +11,8 @@
 #   scripts/measure-bake.sh writes          # the cache's EXR writes against the bake, per compression
 #   scripts/measure-bake.sh hugepages       # the bake with and without malloc's huge pages (app/main.cpp)
 #   scripts/measure-bake.sh unseen [DIR...] # the default prefilter's per-mip errors on maps that chose none of its
-#                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6, builtin
-#                                           # slits) and every map in each DIR (scripts/probe-maps.py DIR,
+#                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6 and at the
+#                                           # poles of 256- and 512-wide maps, builtin slits) and every map in each DIR (scripts/probe-maps.py DIR,
 #                                           # scripts/heldout-maps.py DIR make them)
 #   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms) and part of one (part_timings_ms), minimum and median of ROUNDS
 #                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved;
@@ -379,6 +379,13 @@ measure_unseen() {
       for place in "elevation=45&azimuth=0" "elevation=23&azimuth=37" "elevation=35&azimuth=44"; do
         maps+=("builtin:sun?width=1024&size=0.5&intensity=$intensity&sky=$sky&$place")
       done
+    done
+  done
+  # Suns at the poles of maps coarse enough to be upsampled, whose first rows the upsample
+  # must not brighten (fluxConservingRowBlends).
+  for width in 256 512; do
+    for place in "elevation=90" "elevation=-90" "elevation=88&azimuth=10"; do
+      maps+=("builtin:sun?width=$width&size=0.5&intensity=1e5&$place")
     done
   done
   for map in "${maps[@]}"; do

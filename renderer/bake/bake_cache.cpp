@@ -143,8 +143,9 @@ namespace {
 // 18: the refined sets' spikiness at w^(1/8) (kRefineSpikyExponent). 19: mip 1's over blocks
 // twice as wide too. 20: the candidates' larger cap 16 times the cap (kSpikyCandidatesFactor),
 // taken where the base is spiky over blocks twice as wide too. 21: a coarse map's upsample
-// keeps each texel's flux at the poles (fluxConservingRowBlends).
-constexpr int kBakeOutputRevision = 21;
+// keeps each texel's flux at the poles (fluxConservingRowBlends). 22: the moment irradiance's
+// groups summed over the map's texels (equirect_moments.hpp), not the environment cube's.
+constexpr int kBakeOutputRevision = 22;
 } // namespace
 
 std::string BakeCache::bakeKey(std::uint64_t contentHash, const BakeSettings& settings, std::uint64_t shaderFingerprint)

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bake/equirect_moments.hpp"
 #include "bake/near_lights.hpp"
 #include "ibl/reference.hpp"
 #include "gl/pass_timer.hpp"
@@ -65,22 +66,6 @@ CubeImage cubeImageFromStrip(const ImageRGB32F& strip)
 }
 
 } // namespace
-
-std::size_t BakeResult::gpuBytes() const
-{
-    std::size_t total = environmentCube.bytes() + irradianceCube.bytes() + prefiltered.bytes();
-    for (const BakedTexture& lut : brdfLut)
-        total += lut.bytes();
-    return total;
-}
-
-double BakeResult::phaseMilliseconds(BakePhase phase) const
-{
-    for (const PhaseTiming& t : timings)
-        if (t.phase == phase)
-            return t.milliseconds;
-    return 0.0;
-}
 
 void setHostWorkPlacement(HostWorkPlacement placement)
 {
@@ -252,8 +237,10 @@ void BakeJob::planIrradiance(int envFace)
         });
         break;
     case IrradianceMethod::Moments: {
-        steps_.push_back({irradiancePhase(s.irradiance), StepGroup::Environment, double(envFace) * envFace * 6.0, [this] {
-                              momentTexels_ = passes_.buildIrradianceMoments(result_.environmentCube, result_.settings.moments);
+        steps_.push_back({irradiancePhase(s.irradiance), StepGroup::Environment, double(envFace) * envFace * 6.0, [this, envFace] {
+                              const int groups = momentGroupsPerEdge(envFace);
+                              momentTexels_ = passes_.uploadIrradianceMoments(
+                                  momentGroups_.valid() ? momentGroups_.get() : equirectMomentTexels(image_, groups), groups);
                           }});
         const double groups = 6.0 * s.moments.sourceFaceSize * s.moments.sourceFaceSize;
         // A group costs a few multiply-adds, about a tenth of a filtered texture read.
@@ -370,6 +357,10 @@ void BakeJob::planUpload(GLenum format, int envFace, int envLevels, int equirect
                           [this, equirectLevels] { passes_.finishEquirect(equirect_, image_, equirectLevels); }});
 }
 
+// The moment irradiance's groups per face edge: the settings', at most one per texel of the
+// environment cube.
+int BakeJob::momentGroupsPerEdge(int envFace) const { return std::min(result_.settings.moments.sourceFaceSize, envFace); }
+
 bool BakeJob::planHostWork(double sourceTexels, int envFace)
 {
     // The host work that reads only the float map: the fitted lobe's shading lights and the
@@ -408,6 +399,11 @@ bool BakeJob::planHostWork(double sourceTexels, int envFace)
                               }
                               if (p.shadingLights > 0)
                                   shadingLights_ = std::async(std::launch::async, [this, p, grid] { return findShadingLights(image_, p.shadingLights, grid); });
+                              // On llvmpipe the irradiance's own step sums them: it has the cores then.
+                              if (result_.settings.irradiance == IrradianceMethod::Moments)
+                                  momentGroups_ = std::async(std::launch::async, [this, envFace] {
+                                      return equirectMomentTexels(image_, momentGroupsPerEdge(envFace));
+                                  });
                               if (split)
                                   splitPlan_ = std::async(std::launch::async, planSplit);
                           }, hostWorkBeside ? "host_work_start" : "shading_lights"});

@@ -24,6 +24,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "bake/bake_cache.hpp"
 #include "bake/bake_passes.hpp"
@@ -116,6 +119,7 @@ private:
     // The prefilter's first step, which runs or starts the host work that reads only the map;
     // true where it starts it on worker threads.
     void planUpload(GLenum format, int envFace, int envLevels, int equirectLevels);
+    int momentGroupsPerEdge(int envFace) const;
     bool planHostWork(double sourceTexels, int envFace);
     // The split (or the wait for the worker threads) and every mip's slices.
     void planPrefilter(int envFace, bool hostWorkBeside);
@@ -146,6 +150,8 @@ private:
     // destroyed mid-bake waits for them before image_ goes.
     std::future<ShadingLights> shadingLights_;
     std::future<BrightSplitPlan> splitPlan_;
+    // The moment irradiance's groups (equirect_moments.hpp), where host work runs beside the GPU.
+    std::future<std::vector<glm::vec4>> momentGroups_;
 };
 
 } // namespace iblab::bake

@@ -32,7 +32,6 @@ constexpr const char* kEquirectToCube = "bake/equirect_to_cube.comp";
 constexpr const char* kSh9Project = "bake/sh9_project.comp";
 constexpr const char* kIrradianceRiemann = "bake/irradiance_riemann.comp";
 constexpr const char* kIrradianceImportance = "bake/irradiance_importance.comp";
-constexpr const char* kIrradianceMomentsBuild = "bake/irradiance_moments_build.comp";
 constexpr const char* kIrradianceMoments = "bake/irradiance_moments.comp";
 // The size of moment_texel.glsl's MomentTexel: 6 vec4.
 constexpr GLsizeiptr kMomentTexelBytes = 6 * 4 * sizeof(float);
@@ -93,7 +92,6 @@ void BakePasses::compileFor(const BakeSettings& settings, int equirectLevels, bo
         sampleTableProgram(kIrradianceImportance, sampleTableCapacity(settings.importance.samples));
         break;
     case IrradianceMethod::Moments:
-        shaders_.program({kIrradianceMomentsBuild}, {{"FORMAT", imageFormatName(format)}});
         momentsProgram(settings.moments.sourceFaceSize);
         break;
     }
@@ -363,37 +361,16 @@ void BakePasses::irradianceImportance(const BakedTexture& environment, const Bak
     dispatchCube(program, out, slice);
 }
 
-MomentTexels BakePasses::buildIrradianceMoments(const BakedTexture& environment, const MomentIrradianceSettings& settings)
+MomentTexels BakePasses::uploadIrradianceMoments(const std::vector<glm::vec4>& texels, int groupsPerEdge)
 {
-    const int groups = std::min(settings.sourceFaceSize, environment.size);
-    // A group's moment is exact for the texels it reads; 16 x 16 of them per group put any
-    // point of light within 1/32 of a group of where it is (32 x 32 changed no error in the
-    // third digit on the bundled maps).
-    int fineLevel = 0;
-    while (environment.levelSize(fineLevel) > 16 * groups && fineLevel + 1 < environment.levels)
-        ++fineLevel;
-    const gl::ShaderProgram& program =
-        shaders_.program({kIrradianceMomentsBuild}, {{"FORMAT", imageFormatName(environment.internalFormat)}});
-    const GLsizeiptr bytes = kMomentTexelBytes * 6 * groups * groups;
+    const GLsizeiptr bytes = GLsizeiptr(texels.size() * sizeof(glm::vec4));
     GLint maxBlockBytes = 0;
     glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &maxBlockBytes);
     if (bytes > maxBlockBytes)
-        throw Error("moment irradiance", std::to_string(6 * groups * groups) + " groups need a " + std::to_string(bytes) +
+        throw Error("moment irradiance", std::to_string(6 * groupsPerEdge * groupsPerEdge) + " groups need a " + std::to_string(bytes) +
                                              "-byte uniform block; this GL driver allows " + std::to_string(maxBlockBytes) +
                                              " (lower moments.sourceFaceSize)");
-    gl::Buffer buffer = gl::createBuffer();
-    glNamedBufferStorage(buffer.id(), bytes, nullptr, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
-    glBindImageTexture(1, environment.id(), fineLevel, GL_TRUE, 0, GL_READ_ONLY, environment.internalFormat);
-    const MomentsBuildUniforms& uniforms = program.uniforms<MomentsBuildUniforms>();
-    uniforms.groupFaceSize.set(groups);
-    uniforms.fineFaceSize.set(environment.levelSize(fineLevel));
-    glUseProgram(program.id());
-    glDispatchCompute(groupsFor(groups), groupsFor(groups), 6);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, environment.internalFormat);
-    clearPassBindings();
-    return {std::move(buffer), groups};
+    return {gl::createBufferWith<glm::vec4>(texels), groupsPerEdge};
 }
 
 void BakePasses::irradianceMoments(const MomentTexels& groups, const BakedTexture& out, const CubeSlice& slice)

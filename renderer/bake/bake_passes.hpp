@@ -110,12 +110,9 @@ public:
                            const RiemannIrradianceSettings& settings, bool exactTexelSolidAngle);
     void irradianceImportance(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                               const ImportanceIrradianceSettings& settings, bool exactTexelSolidAngle);
-    // The environment's texels in groups (the texels of a settings.sourceFaceSize^2 cube),
-    // each with its flux and first moment per channel (irradiance_moments_build.comp), read
-    // from the finest level that has at most 32 x 32 texels per group.
-    // (At most one group per texel: an environment face smaller than sourceFaceSize has
-    // that many groups per edge.)
-    MomentTexels buildIrradianceMoments(const BakedTexture& environment, const MomentIrradianceSettings& settings);
+    // The map's texels in groups (the texels of a groupsPerEdge^2 cube), each with its flux
+    // and moments (equirect_moments.hpp), as the uniform block irradianceMoments reads.
+    MomentTexels uploadIrradianceMoments(const std::vector<glm::vec4>& texels, int groupsPerEdge);
     // Irradiance from those groups (irradiance_moments.comp).
     void irradianceMoments(const MomentTexels& groups, const BakedTexture& out, const CubeSlice& slice);
     // bright (bright_texels.hpp; null: none): the mips with roughness > 0 sample its base

@@ -1,5 +1,5 @@
 // Diffuse irradiance E(n) = integral L(w) max(0, n.w) dOmega as a sum over the groups of
-// environment texels that irradiance_moments_build.comp summarised. For a group wholly above
+// environment texels that bake/equirect_moments.hpp summarised. For a group wholly above
 // n's horizon max(0, n.w) = n.w is linear in w, so the group's exact share is
 //   integral L_c (n.w) dOmega = n . (integral L_c w dOmega) = Phi_c (n . mu_c)
 // whatever the radiance inside it looks like: a sun anywhere in the group lands where it is.

@@ -1,5 +1,5 @@
 // One group of environment texels as the moment irradiance reads it (irradiance_moments.comp
-// reads it, irradiance_moments_build.comp writes it; renderer/bake/bake_passes.cpp sizes the
+// reads it, renderer/bake/equirect_moments.hpp writes it; renderer/bake/bake_passes.cpp sizes the
 // buffer: kMomentTexelVec4s vec4 per group). Per channel c: the flux Phi_c = integral of L_c
 // dOmega over the group and the first moment mu_c = (integral of L_c w dOmega) / Phi_c; for
 // the luminance Y the first moment mu_Y and the second, S = (integral of Y w w^T dOmega) /
