@@ -36,6 +36,8 @@ struct GroupSums {
     }
 };
 
+constexpr int kGroupStride = 8;
+
 // The longitude's terms of one column: a row's texels share theta, so w = (sin theta sin phi,
 // cos theta, -sin theta cos phi), and a run's moments are its sums over these, scaled once.
 struct Column {
@@ -139,21 +141,33 @@ std::vector<glm::vec4> equirectMomentTexels(const ImageRGB32F& map, int groupsPe
                 const double omega = equirectTexelSolidAngle(y, map.width, map.height);
                 const double theta = (double(y) + 0.5) / double(map.height) * kPi;
                 const double sinTheta = std::sin(theta), cosTheta = std::cos(theta);
-                // A row crosses each group in one or two runs of texels.
-                Run run;
-                int runGroup = -1;
-                const float* texel = &map.texels[map.offset(0, y)];
-                for (int x = 0; x < map.width; ++x, texel += 3) {
+                // A row crosses each group in one or two runs of texels. The group is found
+                // every kGroupStride texels, and texel by texel only where it changes: a run
+                // shorter than that, a corner of a group, is then summed with its neighbour,
+                // which moves its light by a fraction of a group and none of it out of the sum.
+                auto group = [&](int x) {
                     const Column& col = columns[std::size_t(x)];
-                    const int g = groupOf(float(sinTheta * col.sinPhi), float(cosTheta), float(-sinTheta * col.cosPhi), float(groupsPerEdge));
-                    if (g != runGroup) {
-                        if (runGroup >= 0) sums[runGroup].add(run.sums(omega, sinTheta, cosTheta));
-                        run = {};
-                        runGroup = g;
+                    return groupOf(float(sinTheta * col.sinPhi), float(cosTheta), float(-sinTheta * col.cosPhi), float(groupsPerEdge));
+                };
+                Run run;
+                int runGroup = group(0);
+                const float* row = &map.texels[map.offset(0, y)];
+                for (int x = 0; x < map.width; x += kGroupStride) {
+                    const int end = std::min(x + kGroupStride, map.width);
+                    const bool changes = group(end - 1) != runGroup;
+                    for (int i = x; i < end; ++i) {
+                        if (changes) {
+                            const int g = group(i);
+                            if (g != runGroup) {
+                                sums[runGroup].add(run.sums(omega, sinTheta, cosTheta));
+                                run = {};
+                                runGroup = g;
+                            }
+                        }
+                        run.add(row + 3 * std::size_t(i), columns[std::size_t(i)]);
                     }
-                    run.add(texel, col);
                 }
-                if (runGroup >= 0) sums[runGroup].add(run.sums(omega, sinTheta, cosTheta));
+                sums[runGroup].add(run.sums(omega, sinTheta, cosTheta));
             }
         }
     });
