@@ -14,6 +14,10 @@
 #                                           # settings (CC0 maps in ../shared/assets, builtin suns 1e2 .. 1e6 and at the
 #                                           # poles of 256- and 512-wide maps, builtin slits) and every map in each DIR (scripts/probe-maps.py DIR,
 #                                           # scripts/heldout-maps.py DIR make them)
+#   scripts/measure-bake.sh instructions [ENV] # the instructions one bake executes (valgrind's callgrind, llvmpipe on
+#                                           # the calling thread: LP_NUM_THREADS=0), the whole process; IBLAB_BASELINE=an older
+#                                           # build: both, and their ratio. The same count on any load, where wall-clock
+#                                           # ratios on a shared 2-core VM move by tenths between runs
 #   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms) and part of one (part_timings_ms), minimum and median of ROUNDS
 #                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved;
 #                                           # BASELINE_ARGS="..." bakes the baseline (or this build) with those options
@@ -24,7 +28,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 iblab=${IBLAB:-build/app/iblab}
 mode=tutorial
-case "${1:-}" in batch | cmgen | writes | hugepages | phases | unseen) mode=$1; shift ;; esac
+case "${1:-}" in batch | cmgen | writes | hugepages | phases | unseen | instructions) mode=$1; shift ;; esac
 cache=$(mktemp -d)
 trap 'rm -rf "$cache"' EXIT
 # Wall time of one process in ms (stdout and stderr discarded; a failure stops the script).
@@ -401,7 +405,30 @@ print(f"worst mip over {len(rows)} maps: {float(worst[3]):.3f} ({worst[1].strip(
 PY
 }
 
+# Instructions of one bake with the LUTs cached, the whole process (start, load, context, bake,
+# exit): callgrind counts what runs, not how long it waits, so it is the same on any load.
+# llvmpipe's threads off (LP_NUM_THREADS=0): its shaders run on the calling thread, each once.
+# GLIBC_TUNABLES set beforehand, so that the bake does not restart itself under valgrind.
+measure_instructions() {
+  local map=${1:-assets/environments/courtyard.exr}
+  command -v valgrind > /dev/null || { echo "measure-bake: instructions needs valgrind" >&2; exit 2; }
+  local builds=("$iblab") counts=()
+  [ -n "${IBLAB_BASELINE:-}" ] && builds+=("$IBLAB_BASELINE")
+  for i in "${!builds[@]}"; do
+    local dir="$cache/instructions$i"
+    GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors > /dev/null # the LUTs, once
+    rm -rf "$dir/bake"
+    LP_NUM_THREADS=0 GLIBC_TUNABLES=glibc.malloc.hugetlb=1 valgrind --tool=callgrind --callgrind-out-file=/dev/null --smc-check=all \
+      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors > /dev/null 2> "$cache/callgrind$i.txt"
+    counts+=("$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$cache/callgrind$i.txt")")
+    echo "${builds[$i]}: ${counts[$i]} instructions ($map)"
+  done
+  [ ${#counts[@]} -gt 1 ] && python3 -c "import sys; print('ratio %.3fx' % (int(sys.argv[1]) / int(sys.argv[2])))" "${counts[0]}" "${counts[1]}"
+  return 0
+}
+
 case $mode in
+  instructions) measure_instructions "$@" ;;
   phases) measure_phases "$@" ;;
   unseen) measure_unseen "$@" ;;
   tutorial) measure_tutorial "$@" ;;
