@@ -16,7 +16,8 @@
 #                                           # scripts/heldout-maps.py DIR make them)
 #   scripts/measure-bake.sh instructions [ENV] # the instructions one bake executes (valgrind's callgrind, llvmpipe on
 #                                           # the calling thread: LP_NUM_THREADS=0), the whole process; IBLAB_BASELINE=an older
-#                                           # build: both, and their ratio. The same count on any load, where wall-clock
+#                                           # build: both, and their ratio; BAKE_ARGS="..." bakes with those options (--preset
+#                                           # tutorial). The same count on any load, where wall-clock
 #                                           # ratios on a shared 2-core VM move by tenths between runs
 #   scripts/measure-bake.sh phases [ENV]    # each phase of the bake (timings_ms) and part of one (part_timings_ms), minimum and median of ROUNDS
 #                                           # (default 8) processes; IBLAB_BASELINE=an older build: interleaved;
@@ -416,10 +417,12 @@ measure_instructions() {
   [ -n "${IBLAB_BASELINE:-}" ] && builds+=("$IBLAB_BASELINE")
   for i in "${!builds[@]}"; do
     local dir="$cache/instructions$i"
-    GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors > /dev/null # the LUTs, once
+    # shellcheck disable=SC2086
+    GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors ${BAKE_ARGS:-} > /dev/null # the LUTs, once
     rm -rf "$dir/bake"
+    # shellcheck disable=SC2086
     LP_NUM_THREADS=0 GLIBC_TUNABLES=glibc.malloc.hugetlb=1 valgrind --tool=callgrind --callgrind-out-file=/dev/null --smc-check=all \
-      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors > /dev/null 2> "$cache/callgrind$i.txt"
+      "${builds[$i]}" bake --env "$map" --cache-dir "$dir" --no-errors ${BAKE_ARGS:-} > /dev/null 2> "$cache/callgrind$i.txt"
     counts+=("$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$cache/callgrind$i.txt")")
     echo "${builds[$i]}: ${counts[$i]} instructions ($map)"
   done
