@@ -22,6 +22,16 @@ const glm::dvec3 kNormals[] = {
     {0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 0, -1}, {0.48, 0.6, -0.64}, {-0.36, -0.48, 0.8}, {0.6, 0.0, 0.8},
 };
 
+// The light a map holds: each texel's radiance times its solid angle, summed.
+glm::dvec3 equirectFlux(const iblab::ImageRGB32F& image)
+{
+    glm::dvec3 sum(0.0);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            sum += glm::dvec3(image.at(x, y)) * iblab::equirectTexelSolidAngle(y, image.width, image.height);
+    return sum;
+}
+
 TEST(Reference, UniformIrradianceIsPiL)
 {
     // integral max(0, n.w) dOmega = pi. The discrete sum is a midpoint rule whose error comes
@@ -148,15 +158,8 @@ TEST(Reference, DownsamplePreservesPowerAndIrradiance)
     const auto half = iblab::downsampleEquirect2x(env);
     ASSERT_EQ(half.width, 64);
     ASSERT_EQ(half.height, 32);
-    auto power = [](const iblab::ImageRGB32F& img) {
-        glm::dvec3 p(0.0);
-        for (int y = 0; y < img.height; ++y)
-            for (int x = 0; x < img.width; ++x)
-                p += glm::dvec3(img.at(x, y)) * iblab::equirectTexelSolidAngle(y, img.width, img.height);
-        return p;
-    };
     // Power sum L dOmega: preserved up to float storage of the texels (~1e-7 relative).
-    const glm::dvec3 p0 = power(env), p1 = power(half);
+    const glm::dvec3 p0 = equirectFlux(env), p1 = equirectFlux(half);
     for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(p1[c], p0[c], 1e-6 * p0[c]);
     // Irradiance weights are smooth: the coarser texels change E by the midpoint error only.
@@ -226,13 +229,6 @@ TEST(Reference, MinResolvedRoughnessIsResolvedByTheCoarseMap)
 TEST(Reference, UpsampleIsTheBilinearReadOfTheMapKeepingEachTexelsFlux)
 {
     const auto coarse = iblab::paintEquirect(12, 6, [](glm::dvec3 w) { return glm::vec3(1.0 + w.x + 2.0 * w.z * w.z, 2.0 + w.y, 3.0 - w.x * w.y); });
-    auto flux = [](const iblab::ImageRGB32F& image) {
-        glm::dvec3 sum(0.0);
-        for (int y = 0; y < image.height; ++y)
-            for (int x = 0; x < image.width; ++x)
-                sum += glm::dvec3(image.at(x, y)) * iblab::equirectTexelSolidAngle(y, image.width, image.height);
-        return sum;
-    };
     for (int factor : {2, 4}) {
         const auto fine = iblab::upsampleEquirectBilinear(coarse, factor);
         ASSERT_EQ(fine.width, 12 * factor);
@@ -254,13 +250,13 @@ TEST(Reference, UpsampleIsTheBilinearReadOfTheMapKeepingEachTexelsFlux)
                 for (int c = 0; c < 3; ++c) ASSERT_NEAR(fine.at(x, y)[c], expected[c], 1e-5) << factor << " " << x << "," << y;
             }
         }
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(flux(fine)[c], flux(coarse)[c], 1e-6 * flux(coarse)[c]) << factor;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(equirectFlux(fine)[c], equirectFlux(coarse)[c], 1e-6 * equirectFlux(coarse)[c]) << factor;
         // One texel lit, at the pole and beside the equator: the upsample holds its light (to
         // the precision of float texels).
         for (int row : {0, 2, 5}) {
             iblab::ImageRGB32F one(12, 6);
             one.set(4, row, glm::vec3(1000.0f, 10.0f, 1.0f));
-            const glm::dvec3 before = flux(one), after = flux(iblab::upsampleEquirectBilinear(one, factor));
+            const glm::dvec3 before = equirectFlux(one), after = equirectFlux(iblab::upsampleEquirectBilinear(one, factor));
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[c], before[c], 1e-6 * before[c]) << factor << " row " << row;
         }
         iblab::ImageRGB32F uniform(12, 6);
@@ -278,8 +274,8 @@ TEST(Reference, UpsampleIsTheBilinearReadOfTheMapKeepingEachTexelsFlux)
     double bilinear = 0.0;
     for (int y = 0; y < 12; ++y)
         bilinear += std::clamp(1.0 - ((y + 0.5) / 2.0 - 0.5), 0.0, 1.0) * iblab::equirectTexelSolidAngle(y, 24, 12) * 24;
-    EXPECT_NEAR(bilinear / flux(cap).x, 1.110, 1e-3);
-    EXPECT_NEAR(flux(iblab::upsampleEquirectBilinear(cap, 2)).x / flux(cap).x, 1.0, 1e-6);
+    EXPECT_NEAR(bilinear / equirectFlux(cap).x, 1.110, 1e-3);
+    EXPECT_NEAR(equirectFlux(iblab::upsampleEquirectBilinear(cap, 2)).x / equirectFlux(cap).x, 1.0, 1e-6);
     EXPECT_THROW(iblab::upsampleEquirectBilinear(coarse, 0), std::invalid_argument);
     EXPECT_EQ(iblab::referenceUpsampleFactor(1024, 0.1, 16), 1);
     EXPECT_EQ(iblab::referenceUpsampleFactor(512, 0.1, 16), 2);
