@@ -58,8 +58,8 @@ struct Run {
             channel[std::size_t(3 * c + 1)] += texel[c] * col.sinPhi;
             channel[std::size_t(3 * c + 2)] += texel[c] * col.cosPhi;
         }
-        // Rec. 709 luminance; a black group still gets a spread from its texels' solid angle
-        // (the 1e-6 floor), as the cube's build pass gave it.
+        // Rec. 709 luminance; the 1e-6 floor gives a black group the spread of its texels'
+        // directions, so that irradiance_moments.comp's lobe width stays that of the group.
         const double y = iblab::luminance(glm::dvec3(texel[0], texel[1], texel[2])) + 1e-6;
         luminance[0] += y;
         luminance[1] += y * col.sinPhi;
@@ -87,33 +87,15 @@ struct Run {
     }
 };
 
-// conventions.glsl's directionToCubeFaceUv, then the group's texel of a groupsPerEdge^2 cube.
-int groupOf(float x, float y, float z, float groupsPerEdge)
+// The group, a texel of a groupsPerEdge^2 cube, that direction d falls in, where the GPU's
+// cube lookup places it.
+int groupOf(const glm::vec3& d, int groupsPerEdge)
 {
-    const float ax = std::abs(x), ay = std::abs(y), az = std::abs(z);
-    int face;
-    float sc, tc, ma;
-    if (ax >= ay && ax >= az) {
-        ma = ax;
-        face = x > 0.0f ? 0 : 1;
-        sc = x > 0.0f ? -z : z;
-        tc = -y;
-    } else if (ay >= az) {
-        ma = ay;
-        face = y > 0.0f ? 2 : 3;
-        sc = x;
-        tc = y > 0.0f ? z : -z;
-    } else {
-        ma = az;
-        face = z > 0.0f ? 4 : 5;
-        sc = z > 0.0f ? x : -x;
-        tc = -y;
-    }
-    const float half = 0.5f * groupsPerEdge / ma;
-    const int edge = int(groupsPerEdge);
-    const int column = std::clamp(int(sc * half + 0.5f * groupsPerEdge), 0, edge - 1);
-    const int row = std::clamp(int(tc * half + 0.5f * groupsPerEdge), 0, edge - 1);
-    return (face * edge + row) * edge + column;
+    const glm::vec3 faceUv = directionToCubeFaceUv(d);
+    const float edge = float(groupsPerEdge);
+    const int column = std::clamp(int(faceUv.y * edge), 0, groupsPerEdge - 1);
+    const int row = std::clamp(int(faceUv.z * edge), 0, groupsPerEdge - 1);
+    return (int(faceUv.x) * groupsPerEdge + row) * groupsPerEdge + column;
 }
 
 } // namespace
@@ -147,7 +129,7 @@ std::vector<glm::vec4> equirectMomentTexels(const ImageRGB32F& map, int groupsPe
                 // which moves its light by a fraction of a group and none of it out of the sum.
                 auto group = [&](int x) {
                     const Column& col = columns[std::size_t(x)];
-                    return groupOf(float(sinTheta * col.sinPhi), float(cosTheta), float(-sinTheta * col.cosPhi), float(groupsPerEdge));
+                    return groupOf(glm::vec3(float(sinTheta * col.sinPhi), float(cosTheta), float(-sinTheta * col.cosPhi)), groupsPerEdge);
                 };
                 Run run;
                 int runGroup = group(0);
