@@ -399,7 +399,8 @@ bool BakeJob::planHostWork(double sourceTexels, int envFace)
                               }
                               if (p.shadingLights > 0)
                                   shadingLights_ = std::async(std::launch::async, [this, p, grid] { return findShadingLights(image_, p.shadingLights, grid); });
-                              // On llvmpipe the irradiance's own step sums them: it has the cores then.
+                              // Where the host work runs in steps of its own (llvmpipe), the irradiance's
+                              // step sums them instead, when no GL work holds the cores.
                               if (result_.settings.irradiance == IrradianceMethod::Moments)
                                   momentGroups_ = std::async(std::launch::async, [this, envFace] {
                                       return equirectMomentTexels(image_, momentGroupsPerEdge(envFace));

@@ -61,12 +61,6 @@ struct RiemannUniforms {
     gl::Uniform<float> mipBias;
 };
 
-struct MomentsBuildUniforms {
-    explicit MomentsBuildUniforms(const gl::ShaderProgram& p) : groupFaceSize(p, "uGroupFaceSize"), fineFaceSize(p, "uFineFaceSize") {}
-    gl::Uniform<int> groupFaceSize;
-    gl::Uniform<int> fineFaceSize;
-};
-
 struct MomentsUniforms {
     explicit MomentsUniforms(const gl::ShaderProgram& p) : groupCount(p, "uGroupCount") {}
     gl::Uniform<int> groupCount;

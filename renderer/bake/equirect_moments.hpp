@@ -16,8 +16,9 @@
 namespace iblab::bake {
 
 // 6 groupsPerEdge^2 groups, kMomentTexelVec4s (6) vec4 each, in irradiance_moments.comp's
-// order ((face * groupsPerEdge + row) * groupsPerEdge + column); the rows of the map are
-// summed in threads and added in row order, so the result does not depend on the thread count.
+// order ((face * groupsPerEdge + row) * groupsPerEdge + column); the map's rows are summed in
+// eight bands, on threads, and the bands added in order, so the result does not depend on the
+// thread count.
 std::vector<glm::vec4> equirectMomentTexels(const ImageRGB32F& map, int groupsPerEdge);
 
 } // namespace iblab::bake
