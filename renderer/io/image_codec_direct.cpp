@@ -74,11 +74,16 @@ std::optional<ExrLayout> exrLayout(const Imf::Header& header, int& channelCount)
     return layout;
 }
 
+// Opens the file's decoder at the first read, not with the header: OpenEXR's InputFile and
+// TiledInputFile allocate their block buffers as they open (a few scanlines or a tile per
+// decoding thread), so a header declaring a 2^24-texel-wide data window or 8x2^24-texel
+// tiles costs gigabytes and tens of seconds of page faults before a caller could refuse it
+// from header(). The loader checks the header first (environment.cpp), and reads only
+// what it accepts.
 class ExrReader final : public DirectReader {
 public:
-    ExrReader(std::unique_ptr<Imf::InputFile> scanlines, std::unique_ptr<Imf::TiledInputFile> tiles, ExrLayout layout,
-              ImageHeader header)
-        : scanlines_(std::move(scanlines)), tiles_(std::move(tiles)), layout_(std::move(layout))
+    ExrReader(std::string path, bool tiled, ExrLayout layout, ImageHeader header)
+        : path_(std::move(path)), tiled_(tiled), layout_(std::move(layout))
     {
         header_ = std::move(header);
     }
@@ -99,8 +104,8 @@ public:
             frame.insert(layout_.channels[std::size_t(c)],
                          Imf::Slice::Make(type, out + std::size_t(c) * valueBytes, IMATH_NAMESPACE::V2i(h.x, y0), h.width, y1 - y0, xStride, yStride));
         }
-        if (!tiles_ && !scanlines_)
-            return fail("tiles of " + std::to_string(h.tileWidth) + "x" + std::to_string(h.tileHeight) + " texels are too large to decode");
+        if (!openDecoder())
+            return false;
         if (tiles_) {
             // Whole tile rows, as OpenImageIO's read_tiles: the band must start one and end
             // one (or at the image's end), or tiles would be written past the buffer.
@@ -123,6 +128,24 @@ protected:
     }
 
 private:
+    // Throws what OpenEXR throws for a file it cannot open (callers catch it).
+    bool openDecoder()
+    {
+        if (scanlines_ || tiles_)
+            return true;
+        const ImageHeader& h = header_;
+        // Guards every caller, the loader's own check of the tile size aside.
+        if (tiled_ && std::uint64_t(h.tileWidth) * std::uint64_t(h.tileHeight) > kMaxTileTexels)
+            return fail("tiles of " + std::to_string(h.tileWidth) + "x" + std::to_string(h.tileHeight) + " texels are too large to decode");
+        if (tiled_)
+            tiles_ = std::make_unique<Imf::TiledInputFile>(path_.c_str());
+        else
+            scanlines_ = std::make_unique<Imf::InputFile>(path_.c_str());
+        return true;
+    }
+
+    std::string path_;
+    bool tiled_ = false;
     std::unique_ptr<Imf::InputFile> scanlines_;
     std::unique_ptr<Imf::TiledInputFile> tiles_;
     ExrLayout layout_;
@@ -150,26 +173,15 @@ std::unique_ptr<ImageReader> openExr(const std::string& path)
     const std::optional<int> version = exrVersion(path);
     if (!version || Imf::getVersion(*version) != 2 || Imf::isMultiPart(*version) || Imf::isNonImage(*version))
         return nullptr;
-    std::unique_ptr<Imf::InputFile> scanlines;
-    std::unique_ptr<Imf::TiledInputFile> tiles;
-    // OpenEXR's TiledInputFile allocates a whole tile per decoding thread as it opens: a
-    // header that declares tiles of 8x2^24 texels costs gigabytes, and seconds of page
-    // faults, before the loader's check of the tile size (environment.cpp) could refuse it.
-    // So a tiled file's header is read alone first, and a file with such tiles is not opened:
-    // its reader carries the header, for the loader to refuse with its own message.
-    Imf::Header headerAlone;
-    if (Imf::isTiled(*version)) {
+    // The header alone, checked as InputFile checks it; the decoder opens at the first read.
+    Imf::Header header;
+    {
         Imf::StdIFStream stream(path.c_str());
         stream.seekg(8); // past the magic number and the version field
         int versionField = *version;
-        headerAlone.readFrom(stream, versionField);
-        const bool absurdTiles = headerAlone.hasTileDescription() &&
-                                 std::uint64_t(headerAlone.tileDescription().xSize) * headerAlone.tileDescription().ySize > kMaxTileTexels;
-        if (!absurdTiles) tiles = std::make_unique<Imf::TiledInputFile>(path.c_str());
-    } else {
-        scanlines = std::make_unique<Imf::InputFile>(path.c_str());
+        header.readFrom(stream, versionField);
+        header.sanityCheck(Imf::isTiled(*version));
     }
-    const Imf::Header& header = tiles ? tiles->header() : scanlines ? scanlines->header() : headerAlone;
     int channelCount = 0;
     std::optional<ExrLayout> layout = exrLayout(header, channelCount);
     if (!layout)
@@ -194,7 +206,7 @@ std::unique_ptr<ImageReader> openExr(const std::string& path)
     }
     if (const auto* colorSpace = header.findTypedAttribute<Imf::StringAttribute>("oiio:ColorSpace"))
         h.colorSpace = colorSpace->value();
-    return std::make_unique<ExrReader>(std::move(scanlines), std::move(tiles), std::move(*layout), std::move(h));
+    return std::make_unique<ExrReader>(path, Imf::isTiled(*version), std::move(*layout), std::move(h));
 }
 
 // ---- OpenEXR writing ----

@@ -12,6 +12,8 @@
 #include <variant>
 #include <vector>
 
+#include <malloc.h>
+
 #include "io/environment.hpp"
 #include "io/error.hpp"
 #include "io/image_codec.hpp"
@@ -163,6 +165,44 @@ TEST(DirectCodec, WhatItCannotReadExactlyIsLeftToOpenImageIo)
     EXPECT_EQ(sniffImageFile(named), ImageFileKind::OpenExr);
     EXPECT_FALSE(openExrDirect(named));
     EXPECT_EQ(sniffImageFile(dir.file("missing.exr")), ImageFileKind::Other);
+}
+
+TEST(DirectCodec, TheDecoderOpensAtTheFirstReadNotWithTheHeader)
+{
+    // A 16x8 scanline EXR whose header claims a data window 2^24 texels wide. OpenEXR's
+    // InputFile allocates its block buffers for that width as it opens (a gigabyte, which
+    // AddressSanitizer then spends tens of seconds touching: the fuzzer's timeout), before
+    // the loader could refuse the file from its header. The reader must open without them.
+    TempDir dir;
+    const int w = 16, h = 8;
+    const std::string path = dir.file("wide.exr");
+    writeWithOpenImageIo(path, "openexr", w, h, 3, PixelType::Half, ramp(std::size_t(w) * h * 3, 1.0f));
+    std::string bytes;
+    {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // "dataWindow", "box2i", size 16, then min x, min y, max x, max y (int32 LE). The rows
+    // stay 8, so the file's table of blocks still matches its header.
+    const std::size_t type = bytes.find(std::string("dataWindow\0box2i\0", 17));
+    ASSERT_NE(type, std::string::npos);
+    const std::int32_t maxX = (1 << 24) - 1;
+    std::memcpy(&bytes[type + 17 + 4 + 8], &maxX, sizeof maxX);
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+
+    // glibc serves allocations this large with mmap, and counts them in hblkhd.
+    const std::size_t mappedBefore = mallinfo2().hblkhd;
+    const std::unique_ptr<ImageReader> reader = openExrDirect(path);
+    ASSERT_TRUE(reader);
+    EXPECT_EQ(reader->header().width, 1 << 24);
+    EXPECT_EQ(reader->header().height, h);
+    EXPECT_LT(mallinfo2().hblkhd, mappedBefore + (std::size_t(1) << 20)) << "the reader allocated its decoder's buffers";
+    try {
+        loadEnvironment(path);
+        FAIL() << "loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("not equirectangular: 16777216x8"), std::string::npos) << e.what();
+    }
 }
 
 TEST(DirectCodec, ChosenByContentNotByName)
