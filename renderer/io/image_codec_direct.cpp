@@ -141,6 +141,22 @@ private:
             tiles_ = std::make_unique<Imf::TiledInputFile>(path_.c_str());
         else
             scanlines_ = std::make_unique<Imf::InputFile>(path_.c_str());
+        // The file is opened a second time here, so it may have been replaced since its header
+        // was read (a bake rewritten under a reader): the frame buffer is laid out for that
+        // header, and a larger window would be decoded past it.
+        const Imf::Header& opened = tiles_ ? tiles_->header() : scanlines_->header();
+        const IMATH_NAMESPACE::Box2i& window = opened.dataWindow();
+        int channelCount = 0;
+        const std::optional<ExrLayout> layout = exrLayout(opened, channelCount);
+        const bool sameTiles = !tiled_ || (opened.hasTileDescription() && int(opened.tileDescription().xSize) == h.tileWidth &&
+                                           int(opened.tileDescription().ySize) == h.tileHeight);
+        if (window.min.x != h.x || window.min.y != h.y || std::int64_t(window.max.x) - window.min.x + 1 != h.width ||
+            std::int64_t(window.max.y) - window.min.y + 1 != h.height || !sameTiles || !layout ||
+            layout->channels != layout_.channels || layout->storedType != layout_.storedType) {
+            scanlines_.reset();
+            tiles_.reset();
+            return fail("the file changed between reading its header and its pixels");
+        }
         return true;
     }
 

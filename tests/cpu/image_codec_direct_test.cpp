@@ -207,6 +207,21 @@ TEST(DirectCodec, TheDecoderOpensAtTheFirstReadNotWithTheHeader)
     }
 }
 
+TEST(DirectCodec, AFileReplacedAfterItsHeaderWasReadIsAnErrorNotAnOverrun)
+{
+    // The decoder opens the file again at the first read (above): a larger image written over
+    // it in between must not be decoded into a buffer sized for the header that was read.
+    TempDir dir;
+    const std::string path = dir.file("map.exr");
+    writeWithOpenImageIo(path, "openexr", 16, 8, 3, PixelType::Float, ramp(16 * 8 * 3, 1.0f));
+    const std::unique_ptr<ImageReader> reader = openExrDirect(path);
+    ASSERT_TRUE(reader);
+    writeWithOpenImageIo(path, "openexr", 64, 32, 3, PixelType::Float, ramp(64 * 32 * 3, 1.0f));
+    std::vector<float> rows(16 * 8 * 3);
+    EXPECT_FALSE(reader->readRows(0, 8, 3, PixelType::Float, rows.data()));
+    EXPECT_NE(reader->takeError().find("the file changed"), std::string::npos);
+}
+
 TEST(DirectCodec, ChosenByContentNotByName)
 {
     TempDir dir;
