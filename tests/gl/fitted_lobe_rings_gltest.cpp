@@ -86,8 +86,8 @@ protected:
 // Copper at roughness 0.82-0.98, where the table fitted cell by cell jumped between minima
 // (steps of up to 1.5 in a read's direction between neighbouring cells): on the courtyard the
 // user sees by default and on two builtins, the fitted lobe's profile bends back at most 0.02
-// (of its mean luminance) more than the split sum's. Measured: 0.0000-0.0235 against the
-// split sum's 0.0049-0.0437; the table fitted cell by cell bent back 0.043-0.457 and failed
+// (of its mean luminance) more than the split sum's. Measured: 0.0048-0.0579 against the
+// split sum's 0.0081-0.0592 (at most 0.0084 more, builtin:studio at 0.88); the table fitted cell by cell bent back 0.043-0.457 and failed
 // all 12 cases.
 TEST_F(FittedLobeRings, RoughSpheresAreAsSmoothAsTheSplitSums)
 {
