@@ -17,12 +17,13 @@ struct DownsampleUniforms {
 // bake/cube_texel.glsl's, for every pass that writes a slice of a cube.
 struct CubeSliceUniforms {
     explicit CubeSliceUniforms(const gl::ShaderProgram& p)
-        : firstFace(p, "uFirstFace"), faceSize(p, "uFaceSize"), rowOffset(p, "uRowOffset"), rowCount(p, "uRowCount"), storeMax(p, "uStoreMax"),
-          output(p, "uOutput")
+        : firstFace(p, "uFirstFace"), faceSize(p, "uFaceSize"), columnOffset(p, "uColumnOffset"), rowOffset(p, "uRowOffset"), rowCount(p, "uRowCount"),
+          storeMax(p, "uStoreMax"), output(p, "uOutput")
     {
     }
     gl::Uniform<int> firstFace;
     gl::Uniform<int> faceSize;
+    gl::Uniform<int> columnOffset; // 0 but for a dispatch of one tile (BakePasses::dispatchExactTiles)
     gl::Uniform<int> rowOffset;
     gl::Uniform<int> rowCount;
     gl::Uniform<float> storeMax;

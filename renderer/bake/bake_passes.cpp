@@ -13,6 +13,7 @@
 
 #include "ibl/prefilter_lod.hpp"
 #include "bake/bright_texels_block.hpp"
+#include "bake/exact_tiles.hpp"
 #include "bake/near_lights.hpp"
 #include "bake/source_samples.hpp"
 #include "io/error.hpp"
@@ -164,6 +165,7 @@ void BakePasses::dispatchCube(const gl::ShaderProgram& program, const BakedTextu
     const CubeSliceUniforms& uniforms = program.uniforms<CubeSliceUniforms>();
     uniforms.firstFace.set(slice.firstFace);
     uniforms.faceSize.set(out.levelSize(slice.level));
+    uniforms.columnOffset.set(0);
     uniforms.rowOffset.set(slice.firstRow);
     uniforms.rowCount.set(slice.rowCount);
     uniforms.storeMax.set(storeMax(out.internalFormat));
@@ -434,7 +436,48 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
     bindSource(program, lights ? bright->bases[std::size_t(lights->base)] : environment, settings.mipFiltering && roughness > 0.0f, exactTexelSolidAngle);
     // The mirror level copies the source mip whose texels are this level's size.
     uniforms.copyLod.set(std::clamp(std::log2(float(environment.size) / float(out.levelSize(slice.level))), 0.0f, float(environment.levels - 1)));
-    dispatchCube(program, out, slice);
+    if (lights && lights->exactTilesPerEdge > 0)
+        dispatchExactTiles(program, out, slice, *lights, exactCapacity);
+    else
+        dispatchCube(program, out, slice);
+}
+
+void BakePasses::dispatchExactTiles(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice,
+                                    const PrefilterBrightTexels::Level& level, int capacity) const
+{
+    // One work group per tile, each with its own list bound as the exact table: a uniform
+    // block, whose entries every lane of the group reads at once (exact_tiles.hpp).
+    const CubeSliceUniforms& uniforms = program.uniforms<CubeSliceUniforms>();
+    const gl::Uniform<int>& exactCount = program.uniforms<PrefilterUniforms>().exactCount;
+    const int faceSize = out.levelSize(slice.level);
+    uniforms.faceSize.set(faceSize);
+    uniforms.storeMax.set(storeMax(out.internalFormat));
+    uniforms.output.set(0);
+    glBindImageTexture(0, out.id(), slice.level, GL_TRUE, 0, GL_WRITE_ONLY, out.internalFormat);
+    glUseProgram(program.id());
+    const int edge = level.exactTilesPerEdge;
+    const int endRow = slice.firstRow + slice.rowCount;
+    for (int face = slice.firstFace; face < slice.firstFace + slice.faceCount; ++face)
+        for (int ty = 0; ty < edge; ++ty) {
+            const int firstRow = std::max(ty * kExactTileTexels, slice.firstRow);
+            const int rows = std::min((ty + 1) * kExactTileTexels, std::min(endRow, faceSize)) - firstRow;
+            if (rows <= 0)
+                continue;
+            uniforms.firstFace.set(face);
+            uniforms.rowOffset.set(firstRow);
+            uniforms.rowCount.set(rows);
+            for (int tx = 0; tx < edge; ++tx) {
+                const std::size_t tile = (std::size_t(face) * std::size_t(edge) + std::size_t(ty)) * std::size_t(edge) + std::size_t(tx);
+                uniforms.columnOffset.set(tx * kExactTileTexels);
+                exactCount.set(level.exactTileCount[tile]);
+                glBindBufferRange(GL_UNIFORM_BUFFER, 2, level.exactTiles.id(), GLintptr(level.exactTileFirst[tile]) * GLintptr(sizeof(glm::vec4)),
+                                  GLsizeiptr(capacity) * GLsizeiptr(sizeof(glm::vec4)));
+                glDispatchCompute(GLuint(groupsFor(std::min(kExactTileTexels, faceSize - tx * kExactTileTexels))), GLuint(groupsFor(rows)), 1);
+            }
+        }
+    uniforms.columnOffset.set(0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    clearPassBindings();
 }
 
 std::optional<int> BakePasses::mirrorSourceLevel(const BakedTexture& environment, const BakedTexture& prefiltered, int level,

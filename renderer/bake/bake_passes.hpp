@@ -155,6 +155,8 @@ private:
                          const PrefilterSettings& settings);
     void downsampleChain(GLuint texture, GLenum target, GLenum internalFormat, int width, int height, int levels);
     void dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const;
+    void dispatchExactTiles(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice,
+                            const PrefilterBrightTexels::Level& level, int capacity) const;
 
     gl::ShaderLibrary& shaders_;
     int maxUniformTableEntries_;

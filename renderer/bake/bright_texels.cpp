@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "bake/bake_passes.hpp"
+#include "bake/exact_tiles.hpp"
 #include "bake/near_lights.hpp"
 #include "ibl/prefilter_lod.hpp"
 #include "ibl/conventions.hpp"
@@ -254,6 +255,23 @@ std::vector<glm::vec4> exactSumTexels(const CubeImage& level)
     return texels;
 }
 
+// A level's per-tile cuts of its base's mip (exact_tiles.hpp), each list bound as a uniform
+// block of `capacity` vec4 at its own start: at most capacity / 2 entries a list, starting at
+// the driver's offset alignment, the buffer padded so that the last tile's block stays in it.
+void addExactTiles(PrefilterBrightTexels::Level& level, const CubeImage& source, int outputFaceSize, int capacity)
+{
+    GLint alignmentBytes = 16;
+    glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignmentBytes);
+    const int alignmentVec4 = std::max(1, int((alignmentBytes + GLint(sizeof(glm::vec4)) - 1) / GLint(sizeof(glm::vec4))));
+    ExactTiles tiles = exactSumTiles(source, outputFaceSize, capacity / 2, alignmentVec4, capacity);
+    if (tiles.tilesPerEdge == 0)
+        return; // a block too small for a tile's nearest texels: the level stays sampled
+    level.exactTiles = gl::createBufferWith<glm::vec4>(tiles.buffer);
+    level.exactTileFirst = std::move(tiles.first);
+    level.exactTileCount = std::move(tiles.count);
+    level.exactTilesPerEdge = tiles.tilesPerEdge;
+}
+
 } // namespace
 
 int brightBlockCapacity(const PrefilterSettings& settings) { return settings.brightTexels > 0 ? 2 * kMaxBrightLights : 0; }
@@ -439,9 +457,13 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
             // A uniform block reads undefined past a bound range shorter than itself: padded.
             texels.resize(std::max(texels.size(), std::size_t(passes.exactTableCapacity(settings))), glm::vec4(0.0f));
             l.exactTexels = gl::createBufferWith<glm::vec4>(texels);
+        } else if (const int tiled = tiledExactSumSourceLevel(settings, environment.size, environment.levels, roughness);
+                   tiled >= 0 && passes.exactTableCapacity(settings) > 0) {
+            addExactTiles(l, readCubeLevel(out.bases[std::size_t(l.base)], tiled - topLevels[std::size_t(l.base)]),
+                          std::max(settings.faceSize >> level, 1), passes.exactTableCapacity(settings));
         }
         // A level that sums its base exactly has no samples to refine.
-        if (l.exactCount == 0) {
+        if (l.exactCount == 0 && l.exactTilesPerEdge == 0) {
             l.refineSpread = planned.refineSpread;
             l.refineError = planned.refineError;
             l.refineFactor = planned.refineFactor;

@@ -171,6 +171,13 @@ struct PrefilterBrightTexels {
         // texel: (direction, 0), (radiance x solid angle, solid angle); 0 texels: sampled.
         gl::Buffer exactTexels;
         int exactCount = 0;
+        // Or per-tile cuts of it (tiledExactSumSourceLevel; exact_tiles.hpp's lists, in one
+        // buffer): tile t's list starts at vec4 exactTileFirst[t] and has exactTileCount[t]
+        // entries; 0 tiles per edge: none.
+        gl::Buffer exactTiles;
+        std::vector<int> exactTileFirst;
+        std::vector<int> exactTileCount;
+        int exactTilesPerEdge = 0;
     };
     std::vector<Level> levels;
     float meanLuminance = 0.0f;
@@ -240,6 +247,10 @@ PrefilterBrightTexels splitBrightTexels(BakePasses& passes, const BakedTexture& 
 // most alpha / 2 across at a face centre and whose face is at least 8 (the finest where
 // none is), or -1 where it has more than exactSumTexels texels.
 int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness);
+// The mip that level `roughness` sums over per-tile cuts (exact_tiles.hpp) instead of
+// sampling: exactSumSourceLevel's choice where that has more than exactSumTexels texels and at
+// most exactSumTiledTexels; else -1.
+int tiledExactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness);
 
 // The environment level that the split's bases start at: the one nearest the finest any
 // split mip reads (the smallest lod its samples' pdfs pick, at the largest texel; the level

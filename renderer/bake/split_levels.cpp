@@ -12,7 +12,11 @@
 // mip a level sums exactly (bright_texels.hpp).
 namespace iblab::bake {
 
-int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness)
+namespace {
+
+// The level an exact sum of `roughness` reads, whatever its size: the smallest whose texels
+// are at most alpha / 2 across (the finest where none is); -1 where alpha is 0.
+int exactSumLevel(int baseSize, int baseLevels, double roughness)
 {
     // A face-centre texel of a size-S face spans 2 / S radians: alpha / 2 needs S >= 4 / alpha.
     // Over such a texel the weight's curvature at the lobe's peak moves the midpoint rule by
@@ -22,14 +26,35 @@ int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int bas
     // degrees) resolves badly (0.133 against 0.009 on builtin:lights?count=6&size=15).
     constexpr int kExactSumMinFace = 8;
     const double alpha = roughness * roughness;
-    if (settings.exactSumTexels <= 0 || !(alpha > 0.0))
+    if (!(alpha > 0.0))
         return -1;
     int level = 0;
     const double smallest = std::max(4.0 / alpha, double(kExactSumMinFace));
     while (level + 1 < baseLevels && double(std::max(baseSize >> (level + 1), 1)) >= smallest)
         ++level;
+    return level;
+}
+
+double levelTexels(int baseSize, int level)
+{
     const double size = std::max(baseSize >> level, 1);
-    return 6.0 * size * size <= double(settings.exactSumTexels) ? level : -1;
+    return 6.0 * size * size;
+}
+
+} // namespace
+
+int exactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness)
+{
+    const int level = settings.exactSumTexels > 0 ? exactSumLevel(baseSize, baseLevels, roughness) : -1;
+    return level >= 0 && levelTexels(baseSize, level) <= double(settings.exactSumTexels) ? level : -1;
+}
+
+int tiledExactSumSourceLevel(const PrefilterSettings& settings, int baseSize, int baseLevels, double roughness)
+{
+    if (settings.exactSumTiledTexels <= 0 || exactSumSourceLevel(settings, baseSize, baseLevels, roughness) >= 0)
+        return -1;
+    const int level = exactSumLevel(baseSize, baseLevels, roughness);
+    return level >= 0 && levelTexels(baseSize, level) <= double(settings.exactSumTiledTexels) ? level : -1;
 }
 
 int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, int environmentLevels, int firstMip, int lastMip)
@@ -46,6 +71,10 @@ int splitBaseTopLevel(const PrefilterSettings& settings, int environmentSize, in
             continue;
         if (const int exact = exactSumSourceLevel(settings, environmentSize, environmentLevels, roughness); exact >= 0) {
             finest = std::min(finest, float(exact));
+            continue;
+        }
+        if (const int tiled = tiledExactSumSourceLevel(settings, environmentSize, environmentLevels, roughness); tiled >= 0) {
+            finest = std::min(finest, float(tiled));
             continue;
         }
         for (const glm::vec4& sample : ggxReflectedSampleTable(roughness, prefilterSamples(settings, level), settings.mipBias, settings.sampleRotation))

@@ -13,6 +13,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 uniform int uFirstFace;
 uniform int uFaceSize;   // of the mip being written
+uniform int uColumnOffset; // 0 but where a dispatch is one tile (the prefilter's per-tile exact sums)
 uniform int uRowOffset;
 uniform int uRowCount;
 uniform float uStoreMax; // largest finite value of the output format (65504 for half floats)
@@ -24,7 +25,7 @@ int outputFace() { return uFirstFace + int(gl_GlobalInvocationID.z); }
 
 bool outputTexel(out ivec2 texel)
 {
-    texel = ivec2(gl_GlobalInvocationID.x, int(gl_GlobalInvocationID.y) + uRowOffset);
+    texel = ivec2(int(gl_GlobalInvocationID.x) + uColumnOffset, int(gl_GlobalInvocationID.y) + uRowOffset);
     return texel.x < uFaceSize && int(gl_GlobalInvocationID.y) < uRowCount && texel.y < uFaceSize;
 }
 

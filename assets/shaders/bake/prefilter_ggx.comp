@@ -89,7 +89,9 @@ vec3 sumTileLights(vec3 n, ivec2 texel)
 // table is a uniform block where it fits (EXACT_CAPACITY > 0, as source_samples.glsl's sample
 // tables: mip 4 took 2.9 ms on courtyard.exr against 5.1 from a storage buffer), else a
 // storage buffer. Where the samples see a large bright area through a few reads that move with
-// the texel, this sees every texel of it with its weight.
+// the texel, this sees every texel of it with its weight. A mip whose source is too large for
+// one table (the default's mip 3) sums per-tile cuts of it instead (exact_tiles.hpp): the host
+// binds each tile's list as this block for that tile's work group alone, with its uExactCount.
 #if EXACT_CAPACITY > 0
 layout(std140, binding = 2) uniform ExactTexels {
     vec4 exactTexels[EXACT_CAPACITY];
