@@ -160,23 +160,34 @@ void BakePasses::downsampleChain(GLuint texture, GLenum target, GLenum internalF
     clearPassBindings();
 }
 
-void BakePasses::dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const
+void BakePasses::bindCubeOutput(const gl::ShaderProgram& program, const BakedTexture& out, int level) const
 {
     const CubeSliceUniforms& uniforms = program.uniforms<CubeSliceUniforms>();
-    uniforms.firstFace.set(slice.firstFace);
-    uniforms.faceSize.set(out.levelSize(slice.level));
+    uniforms.faceSize.set(out.levelSize(level));
     uniforms.columnOffset.set(0);
-    uniforms.rowOffset.set(slice.firstRow);
-    uniforms.rowCount.set(slice.rowCount);
     uniforms.storeMax.set(storeMax(out.internalFormat));
     uniforms.output.set(0);
     // Layered: the shader addresses the face as the image's layer.
-    glBindImageTexture(0, out.id(), slice.level, GL_TRUE, 0, GL_WRITE_ONLY, out.internalFormat);
+    glBindImageTexture(0, out.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, out.internalFormat);
     glUseProgram(program.id());
-    glDispatchCompute(groupsFor(out.levelSize(slice.level)), groupsFor(slice.rowCount), GLuint(slice.faceCount));
+}
+
+void BakePasses::finishCubePass() const
+{
     // Later passes sample what this one wrote, or read it back, or build mips from it.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     clearPassBindings();
+}
+
+void BakePasses::dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const
+{
+    bindCubeOutput(program, out, slice.level);
+    const CubeSliceUniforms& uniforms = program.uniforms<CubeSliceUniforms>();
+    uniforms.firstFace.set(slice.firstFace);
+    uniforms.rowOffset.set(slice.firstRow);
+    uniforms.rowCount.set(slice.rowCount);
+    glDispatchCompute(groupsFor(out.levelSize(slice.level)), groupsFor(slice.rowCount), GLuint(slice.faceCount));
+    finishCubePass();
 }
 
 void BakePasses::equirectToCube(GLuint equirect, const BakedTexture& cube, const CubeSlice& slice)
@@ -445,16 +456,12 @@ void BakePasses::prefilter(const BakedTexture& environment, const BakedTexture& 
 void BakePasses::dispatchExactTiles(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice,
                                     const PrefilterBrightTexels::Level& level, int capacity) const
 {
-    // One work group per tile, each with its own list bound as the exact table: a uniform
-    // block, whose entries every lane of the group reads at once (exact_tiles.hpp).
+    // One dispatch per tile, each with its own list bound as the exact table: a uniform
+    // block, whose entries every lane reads at once (exact_tiles.hpp).
+    bindCubeOutput(program, out, slice.level);
     const CubeSliceUniforms& uniforms = program.uniforms<CubeSliceUniforms>();
     const gl::Uniform<int>& exactCount = program.uniforms<PrefilterUniforms>().exactCount;
     const int faceSize = out.levelSize(slice.level);
-    uniforms.faceSize.set(faceSize);
-    uniforms.storeMax.set(storeMax(out.internalFormat));
-    uniforms.output.set(0);
-    glBindImageTexture(0, out.id(), slice.level, GL_TRUE, 0, GL_WRITE_ONLY, out.internalFormat);
-    glUseProgram(program.id());
     const int edge = level.exactTilesPerEdge;
     const int endRow = slice.firstRow + slice.rowCount;
     for (int face = slice.firstFace; face < slice.firstFace + slice.faceCount; ++face)
@@ -476,8 +483,7 @@ void BakePasses::dispatchExactTiles(const gl::ShaderProgram& program, const Bake
             }
         }
     uniforms.columnOffset.set(0);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    clearPassBindings();
+    finishCubePass();
 }
 
 std::optional<int> BakePasses::mirrorSourceLevel(const BakedTexture& environment, const BakedTexture& prefiltered, int level,

@@ -154,6 +154,9 @@ private:
     bool copyMirrorLevel(const BakedTexture& environment, const BakedTexture& out, const CubeSlice& slice,
                          const PrefilterSettings& settings);
     void downsampleChain(GLuint texture, GLenum target, GLenum internalFormat, int width, int height, int levels);
+    // A cube pass's output mip bound and its program in use, and the barrier after it.
+    void bindCubeOutput(const gl::ShaderProgram& program, const BakedTexture& out, int level) const;
+    void finishCubePass() const;
     void dispatchCube(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice) const;
     void dispatchExactTiles(const gl::ShaderProgram& program, const BakedTexture& out, const CubeSlice& slice,
                             const PrefilterBrightTexels::Level& level, int capacity) const;
