@@ -150,10 +150,9 @@ struct PrefilterSettings {
     // centre further out). 6144 (a 32^2 face) takes mip 3 of the default (roughness 0.37),
     // whose 288 samples a texel leave it to where their reads fall on thin bright lines: its
     // error on the bundled maps falls from 0.002-0.007 to 0.001-0.002, at about the samples'
-    // cost on llvmpipe (docs/bake.md, "Mip 3 summed per tile"). 0, the default, samples it:
-    // the default is what the held-out maps (scripts/measure-bake.sh unseen) have measured,
-    // and the cuts have been measured on a few of them only (docs/bake.md).
-    int exactSumTiledTexels = 0;
+    // cost on llvmpipe, and no held-out map's worst mip rises (docs/bake.md, "Mip 3 summed per
+    // tile"). 0 samples it.
+    int exactSumTiledTexels = 6144;
     // With the split, a texel of mips 1 and 2 whose samples' luminances spread by more than
     // refineSpread x the RMS luminance of its base (the map clamped at its mip's threshold,
     // averaged in blocks as wide as the samples' median footprint, block_luminance.hpp; over
