@@ -141,8 +141,8 @@ struct PrefilterSettings {
     // most half of alpha radians across (and at least an 8 face), of at most this many texels,
     // is summed so (every texel of that mip, GGX-weighted, normalised by the weights' sum)
     // instead of sampled: 1536 (a 16^2 face) takes mips 4 and 5 of the default (roughness 0.55
-    // and 1), whose sampled bases aliased large bright areas (docs/bake.md). 0: every mip's
-    // base is sampled.
+    // and 1), whose sampled bases aliased large bright areas (docs/bake.md). 0 with
+    // exactSumTiledTexels 0: every mip's base is sampled (0 alone hands mips 3-5 to the tiles).
     int exactSumTexels = 1536;
     // With the split, a mip whose exact-sum source has more texels than exactSumTexels but at
     // most this many is summed over per-tile cuts of it instead of sampled (exact_tiles.hpp:
