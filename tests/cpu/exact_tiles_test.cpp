@@ -1,16 +1,20 @@
 // The prefilter's per-tile cuts (renderer/bake/exact_tiles.hpp) against the exact sum they
 // stand for, over every texel of the same source mip: for each output texel, the GGX-weighted
 // mean over its tile's list and over the whole mip, weighted as prefilter_ggx.comp weighs
-// (ibl/brdf.hpp's ggxPrefilterWeight), at the default's tiled mip (roughness 0.37 on a 32 face).
+// (ibl/brdf.hpp's ggxPrefilterWeight), at the default's tiled mip (roughness 0.37 on a 32 face);
+// and which mips the default hands to the cuts and which to the whole-table sum.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
+#include "bake/bake_settings.hpp"
+#include "bake/bright_texels.hpp"
 #include "bake/exact_tiles.hpp"
 #include "ibl/brdf.hpp"
 #include "ibl/conventions.hpp"
@@ -172,6 +176,35 @@ TEST(ExactTiles, ABrightTexelAgreesWithTheFullSum)
     // 0.00021 and 0.0019 at the default spread; at a spread of 1, 0.0011 and 0.0095.
     EXPECT_LT(a.rms, 0.0006);
     EXPECT_LT(a.largest, 0.005);
+}
+
+// Which estimator each mip of the default gets, on a 1024 x 512 map's 256 cube (9 levels):
+// mip 3 the tiles over its 32 face, mips 4 and 5 the whole-table sum over their 16 / 8 faces.
+// Turning the tiles off samples mip 3; the whole-table sum off alone hands mips 3-5 to the
+// tiles (their sources fit 6144 texels), so a fully sampled base needs both off.
+TEST(ExactTiles, TheDefaultSumsMipThreePerTileAndMipsFourAndFiveWhole)
+{
+    constexpr int kCube = 256;
+    constexpr int kLevels = 9;
+    auto plan = [](const PrefilterSettings& p) {
+        std::vector<int> whole, tiled;
+        for (int mip = 1; mip < p.levels; ++mip) {
+            const double roughness = prefilterMipRoughness(p, mip);
+            whole.push_back(exactSumSourceLevel(p, kCube, kLevels, roughness));
+            tiled.push_back(tiledExactSumSourceLevel(p, kCube, kLevels, roughness));
+        }
+        return std::pair{whole, tiled};
+    };
+    PrefilterSettings p = defaultPreset().prefilter;
+    ASSERT_EQ(p.levels, 6);
+    EXPECT_EQ(plan(p), std::pair(std::vector<int>{-1, -1, -1, 4, 5}, std::vector<int>{-1, -1, 3, -1, -1}));
+    p.exactSumTiledTexels = 0;
+    EXPECT_EQ(plan(p), std::pair(std::vector<int>{-1, -1, -1, 4, 5}, std::vector<int>(5, -1)));
+    p = defaultPreset().prefilter;
+    p.exactSumTexels = 0;
+    EXPECT_EQ(plan(p), std::pair(std::vector<int>(5, -1), std::vector<int>{-1, -1, 3, 4, 5}));
+    p.exactSumTiledTexels = 0;
+    EXPECT_EQ(plan(p), std::pair(std::vector<int>(5, -1), std::vector<int>(5, -1)));
 }
 
 } // namespace
