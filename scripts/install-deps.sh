@@ -50,6 +50,9 @@ as_root=()
 [ "$(id -u)" -eq 0 ] || as_root=(sudo)
 missing=()
 for p in "${packages[@]}"; do
+  # A Node.js from outside Debian (NodeSource's nodejs bundles npm and Conflicts: npm) already
+  # gives the npm command; asking apt for Debian's npm beside it fails the whole install.
+  [ "$p" = npm ] && command -v npm >/dev/null && continue
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
