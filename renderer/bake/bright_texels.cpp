@@ -239,7 +239,7 @@ float brightThresholdFor(const BrightCandidates& candidates, const std::vector<d
 namespace {
 
 // A base mip's texels as prefilter_ggx.comp's exact sum reads them: (direction, 0),
-// (radiance x solid angle, solid angle), the solid angle as the shader's cubeTexelSolidAngle.
+// (radiance x solid angle, solid angle).
 std::vector<glm::vec4> exactSumTexels(const CubeImage& level)
 {
     std::vector<glm::vec4> texels;
@@ -247,10 +247,9 @@ std::vector<glm::vec4> exactSumTexels(const CubeImage& level)
     for (int face = 0; face < 6; ++face)
         for (int row = 0; row < level.size; ++row)
             for (int x = 0; x < level.size; ++x) {
-                const glm::vec3 direction = level.texelDirection(face, x, row);
-                const float solidAngle = cubeTexelSolidAngle(direction, float(level.size));
-                texels.emplace_back(direction, 0.0f);
-                texels.emplace_back(level.rgb(face, x, row) * solidAngle, solidAngle);
+                const ExactSumEntry entry = exactSumEntry(level, face, x, row);
+                texels.emplace_back(entry.direction, 0.0f);
+                texels.emplace_back(entry.flux, entry.solidAngle);
             }
     return texels;
 }

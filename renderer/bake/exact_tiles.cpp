@@ -54,12 +54,12 @@ std::vector<std::vector<Group>> buildPyramid(const CubeImage& source)
         for (int row = 0; row < size; ++row)
             for (int x = 0; x < size; ++x) {
                 Group& g = texels[source.index(face, x, row)];
-                g.direction = source.texelDirection(face, x, row);
+                const ExactSumEntry entry = exactSumEntry(source, face, x, row);
+                g.direction = entry.direction;
                 g.centre = glm::dvec3(g.direction);
-                g.solidAngle = double(cubeTexelSolidAngle(g.direction, float(size)));
-                const glm::dvec3 radiance(source.rgb(face, x, row));
-                g.flux = radiance * g.solidAngle;
-                g.luminanceMoment = luminance(radiance) * g.solidAngle * g.centre;
+                g.solidAngle = double(entry.solidAngle);
+                g.flux = glm::dvec3(entry.flux);
+                g.luminanceMoment = luminance(g.flux) * g.centre;
                 g.radius = regionRadius(face, double(x) / size, double(x + 1) / size, double(row) / size, double(row + 1) / size, g.centre);
             }
     for (int s = size / 2; s >= 1; s /= 2) {
@@ -124,6 +124,13 @@ std::vector<const Group*> cutFor(const std::vector<std::vector<Group>>& pyramid,
 }
 
 } // namespace
+
+ExactSumEntry exactSumEntry(const CubeImage& level, int face, int x, int row)
+{
+    const glm::vec3 direction = level.texelDirection(face, x, row);
+    const float solidAngle = cubeTexelSolidAngle(direction, float(level.size));
+    return {direction, level.rgb(face, x, row) * solidAngle, solidAngle};
+}
 
 ExactTiles exactSumTiles(const CubeImage& source, int outputFaceSize, int maxEntries, int alignmentVec4, int padVec4, double spread)
 {

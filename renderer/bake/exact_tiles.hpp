@@ -17,6 +17,7 @@
 // once: from a storage buffer llvmpipe reads an entry lane by lane, at several times the cost.
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "bake/baked_texture.hpp"
@@ -42,6 +43,17 @@ struct ExactTiles {
     std::vector<int> count;        // its entries (pairs of vec4)
     int largest = 0;               // entries of the longest list
 };
+
+// One texel of a base mip as the shader's exact sums enter it: its centre, its solid angle as
+// the shader's cubeTexelSolidAngle, and radiance x solid angle. The full sum's table and the
+// tiles' single texels both come from here, so that a tile's near texels sum what the full
+// sum sums.
+struct ExactSumEntry {
+    glm::vec3 direction;
+    glm::vec3 flux;
+    float solidAngle;
+};
+ExactSumEntry exactSumEntry(const CubeImage& level, int face, int x, int row);
 
 // The cuts of `source` (one base mip, as read back) for an output face of outputFaceSize
 // texels: at most maxEntries entries a tile, each list starting at a multiple of alignmentVec4
