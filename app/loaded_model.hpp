@@ -1,6 +1,6 @@
 #pragma once
-// The glTF model of SceneKind::Model: loading it into the renderer (a failed load keeps the
-// model shown), its status line, and writing a copy whose materials carry the material
+// The glTF model of SceneKind::Model: loading it into the renderer (a failed load, or a model
+// with nothing to draw, keeps the model shown), its status line, and writing a copy whose materials carry the material
 // panel's factors. The caller puts a loaded model's path in its settings.
 #include <string>
 #include <vector>
@@ -15,8 +15,8 @@ class LoadedModel {
 public:
     explicit LoadedModel(Renderer& renderer) : renderer_(renderer) {}
 
-    // Loads a .gltf/.glb into the renderer. On failure the current model stays; when the
-    // scene shows it (modelShown), the report names it.
+    // Loads a .gltf/.glb into the renderer. On failure, or when its scene has no triangles,
+    // the current model stays; when the scene shows it (modelShown), the report names it.
     StatusReport load(const std::string& path, bool modelShown);
     // The loaded model's status line ("material_spheres.glb: 3 primitives, ..."), or "".
     const std::string& line() const { return line_; }

@@ -132,6 +132,15 @@ TEST_F(LabSessionTest, MalformedModelsAreRefusedAndTheLoadedModelStays)
         EXPECT_EQ(settings.scene.modelPath, goodModel);
         EXPECT_EQ(renderer.sceneInfo(settings).draws, drawsBefore);
     }
+    // Well formed, but its scene's only node is empty: nothing to draw, so it does not
+    // replace the model on screen with an empty view.
+    std::ofstream(models / "no-triangles.gltf") << R"({"asset":{"version":"2.0"},"nodes":[{}],"scenes":[{"nodes":[0]}],"scene":0})";
+    const app::StatusReport empty = loadModel(model, (models / "no-triangles.gltf").string(), settings);
+    expectOneLineNaming(empty, "no-triangles.gltf", "nothing to draw");
+    ASSERT_EQ(empty.notes.size(), 1u);
+    EXPECT_NE(empty.notes[0].find("material_spheres.glb"), std::string::npos) << empty.notes[0];
+    EXPECT_EQ(settings.scene.modelPath, goodModel);
+    EXPECT_EQ(renderer.sceneInfo(settings).draws, drawsBefore);
     renderer.renderFrame(settings, 16, 16);
 }
 
