@@ -131,9 +131,14 @@ int runHeadlessRender(const RenderJob& job, Clock::time_point processStart)
         timings.loadMs = millisecondsSince(loadStart);
         std::string sceneStatus;
         if (settings.scene.kind == SceneKind::Model) {
-            const StatusReport model = LoadedModel(renderer).load(settings.scene.modelPath, /*modelShown=*/false);
+            LoadedModel loadedModel(renderer);
+            const StatusReport model = loadedModel.load(settings.scene.modelPath, /*modelShown=*/false);
             if (model.isError) return fail(model.text);
             sceneStatus = model.text;
+            // A missing texture renders untextured: say so where a script sees it, since
+            // stdout holds only the output's path (or the JSON, which has the line too).
+            for (const std::string& warning : loadedModel.warnings())
+                std::fprintf(stderr, "iblab render: warning: %s: %s\n", displayName(settings.scene.modelPath).c_str(), warning.c_str());
         }
         if (settings.view.mode == ViewMode::Furnace) session.ensureFurnaceBake();
         if (settings.camera.distance <= 0.0f) frameAtStart(renderer, settings, float(job.width) / float(job.height));

@@ -24,6 +24,7 @@ StatusReport LoadedModel::load(const std::string& path, bool modelShown)
         }
         renderer_.setModel(model, path);
         materials_ = model.materials;
+        warnings_ = model.warnings;
         std::string text = displayName(path) + ": " + std::to_string(model.instances.size()) + " primitives, " +
                            std::to_string(model.materials.size()) + " materials, " + std::to_string(model.textures.size()) + " textures";
         for (const auto& warning : model.warnings) text += "; " + warning;

@@ -20,6 +20,9 @@ public:
     StatusReport load(const std::string& path, bool modelShown);
     // The loaded model's status line ("material_spheres.glb: 3 primitives, ..."), or "".
     const std::string& line() const { return line_; }
+    // What its loader skipped or could not find (a missing texture, a primitive with
+    // non-finite positions), also in line(): `render` prints them, which shows no status line.
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
     // Writes a copy of the glTF at settings.scene.modelPath whose materials carry the material
     // panel's factors.
@@ -29,6 +32,7 @@ private:
     Renderer& renderer_;
     std::vector<PbrMaterial> materials_; // of the loaded model, for export
     std::string line_;                   // its status line, kept under a failed load's error
+    std::vector<std::string> warnings_;  // its loader's
 };
 
 } // namespace iblab::app

@@ -190,6 +190,26 @@ TEST_F(Cli, BadModelFailsWithOneLine)
     EXPECT_NE(r.err.find("broken.gltf"), std::string::npos) << r.err;
 }
 
+// A model that loads with a texture missing still renders, and stderr names the file and the
+// texture, one line a warning; stdout stays the output's path alone.
+TEST_F(Cli, AModelsMissingTextureIsAWarningOnStderr)
+{
+    const fs::path model = IBLAB_SOURCE_DIR "/assets/models/material_spheres.glb";
+    std::ofstream(dir / "textured.gltf")
+        << R"({"asset":{"version":"2.0"},"buffers":[{"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA","byteLength":36}],)"
+           R"("bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],)"
+           R"("images":[{"uri":"nowhere.png"}],"textures":[{"source":0}],"materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+    const Result r = run("render --scene textured.gltf --width 32 --height 32 -o out.png");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("iblab render: warning: textured.gltf: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nowhere.png"), std::string::npos) << r.err;
+    const Result clean = run("render --scene " + model.string() + " --width 32 --height 32 -o clean.png");
+    ASSERT_EQ(clean.exitCode, 0) << clean.err;
+    EXPECT_EQ(clean.err.find("warning"), std::string::npos) << clean.err;
+}
+
 void writeImage(const fs::path& path, int width, int height, OIIO::TypeDesc type, const void* pixels)
 {
     auto out = OIIO::ImageOutput::create(path.string());
