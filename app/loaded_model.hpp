@@ -1,7 +1,8 @@
 #pragma once
 // The glTF model of SceneKind::Model: loading it into the renderer (a failed load, or a model
-// with nothing to draw, keeps the model shown), its status line, and writing a copy whose materials carry the material
-// panel's factors. The caller puts a loaded model's path in its settings.
+// with nothing to draw, keeps the model shown), its status line, and writing a copy whose
+// materials carry the material panel's factors. The caller puts a loaded model's path in its
+// settings.
 #include <string>
 #include <vector>
 
