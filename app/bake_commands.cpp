@@ -32,6 +32,7 @@
 #include "gl/context_error.hpp"
 #include "gl/context_info.hpp"
 #include "gl/shader_library.hpp"
+#include "status_report.hpp"
 
 namespace iblab::app {
 namespace {
@@ -266,6 +267,10 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // 1024x512 map, a few ms.
     const bool pixelsNeededAfter = !o.noErrors || o.repeat > 1 || o.exportFormat;
     const char* importedFormat = environment.imported ? importedBakeFormat(environment.imported->kind) : nullptr; // the job may take it
+    // The loader's warnings (texels it repaired, NaN and Inf among them; an LDR input; the
+    // upsample or downsample it made), which the GUI shows under the map's line.
+    std::vector<std::string> notes;
+    for (const std::string& warning : environment.warnings) notes.push_back(displayName(environment.source) + ": " + warning);
     bake::BakeResult result =
         bake::BakeJob(shaders, pixelsNeededAfter ? Environment(environment) : std::move(environment), settings, &cache).runToCompletion();
     std::vector<double> totals{result.totalMilliseconds};
@@ -303,7 +308,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // The cache's files were being written meanwhile (bake_cache.hpp): the errors above and
     // the --out files overlapped them, and only what is left is waited for here.
     const auto waitStart = Clock::now();
-    std::vector<std::string> notes = result.notes;
+    notes.insert(notes.end(), result.notes.begin(), result.notes.end());
     if (importedFormat) notes.push_back(std::string("imported ") + importedFormat + ": its cubes are uploaded as made, not baked");
     if (errors) notes.insert(notes.end(), errors->notes.begin(), errors->notes.end());
     if (map.waitForWrites)

@@ -265,6 +265,23 @@ TEST_F(Cli, NanAndNegativeEnvironmentsRenderFinite)
     }
 }
 
+// `bake` says what the loader repaired, as the GUI and `render --json` do: on stderr, naming
+// the map, and in the report's notes.
+TEST_F(Cli, BakeReportsTheTexelsTheLoaderRepaired)
+{
+    std::vector<float> texels(32 * 16 * 3, 2.0f);
+    texels[7] = std::numeric_limits<float>::quiet_NaN();
+    texels[40] = std::numeric_limits<float>::infinity();
+    writeImage(dir / "spoilt.exr", 32, 16, OIIO::TypeDesc::FLOAT, texels.data());
+    const Result r = run("bake --env spoilt.exr --no-errors --json --prefilter-size 16 --prefilter-levels 3 --moments-size 8 --lut-size 16 --lut-samples 64");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("iblab bake: spoilt.exr: repaired 2 texel components"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("1 NaN; 1 +Inf"), std::string::npos) << r.err;
+    const nlohmann::json notes = nlohmann::json::parse(r.out)["notes"];
+    EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const nlohmann::json& n) { return n.get<std::string>().find("1 NaN") != std::string::npos; }))
+        << notes;
+}
+
 TEST_F(Cli, LdrEnvironmentLoadsWithAWarning)
 {
     std::vector<unsigned char> pixels(64 * 32 * 3, 128);
