@@ -217,6 +217,29 @@ ordered_json bakeReportJson(const bake::BakeSettings& settings, const MapBake& m
     return j;
 }
 
+// --out without --export: the bake's own directory (bake_files.hpp), its errors in bake.json,
+// and both LUTs beside it.
+void writeBakeOut(const std::filesystem::path& dir, const bake::BakeResult& result, const std::optional<bake::BakeErrors>& errors,
+                  const bake::AccuracyOptions& accuracy, int lutSamples)
+{
+    ordered_json extra;
+    if (errors) extra["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
+    bake::writeBakeDirectory(dir, result, extra.empty() ? std::string() : extra.dump());
+    for (GeometryTerm term : bake::kGeometryTerms)
+        if (const bake::BakedTexture& lut = result.lut(term))
+            bake::writeLutExr(dir / ("brdf_lut_" + std::string(enumName(term)) + ".exr"), bake::read2D(lut),
+                              lutSamples, term, true, false);
+}
+
+// The loader's warnings (texels it repaired, NaN and Inf among them; an LDR input), which the
+// GUI shows under the map's line, each naming the map: a batch prints them together.
+std::vector<std::string> loaderNotes(const Environment& environment)
+{
+    std::vector<std::string> notes;
+    for (const std::string& warning : environment.warnings) notes.push_back(displayName(environment.source) + ": " + warning);
+    return notes;
+}
+
 // Bakes one map in the session (made on the first map) and prints its table, or returns its
 // JSON report. `loading` decodes map.environment (startLoading); `decoded` runs once it has,
 // failed or not, before the bake (a batch starts the next map's decode there). Throws on
@@ -267,10 +290,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     // 1024x512 map, a few ms.
     const bool pixelsNeededAfter = !o.noErrors || o.repeat > 1 || o.exportFormat;
     const char* importedFormat = environment.imported ? importedBakeFormat(environment.imported->kind) : nullptr; // the job may take it
-    // The loader's warnings (texels it repaired, NaN and Inf among them; an LDR input; the
-    // upsample or downsample it made), which the GUI shows under the map's line.
-    std::vector<std::string> notes;
-    for (const std::string& warning : environment.warnings) notes.push_back(displayName(environment.source) + ": " + warning);
+    std::vector<std::string> notes = loaderNotes(environment);
     bake::BakeResult result =
         bake::BakeJob(shaders, pixelsNeededAfter ? Environment(environment) : std::move(environment), settings, &cache).runToCompletion();
     std::vector<double> totals{result.totalMilliseconds};
@@ -292,14 +312,7 @@ ordered_json bakeMap(const BakeCommandOptions& o, const bake::BakeSettings& sett
     if (!map.out.empty() && o.exportFormat) {
         exported = writeEngineExport(shaders, environment, result, *o.exportFormat, map.out, o.json);
     } else if (!map.out.empty()) {
-        const std::filesystem::path dir(map.out);
-        ordered_json extra;
-        if (errors) extra["errors"] = ordered_json::parse(bake::errorsJsonText(*errors, accuracy));
-        bake::writeBakeDirectory(dir, result, extra.empty() ? std::string() : extra.dump());
-        for (GeometryTerm term : bake::kGeometryTerms)
-            if (const bake::BakedTexture& lut = result.lut(term))
-                bake::writeLutExr(dir / ("brdf_lut_" + std::string(enumName(term)) + ".exr"), bake::read2D(lut),
-                                  settings.lut.samples, term, true, false);
+        writeBakeOut(map.out, result, errors, accuracy, settings.lut.samples);
     }
     glFinish();
     if (const std::size_t glErrors = session->gl.debug.errorCount() - glErrorsBefore)
