@@ -7,21 +7,8 @@ namespace iblab::app {
 
 StatusReport LoadedModel::load(const std::string& path, bool modelShown)
 {
-    // The model on screen stays when the new one fails, or has nothing to draw (a scene of
-    // empty nodes): say which, as a failed environment load does (the error replaced its
-    // line, and with it the only sign of what was still shown).
-    auto refused = [&](const std::string& text) {
-        StatusReport status{text, true};
-        if (modelShown && !line_.empty()) status.notes.push_back("still showing " + line_);
-        return status;
-    };
     try {
-        const ModelData model = loadGltfModel(path);
-        if (model.instances.empty()) {
-            std::string text = displayName(path) + ": nothing to draw";
-            for (const auto& warning : model.warnings) text += "; " + warning;
-            return refused(text);
-        }
+        const ModelData model = loadDrawableGltfModel(path);
         renderer_.setModel(model, path);
         materials_ = model.materials;
         warnings_ = model.warnings;
@@ -31,7 +18,12 @@ StatusReport LoadedModel::load(const std::string& path, bool modelShown)
         line_ = text;
         return {text, false};
     } catch (const Error& e) {
-        return refused(e.what());
+        // The model on screen stays (a model with nothing to draw is refused too): say which,
+        // as a failed environment load does (the error replaced its line, and with it the
+        // only sign of what was still shown).
+        StatusReport status{e.what(), true};
+        if (modelShown && !line_.empty()) status.notes.push_back("still showing " + line_);
+        return status;
     }
 }
 

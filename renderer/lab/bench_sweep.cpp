@@ -288,7 +288,7 @@ BenchJob::BenchJob(Renderer& renderer, BenchOptions options) : state_(std::make_
     options.frame.view.mode = ViewMode::Final;
     options.frame.view.split = false;
     for (const SweepPoint& p : options.points) bake::validate(p.bake);
-    if (options.frame.scene.kind == SceneKind::Model) renderer.setModel(loadGltfModel(options.frame.scene.modelPath), options.frame.scene.modelPath);
+    if (options.frame.scene.kind == SceneKind::Model) renderer.setModel(loadDrawableGltfModel(options.frame.scene.modelPath), options.frame.scene.modelPath);
     report_.renderer = gl::describeCurrentContext();
     report_.options = std::move(options);
 }

@@ -409,4 +409,15 @@ ModelData loadGltfModel(const std::string& path, const ModelLoadOptions& options
     });
 }
 
+ModelData loadDrawableGltfModel(const std::string& path, const ModelLoadOptions& options)
+{
+    ModelData model = loadGltfModel(path, options);
+    if (model.instances.empty()) {
+        std::string problem = "nothing to draw";
+        for (const std::string& warning : model.warnings) problem += "; " + warning;
+        throw Error(path, problem);
+    }
+    return model;
+}
+
 } // namespace iblab

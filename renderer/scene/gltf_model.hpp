@@ -84,6 +84,10 @@ struct ModelData {
 // non-finite positions, and instances whose world transform is singular, are skipped
 // with a warning. Failures: iblab::Error (see above); nothing is returned half-built.
 ModelData loadGltfModel(const std::string& path, const ModelLoadOptions& options = {});
+// loadGltfModel for a caller that draws it (the GUI, render, bench): a model whose scene has
+// no triangles (every primitive skipped, or only empty nodes) is an iblab::Error naming the
+// file, "nothing to draw", and the warnings that say why.
+ModelData loadDrawableGltfModel(const std::string& path, const ModelLoadOptions& options = {});
 
 struct MaterialEdit {
     // Index into the source's "materials"; -1 adds a material for the primitives that

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gltf_test_files.hpp"
+#include "io/error.hpp"
 #include "malformed_images.hpp"
 
 using namespace iblab;
@@ -219,6 +220,29 @@ TEST(GltfFeatures, NodeCyclesAndDeepChainsNeitherHangNorOverflow)
     m = loadGltfModel(writeGltf(dir, b, "chain.gltf"));
     ASSERT_EQ(m.instances.size(), 1u);
     EXPECT_NEAR(m.instances[0].mesh.positions[0].z, 0.001f * (kChain - 1), 1e-2f);
+}
+
+// A model that loads but has nothing to draw (its one primitive skipped for non-finite
+// positions): loadGltfModel returns it with the reasons, loadDrawableGltfModel, which the
+// GUI, render and bench use, refuses it naming the file and those reasons.
+TEST(GltfFeatures, AModelWithNothingToDrawIsRefusedByTheDrawableLoad)
+{
+    TempDir dir;
+    GltfBuilder b = triangle();
+    b.doc["nodes"] = {{{"mesh", 0}, {"scale", {0, 0, 0}}}};
+    const std::string path = writeGltf(dir, b, "flat.gltf");
+    const ModelData m = loadGltfModel(path);
+    EXPECT_TRUE(m.instances.empty());
+    EXPECT_TRUE(anyWarningContains(m, {"no triangles to show"}));
+    try {
+        loadDrawableGltfModel(path);
+        ADD_FAILURE() << "a model with nothing to draw was accepted";
+    } catch (const iblab::Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("flat.gltf: nothing to draw; "), std::string::npos) << what;
+        EXPECT_NE(what.find("no triangles to show"), std::string::npos) << what;
+    }
+    EXPECT_EQ(loadDrawableGltfModel(writeGltf(dir, triangle(), "fine.gltf")).instances.size(), 1u);
 }
 
 TEST(GltfFeatures, ExportAddsAMaterialForPrimitivesWithoutOne)
