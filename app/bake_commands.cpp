@@ -232,7 +232,8 @@ void writeBakeOut(const std::filesystem::path& dir, const bake::BakeResult& resu
 }
 
 // The loader's warnings (texels it repaired, NaN and Inf among them; an LDR input), which the
-// GUI shows under the map's line, each naming the map: a batch prints them together.
+// GUI shows under the map's line, each naming the map, since a batch prints every map's notes
+// on the same stderr.
 std::vector<std::string> loaderNotes(const Environment& environment)
 {
     std::vector<std::string> notes;
